@@ -1,0 +1,50 @@
+// lpir-gseg: LiDAR ground segmentation (LPIR-GSeg). Dispatches to one subcommand.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+#include "apps/cli/commands.h"
+
+namespace lpir {
+const char* SensorsDir() {
+  const char* env = std::getenv("LPIR_SENSORS_DIR");
+  return env && *env ? env : LPIR_SENSORS_DIR;
+}
+}  // namespace lpir
+
+namespace {
+const char kUsage[] =
+    "usage: lpir-gseg <command> [options]\n"
+    "  segment INPUT... --sensor NAME --out DIR [--format label|pcd|ply] [--images] [--gt PATH]\n"
+    "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json]\n"
+    "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels FILE.label\n"
+    "  demo [--out DIR]\n";
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  struct Command {
+    const char* name;
+    int (*run)(int, char**);
+  };
+  const Command commands[] = {{"segment", lpir::RunSegment},
+                              {"evaluate", lpir::RunEvaluate},
+                              {"simulate", lpir::RunSimulate},
+                              {"demo", lpir::RunDemo}};
+  for (const Command& c : commands) {
+    if (!std::strcmp(argv[1], c.name)) {
+      try {
+        return c.run(argc - 2, argv + 2);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "lpir-gseg %s: error: %s\n", c.name, e.what());
+        return 1;
+      }
+    }
+  }
+  std::fprintf(stderr, "lpir-gseg: unknown command '%s'\n%s", argv[1], kUsage);
+  return 2;
+}

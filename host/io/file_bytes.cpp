@@ -1,0 +1,31 @@
+#include "host/io/file_bytes.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "host/io/io_error.h"
+
+namespace lpir {
+
+std::vector<char> ReadFileBytes(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw IoError(path, "read failed");
+  return bytes;
+}
+
+void WriteFileBytes(const std::string& path, const void* data, size_t size) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw IoError(path, std::string("cannot create: ") + std::strerror(errno));
+  out.write(static_cast<const char*>(data), std::streamsize(size));
+  out.flush();
+  if (!out) throw IoError(path, "write failed (disk full?)");
+}
+
+}  // namespace lpir

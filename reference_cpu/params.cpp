@@ -1,0 +1,161 @@
+#include "reference_cpu/params.h"
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+
+namespace lpir {
+namespace {
+
+struct Field {
+  const char* name;
+  size_t offset;
+  bool is_uint;
+};
+
+#define LPIR_F(name) {#name, offsetof(Params, name), false}
+#define LPIR_U(name) {#name, offsetof(Params, name), true}
+// Fields a profile may override (the image geometry comes from the profile itself).
+const Field kFields[] = {
+    LPIR_F(h_noise),          LPIR_F(i_noise),          LPIR_U(rings_near),
+    LPIR_U(rings_far),        LPIR_U(sectors_near),     LPIR_U(sectors_far),
+    LPIR_F(ring_res_near),    LPIR_F(ring_res_far),     LPIR_F(slope_max),
+    LPIR_F(seed_margin),      LPIR_F(h_athr),           LPIR_F(rise_margin),
+    LPIR_F(plane_dist_floor), LPIR_F(plane_dist_scale), LPIR_F(normal_min_z2),
+    LPIR_F(ground_max_above), LPIR_F(hole_gap),         LPIR_F(t_edge),
+    LPIR_F(t_slope_low),      LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),
+    LPIR_F(t_stdz_high),      LPIR_F(t_stdi_low),       LPIR_F(t_stdi_high),
+    LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_U(min_component),
+    LPIR_U(grow_max_iters),   LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
+};
+#undef LPIR_F
+#undef LPIR_U
+
+}  // namespace
+
+Params DefaultParams() {
+  Params p{};
+  p.width = 2048;
+  p.beams = 64;
+  p.ring_zero_is_top = 0;
+  p.has_ring = 0;
+  p.min_range2 = 2.5f * 2.5f;
+  p.max_range2 = 120.0f * 120.0f;
+  p.k_xz = 0.0f;
+  p.k_yz = 0.0f;
+  p.h_noise = -2.2f;  // ~0.5 m under the road for a 1.73 m mount
+  p.i_noise = 0.05f;
+  p.intensity_scale = 1.0f;
+  p.sensor_height = 1.73f;
+  p.rings_near = 10;     // 10 x 2 m = 20 m near zone
+  p.rings_far = 25;      // 25 x 4 m beyond: to 120 m
+  p.sectors_near = 128;  // 2.8 degrees
+  p.sectors_far = 64;
+  p.ring_res_near = 2.0f;
+  p.ring_res_far = 4.0f;
+  p.slope_max = 0.08f;
+  p.seed_margin = 0.05f;
+  p.h_athr = 0.10f;
+  p.rise_margin = 0.20f;
+  p.plane_dist_floor = 0.10f;
+  p.plane_dist_scale = 3.0f;
+  p.normal_min_z2 = 0.8f;  // normal within ~26.6 degrees of vertical
+  p.ground_max_above = 1.0f;
+  p.hole_gap = 0.5f;
+  p.t_edge = 0.20f;
+  p.t_slope_low = 0.10f;
+  p.t_slope_high = 0.50f;
+  p.t_stdz_low = 0.0004f;  // (2 cm)^2
+  p.t_stdz_high = 0.01f;   // (10 cm)^2
+  p.t_stdi_low = 0.002f;
+  p.t_stdi_high = 0.02f;
+  p.grow_di = 0.15f;
+  p.grow_dz = 0.10f;
+  p.min_component = 20;
+  p.grow_max_iters = 512;
+  p.bp_range_gate = 0.5f;
+  p.bp_height_gate = 0.1f;
+  return p;
+}
+
+bool ApplyOverride(Params& params, const std::string& name, float value) {
+  for (const Field& f : kFields) {
+    if (name != f.name) continue;
+    char* base = reinterpret_cast<char*>(&params) + f.offset;
+    if (f.is_uint) {
+      if (!(value >= 0.0f) || value != std::floor(value) || value > 4.0e9f)
+        throw std::invalid_argument("parameter " + name + " expects a whole number >= 0");
+      *reinterpret_cast<uint32_t*>(base) = static_cast<uint32_t>(value);
+    } else {
+      if (!std::isfinite(value))
+        throw std::invalid_argument("parameter " + name + " expects a finite number");
+      *reinterpret_cast<float*>(base) = value;
+    }
+    return true;
+  }
+  return false;
+}
+
+std::vector<std::string> ParamNames() {
+  std::vector<std::string> names;
+  for (const Field& f : kFields) names.push_back(f.name);
+  return names;
+}
+
+Params ParamsForSensor(const SensorProfile& s) {
+  Params p = DefaultParams();
+  p.width = s.width;
+  p.beams = s.beams;
+  p.ring_zero_is_top = s.ring_zero_is_top ? 1u : 0u;
+  p.min_range2 = s.min_range * s.min_range;
+  p.max_range2 = s.max_range * s.max_range;
+  p.k_xz = s.k_xz;
+  p.k_yz = s.k_yz;
+  p.intensity_scale = s.intensity_scale;
+  p.sensor_height = s.sensor_height;
+  p.h_noise = -s.sensor_height - 0.5f;
+  for (const auto& [name, value] : s.overrides) {
+    if (!ApplyOverride(p, name, value))
+      throw std::invalid_argument("sensor profile '" + s.name + "': unknown parameter '" + name +
+                                  "'");
+  }
+  if (p.sectors_near == 0 || p.width % p.sectors_near || p.sectors_far == 0 ||
+      p.width % p.sectors_far)
+    throw std::invalid_argument("sensor profile '" + s.name +
+                                "': sectors_near and sectors_far must divide the image width");
+  if (p.rings_near + p.rings_far == 0 || !(p.ring_res_near > 0) || !(p.ring_res_far > 0))
+    throw std::invalid_argument("sensor profile '" + s.name + "': the grid needs rings");
+  return p;
+}
+
+Tables MakeTables(const SensorProfile& s, const Params& p) {
+  if (s.elevation_deg.size() != s.beams)
+    throw std::invalid_argument("sensor profile '" + s.name + "': elevation table has " +
+                                std::to_string(s.elevation_deg.size()) + " entries for " +
+                                std::to_string(s.beams) + " beams");
+  Tables t;
+  const double kPi = 3.14159265358979323846;
+  for (unsigned b = 0; b + 1 < s.beams; ++b) {
+    double mid = 0.5 * (double(s.elevation_deg[b]) + double(s.elevation_deg[b + 1])) * kPi / 180;
+    double tn = std::tan(mid);
+    t.beam_bound.push_back(float(tn * std::fabs(tn)));
+  }
+  t.column_dir.resize(2 * size_t(p.width));
+  for (unsigned k = 0; k < p.width; ++k) {
+    double phi = kPi - 2.0 * kPi * double(k) / double(p.width);
+    t.column_dir[2 * k] = float(std::cos(phi));
+    t.column_dir[2 * k + 1] = float(std::sin(phi));
+  }
+  for (unsigned i = 1; i <= p.rings_near; ++i) {
+    double r = double(p.ring_res_near) * i;
+    t.ring_bound2.push_back(float(r * r));
+  }
+  double near = double(p.ring_res_near) * p.rings_near;
+  for (unsigned i = 1; i <= p.rings_far; ++i) {
+    double r = near + double(p.ring_res_far) * i;
+    t.ring_bound2.push_back(float(r * r));
+  }
+  return t;
+}
+
+}  // namespace lpir

@@ -1,0 +1,37 @@
+// Parameters and the tables the host derives from them. Both are handed to every backend as the
+// same bytes (SPEC section 3): the reference and the shaders never compute a trigonometric value.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "reference_cpu/sensor.h"
+#include "shaders/common/params.h"
+
+namespace lpir {
+
+// Defaults tuned for the HDL-64E in SemanticKITTI.
+Params DefaultParams();
+
+// Defaults, then the profile's geometry, then its overrides. Throws std::invalid_argument naming
+// the profile and the key when an override names no parameter or a value is out of range.
+Params ParamsForSensor(const SensorProfile& sensor);
+
+// Sets one parameter by its field name; false when no field has that name.
+bool ApplyOverride(Params& params, const std::string& name, float value);
+
+// Names of every parameter (for help texts and profile checking).
+std::vector<std::string> ParamNames();
+
+struct Tables {
+  // Row boundaries: beams - 1 entries, descending. Boundary b lies between row b and row b + 1 at
+  // elevation e_b; stored as t*|t| with t = tan(e_b), compared with z*|z| / r^2 without dividing.
+  std::vector<float> beam_bound;
+  // Column boundaries: width entries of (cos, sin) of phi_k = pi - 2*pi*k/width (entry 0 unused).
+  std::vector<float> column_dir;
+  // Ring boundaries: squared outer radius of every ring, ascending, rings_near + rings_far entries.
+  std::vector<float> ring_bound2;
+};
+
+Tables MakeTables(const SensorProfile& sensor, const Params& params);
+
+}  // namespace lpir

@@ -1,0 +1,26 @@
+// What the pipeline needs to know about a spinning LiDAR. Parsed from sensors/<name>.txt by
+// host/io/sensor_profile.h; the core never reads files.
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lpir {
+
+struct SensorProfile {
+  std::string name;                   // e.g. "hdl64e"
+  unsigned beams = 64;                // image rows
+  unsigned width = 2048;              // image columns (one per azimuth step, 360 degrees)
+  std::vector<float> elevation_deg;   // beam elevations, degrees, row 0 (top) first, descending
+  bool ring_zero_is_top = false;      // when the file has a ring field: true if ring 0 is the top beam
+  float intensity_scale = 1.0f;       // raw intensity * scale = intensity in [0, 1]
+  float sensor_height = 1.73f;        // m, sensor above the ground it stands on
+  float min_range = 2.5f;             // m, planar range below which points are invalid (the car)
+  float max_range = 120.0f;           // m, planar range above which points are invalid
+  float k_xz = 0.0f, k_yz = 0.0f;     // mount tilt, eq. 2-3 (from `calibrate`)
+  float b_x = 0.0f, b_y = 0.0f;       // m, fitted sensor height at the origin, eq. 2 (informative)
+  // Parameter overrides, "name value" pairs applied over the defaults (see ApplyOverride).
+  std::vector<std::pair<std::string, float>> overrides;
+};
+
+}  // namespace lpir
