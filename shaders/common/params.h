@@ -68,6 +68,8 @@ struct Params {
   float bp_height_gate;    // m, ... and within this height of the winner
   uint pad0;
   uint pad1;
+  uint pad2;
+  uint pad3;
 };
 
 #ifdef __cplusplus
