@@ -1,0 +1,26 @@
+// Any supported cloud file by its extension: .bin (KITTI, or nuScenes 5-float by option), .pcd
+// (ASCII or binary), .ply (ASCII or binary little-endian).
+#pragma once
+#include <string>
+
+#include "host/io/kitti_bin.h"
+#include "reference_cpu/cloud.h"
+
+namespace lpir {
+
+struct ReadOptions {
+  BinLayout bin_layout = BinLayout::kKitti4;
+};
+
+// IoError naming the file for an unknown extension or a malformed file.
+Cloud ReadCloud(const std::string& path, const ReadOptions& options = {});
+// True for the extensions ReadCloud accepts (used when listing a folder).
+bool IsCloudFile(const std::string& path);
+
+enum class CloudFormat { kPcd, kPly };
+// Writes the cloud with a `label` field (uint8: 1 ground, 0 non-ground) beside x y z intensity
+// (and ring when the cloud has one), binary.
+void WriteLabelledCloud(const std::string& path, const Cloud& cloud, const Labels& labels,
+                        CloudFormat format);
+
+}  // namespace lpir

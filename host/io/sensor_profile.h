@@ -1,0 +1,20 @@
+// Sensor profiles: small text files in sensors/ (see sensors/README.md for the format).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "reference_cpu/sensor.h"
+
+namespace lpir {
+
+// `name_or_path` is a profile name (sensors_dir/<name>.txt) or a path to a profile file.
+// std::invalid_argument listing the known names when neither exists; IoError naming the file and
+// line for a malformed profile (unknown key, unknown parameter override, bad number, elevation
+// table not matching `beams` or not descending, ...).
+SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::string& sensors_dir);
+// Names of the profiles in sensors_dir (file stems), sorted.
+std::vector<std::string> KnownSensorProfiles(const std::string& sensors_dir);
+// Writes a profile that LoadSensorProfile reads back identically.
+void WriteSensorProfile(const std::string& path, const SensorProfile& profile);
+
+}  // namespace lpir
