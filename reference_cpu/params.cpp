@@ -25,7 +25,7 @@ const Field kFields[] = {
     LPIR_F(ground_max_above), LPIR_F(hole_gap),         LPIR_F(t_edge),
     LPIR_F(t_slope_low),      LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),
     LPIR_F(t_stdz_high),      LPIR_F(t_stdi_low),       LPIR_F(t_stdi_high),
-    LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_U(min_component),
+    LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),  LPIR_U(min_component),
     LPIR_U(grow_max_iters),   LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
 };
 #undef LPIR_F
@@ -70,7 +70,9 @@ Params DefaultParams() {
   p.t_stdi_low = 0.002f;
   p.t_stdi_high = 0.02f;
   p.grow_di = 0.15f;
-  p.grow_dz = 0.10f;
+  p.grow_dz = 0.03f;
+  p.grow_grade = 0.15f;
+  p.column_arc = float(2.0 * 3.14159265358979323846 / 2048.0);
   p.min_component = 20;
   p.grow_max_iters = 512;
   p.bp_range_gate = 0.5f;
@@ -105,6 +107,7 @@ std::vector<std::string> ParamNames() {
 Params ParamsForSensor(const SensorProfile& s) {
   Params p = DefaultParams();
   p.width = s.width;
+  p.column_arc = float(2.0 * 3.14159265358979323846 / double(s.width));
   p.beams = s.beams;
   p.ring_zero_is_top = s.ring_zero_is_top ? 1u : 0u;
   p.min_range2 = s.min_range * s.min_range;
@@ -148,11 +151,13 @@ Tables MakeTables(const SensorProfile& s, const Params& p) {
   }
   for (unsigned i = 1; i <= p.rings_near; ++i) {
     double r = double(p.ring_res_near) * i;
+    t.ring_inner.push_back(float(r - double(p.ring_res_near)));
     t.ring_bound2.push_back(float(r * r));
   }
   double near = double(p.ring_res_near) * p.rings_near;
   for (unsigned i = 1; i <= p.rings_far; ++i) {
     double r = near + double(p.ring_res_far) * i;
+    t.ring_inner.push_back(float(r - double(p.ring_res_far)));
     t.ring_bound2.push_back(float(r * r));
   }
   return t;

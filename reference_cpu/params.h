@@ -1,6 +1,7 @@
 // Parameters and the tables the host derives from them. Both are handed to every backend as the
 // same bytes (SPEC section 3): the reference and the shaders never compute a trigonometric value.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,14 @@ struct Tables {
   std::vector<float> column_dir;
   // Ring boundaries: squared outer radius of every ring, ascending, rings_near + rings_far entries.
   std::vector<float> ring_bound2;
+  // Inner radius of every ring, m (the slope prior of stage 4 reads it).
+  std::vector<float> ring_inner;
 };
+
+// Cells of the concentric grid: near rings x near sectors, then far rings x far sectors.
+inline uint32_t CellCount(const Params& p) {
+  return p.rings_near * p.sectors_near + p.rings_far * p.sectors_far;
+}
 
 Tables MakeTables(const SensorProfile& sensor, const Params& params);
 

@@ -1,11 +1,37 @@
 #include "reference_cpu/pipeline.h"
+
+#include <chrono>
+
+#include "reference_cpu/stages.h"
+
 namespace lpir {
-const char* const kStageNames[9] = {"prepare",        "project",  "grid_reduce",
+
+const char* const kStageNames[9] = {"prepare",      "project",         "grid_reduce",
                                     "coarse_segment", "feature_maps", "classify_pixels",
-                                    "fuse",           "grow",     "back_project"};
-void RunReference(const Cloud& cloud, const Params&, const Tables&, Frame& frame, StageTimes*) {
-  frame.n = uint32_t(cloud.size());
-  frame.label.assign(cloud.size(), 0);
-  frame.why.assign(cloud.size(), 0);
+                                    "fuse",         "grow",            "back_project"};
+
+void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
+                  StageTimes* times) {
+  Params p = params;
+  p.has_ring = cloud.ring.empty() ? 0u : 1u;
+  using Clock = std::chrono::steady_clock;
+  auto t0 = Clock::now();
+  int stage = 0;
+  auto lap = [&] {
+    const auto t1 = Clock::now();
+    if (times) times->ms[stage] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    t0 = t1;
+    ++stage;
+  };
+  Prepare(cloud, p, frame), lap();
+  Project(cloud, p, tables, frame), lap();
+  GridReduce(p, tables, frame), lap();
+  CoarseSegment(cloud, p, tables, frame), lap();
+  FeatureMaps(p, frame), lap();
+  ClassifyPixels(p, frame), lap();
+  Fuse(p, frame), lap();
+  Grow(p, frame), lap();
+  BackProject(p, frame), lap();
 }
+
 }  // namespace lpir

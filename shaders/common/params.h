@@ -59,7 +59,10 @@ struct Params {
 
   // --- stage 8 grow (Alg. 1, IV-A) ---
   float grow_di;           // max intensity change of one growing step
-  float grow_dz;           // m, max height change of one growing step
+  float grow_dz;           // m, height change of one growing step allowed at zero distance
+  float grow_grade;        // ... plus this times the step's planar length (|dr|, + r * column_arc
+                           // when the column changes)
+  float column_arc;        // rad, one column (2 pi / width; set from the profile)
   uint min_component;      // ground components smaller than this (pixels) become non-ground
   uint grow_max_iters;     // GPU fixed-point iteration budget (the reference runs to the fixed point)
 
@@ -68,8 +71,6 @@ struct Params {
   float bp_height_gate;    // m, ... and within this height of the winner
   uint pad0;
   uint pad1;
-  uint pad2;
-  uint pad3;
 };
 
 #ifdef __cplusplus

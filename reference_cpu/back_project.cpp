@@ -1,0 +1,45 @@
+// Stage 9, back-project (paper III-D.2, last step).
+// In: flags, point_pixel, pixel_point, pixel_label, f_range, f_height, r2, zt, coarse.
+// Out per point: label (1 ground, 0 non-ground), why (kWhy*).
+// Invalid and noise points are non-ground. The point that won its pixel takes the pixel's label; a
+// point that lost it takes the pixel's label when it lies within bp_range_gate (planar range,
+// Sqrt) and bp_height_gate (z_t) of the winner; otherwise it is ground only when both its own
+// coarse label and the pixel's label say so (a lost point alone would leak coarse errors).
+#include <cmath>
+
+#include "reference_cpu/exact.h"
+#include "reference_cpu/stages.h"
+
+namespace lpir {
+
+void BackProject(const Params& p, Frame& f) {
+  const uint32_t n = f.n;
+  f.label.assign(n, 0);
+  f.why.assign(n, kWhyNonGround);
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!(f.flags[i] & kPointValid)) {
+      f.why[i] = kWhyInvalid;
+      continue;
+    }
+    if (f.flags[i] & kPointNoise) {
+      f.why[i] = kWhyNoise;
+      continue;
+    }
+    const uint32_t pix = f.point_pixel[i];
+    const uint32_t winner = f.pixel_point[pix];
+    bool ground;
+    if (winner == i) {
+      ground = f.pixel_label[pix] == kPixGround;
+    } else {
+      const float dr = std::fabs(exact::Sqrt(f.r2[i]) - f.f_range[pix]);
+      const float dz = std::fabs(f.zt[i] - f.f_height[pix]);
+      ground = (dr <= p.bp_range_gate && dz <= p.bp_height_gate)
+                   ? f.pixel_label[pix] == kPixGround
+                   : (f.coarse[i] != 0 && f.pixel_label[pix] == kPixGround);
+    }
+    f.label[i] = ground ? 1 : 0;
+    f.why[i] = ground ? kWhyGround : kWhyNonGround;
+  }
+}
+
+}  // namespace lpir

@@ -1,0 +1,88 @@
+// The only arithmetic helpers the stages may use beyond float add/sub/mul/compare/floor and
+// integer operations (SPEC section 3). The shaders use their GLSL mirror, shaders/common/exact.glsl,
+// function for function; both sides must produce the same bits for the same inputs.
+//
+// Division and square root: IEEE-754 binary32 `/` and `sqrt` on the CPU are correctly rounded
+// (round to nearest even), which is the definition the shader helpers implement with integer
+// arithmetic. Subnormal inputs and results are flushed to zero on both sides, so devices that
+// flush denormals agree too.
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace lpir::exact {
+
+static_assert(std::numeric_limits<float>::is_iec559, "IEEE-754 binary32 required");
+
+inline uint32_t Bits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, 4);
+  return u;
+}
+inline float FromBits(uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+// Flushes subnormals to (signed) zero.
+inline float Ftz(float f) {
+  uint32_t u = Bits(f);
+  return (u & 0x7F800000u) == 0 ? FromBits(u & 0x80000000u) : f;
+}
+
+// Monotone map float -> uint32: a < b (as floats, -0 < +0) iff Key(a) < Key(b). Reductions of
+// floats use integer atomics on these keys (min/max), so their result is order-independent.
+inline uint32_t Key(float f) {
+  uint32_t u = Bits(f);
+  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+inline float FromKey(uint32_t k) { return FromBits((k & 0x80000000u) ? (k & 0x7FFFFFFFu) : ~k); }
+
+// Correctly rounded a / b for finite a and finite non-zero b (subnormals flushed).
+inline float Div(float a, float b) { return Ftz(Ftz(a) / Ftz(b)); }
+
+// Correctly rounded sqrt(a) for finite a >= 0 (subnormals flushed).
+inline float Sqrt(float a) { return Ftz(std::sqrt(Ftz(a))); }
+
+// round(x * scale) to int64 as floor(x * scale + 0.5), each step one rounded float op; |x * scale|
+// must stay below 2^62 (callers clamp).
+inline int64_t ToFixed(float x, float scale) {
+  float y = x * scale;
+  y = y + 0.5f;
+  return static_cast<int64_t>(std::floor(y));
+}
+
+// floor(sqrt(v)) for v >= 0, exact (bit by bit, no float).
+inline uint64_t Isqrt(uint64_t v) {
+  uint64_t result = 0;
+  uint64_t bit = uint64_t(1) << 62;
+  while (bit > v) bit >>= 2;
+  while (bit != 0) {
+    if (v >= result + bit) {
+      v -= result + bit;
+      result = (result >> 1) + bit;
+    } else {
+      result >>= 1;
+    }
+    bit >>= 2;
+  }
+  return result;
+}
+
+// Integer division of a signed numerator by a positive denominator, rounding toward zero, done on
+// magnitudes only (shader integer division is only portable for non-negative operands).
+inline int64_t DivToZero(int64_t num, int64_t den) {
+  uint64_t q = (num < 0 ? uint64_t(-num) : uint64_t(num)) / uint64_t(den);
+  return num < 0 ? -int64_t(q) : int64_t(q);
+}
+
+// 2^e as a float, exactly, for -126 <= e <= 127.
+inline float Pow2(int e) { return FromBits(uint32_t(e + 127) << 23); }
+
+// The unbiased exponent of a normal float (floor(log2(|f|))).
+inline int Exponent(float f) { return int((Bits(f) >> 23) & 0xFFu) - 127; }
+
+}  // namespace lpir::exact

@@ -1,0 +1,51 @@
+// Stage 3, grid reduce (paper eq. 4, V-C.1): the concentric zone model.
+// In: flags, r2, zt, point_pixel; tables.ring_bound2. Out: point_cell; per cell cell_zmin,
+// cell_zmax (ordered keys of z_t), cell_count. Invalid and noise points have no cell.
+// Ring: the first ring whose squared outer radius exceeds r2 (binary search; points beyond the
+// last ring have no cell). Eq. 4 writes the far ring index as floor(r/res_c) + floor((r - r_thr) /
+// res_f), which counts the near rings past r_thr twice; we number the far rings after the near
+// ones, which is what the zone model means. Sector: from the image column (no angle needed):
+// u / (width / sectors) with the zone's sector count. Cell = near rings x near sectors, then far.
+// Reductions: integer min/max/add, order-independent.
+#include <algorithm>
+
+#include "reference_cpu/exact.h"
+#include "reference_cpu/stages.h"
+
+namespace lpir {
+
+uint32_t RingOf(float r2, const float* bound2, uint32_t rings) {
+  uint32_t lo = 0, hi = rings;  // first index with r2 < bound2[index], rings when none
+  while (lo < hi) {
+    const uint32_t mid = (lo + hi) >> 1;
+    if (r2 < bound2[mid]) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+void GridReduce(const Params& p, const Tables& t, Frame& f) {
+  const uint32_t n = f.n, cells = CellCount(p), rings = p.rings_near + p.rings_far;
+  f.point_cell.assign(n, kNone);
+  f.cell_zmin.assign(cells, kNone);
+  f.cell_zmax.assign(cells, 0u);
+  f.cell_count.assign(cells, 0u);
+  const uint32_t cols_near = p.width / p.sectors_near, cols_far = p.width / p.sectors_far;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (f.flags[i] != kPointValid) continue;  // invalid or noise
+    const uint32_t ring = RingOf(f.r2[i], t.ring_bound2.data(), rings);
+    if (ring >= rings) continue;
+    const uint32_t u = f.point_pixel[i] % p.width;
+    const uint32_t cell = ring < p.rings_near
+                              ? ring * p.sectors_near + u / cols_near
+                              : p.rings_near * p.sectors_near +
+                                    (ring - p.rings_near) * p.sectors_far + u / cols_far;
+    f.point_cell[i] = cell;
+    const uint32_t key = exact::Key(f.zt[i]);
+    f.cell_zmin[cell] = std::min(f.cell_zmin[cell], key);
+    f.cell_zmax[cell] = std::max(f.cell_zmax[cell], key);
+    f.cell_count[cell] += 1;
+  }
+}
+
+}  // namespace lpir

@@ -1,0 +1,88 @@
+// Stage 8, grow (paper Alg. 1 and the ground connectivity constraint of IV-A).
+// In: pixel_fused, f_inten, f_height. Out: pixel_grown, pixel_comp, pixel_label.
+// Growing: ground pixels are the seeds; an unknown pixel becomes ground when one of its 8
+// neighbours (columns wrap around) is ground and the step between them changes intensity by at
+// most grow_di and height by at most grow_dz + grow_grade * step, where step = |dr| (+ r *
+// column_arc when the column changes) approximates the planar distance between the two points:
+// a wall's vertically adjacent pixels are close in height but not in distance. The step test is symmetric and never revisited, so
+// the result is the least fixed point: every unknown pixel joined to a seed by a chain of allowed
+// steps through unknown pixels. Any schedule reaching the fixed point (this breadth-first search,
+// the shader's Jacobi sweeps) gives the same set. Unknown pixels left over are non-ground.
+// Connectivity: 8-connected components of ground pixels, each labelled by its lowest pixel index
+// (pixel_comp, kNone elsewhere); components of fewer than min_component pixels become non-ground.
+// pixel_label: kPixGround / kPixNonGround, kPixEmpty where no pixel was measured or filled.
+#include <cmath>
+#include <vector>
+
+#include "reference_cpu/stages.h"
+
+namespace lpir {
+namespace {
+
+// The 8 neighbours of pix (columns wrap, rows do not); returns how many were written.
+inline int Neighbours(uint32_t pix, uint32_t w, uint32_t h, uint32_t out[8]) {
+  const uint32_t v = pix / w, u = pix % w;
+  int n = 0;
+  for (int dv = -1; dv <= 1; ++dv) {
+    const int64_t vv = int64_t(v) + dv;
+    if (vv < 0 || vv >= int64_t(h)) continue;
+    for (int du = -1; du <= 1; ++du) {
+      if (dv == 0 && du == 0) continue;
+      out[n++] = uint32_t(vv) * w + (u + w + uint32_t(du + 1) - 1) % w;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+void Grow(const Params& p, Frame& f) {
+  const uint32_t w = p.width, h = p.beams, pixels = w * h;
+  f.pixel_grown = f.pixel_fused;
+  std::vector<uint32_t> queue;
+  queue.reserve(pixels);
+  for (uint32_t pix = 0; pix < pixels; ++pix)
+    if (f.pixel_grown[pix] == kPixGround) queue.push_back(pix);
+  uint32_t nb[8];
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const uint32_t q = queue[head];
+    const int count = Neighbours(q, w, h, nb);
+    for (int k = 0; k < count; ++k) {
+      const uint32_t r = nb[k];
+      if (f.pixel_grown[r] != kPixUnknown) continue;
+      const float di = std::fabs(f.f_inten[r] - f.f_inten[q]);
+      const float dz = std::fabs(f.f_height[r] - f.f_height[q]);
+      float step = std::fabs(f.f_range[r] - f.f_range[q]);
+      if (r % w != q % w) step = step + f.f_range[q] * p.column_arc;
+      const float allowed = p.grow_dz + p.grow_grade * step;
+      if (di <= p.grow_di && dz <= allowed) {
+        f.pixel_grown[r] = kPixGround;
+        queue.push_back(r);
+      }
+    }
+  }
+  for (uint32_t pix = 0; pix < pixels; ++pix)
+    if (f.pixel_grown[pix] == kPixUnknown) f.pixel_grown[pix] = kPixNonGround;
+
+  f.pixel_comp.assign(pixels, kNone);
+  f.pixel_label = f.pixel_grown;
+  for (uint32_t start = 0; start < pixels; ++start) {
+    if (f.pixel_grown[start] != kPixGround || f.pixel_comp[start] != kNone) continue;
+    queue.clear();
+    queue.push_back(start);
+    f.pixel_comp[start] = start;
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const int count = Neighbours(queue[head], w, h, nb);
+      for (int k = 0; k < count; ++k) {
+        const uint32_t r = nb[k];
+        if (f.pixel_grown[r] != kPixGround || f.pixel_comp[r] != kNone) continue;
+        f.pixel_comp[r] = start;
+        queue.push_back(r);
+      }
+    }
+    if (queue.size() < p.min_component)
+      for (uint32_t q : queue) f.pixel_label[q] = kPixNonGround;
+  }
+}
+
+}  // namespace lpir

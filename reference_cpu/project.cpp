@@ -1,0 +1,87 @@
+// Stage 2, project (paper eq. 1) without trigonometry.
+// In: cloud xyz (+ ring), flags, r2; tables.column_dir, tables.beam_bound.
+// Out: point_pixel (v * width + u, kNone when invalid), pixel_key, pixel_point.
+// Column: u = #{k in 1..width-1 : phi_k > theta}, theta = atan2(y, x), phi_k = pi - 2 pi k / width:
+//   u = floor((1 - theta / pi) / 2 * width) of eq. 1, found by binary search with the exact angle
+//   order AngleBelow (half-plane, then the sign of one cross product x*s - y*c).
+// Row: with ring indices, v = ring (ring_zero_is_top) or beams - 1 - ring; else v = #{b :
+//   beam_bound[b] * r2 > z * |z|}, i.e. the beams whose lower boundary lies above the point's
+//   elevation, compared as tan^2 with signs, by binary search.
+// Winner: the smallest r2 on the pixel (ordered key, atomic min), then the lowest point index
+//   among those with that key. Noise points get a pixel but never compete (they are not ground
+//   evidence); invalid points get neither.
+#include <algorithm>
+
+#include "reference_cpu/exact.h"
+#include "reference_cpu/stages.h"
+
+namespace lpir {
+namespace {
+
+// True when the point's angle is in the upper half-plane (0, pi].
+inline bool Upper(float x, float y) { return y > 0.0f || (y == 0.0f && x < 0.0f); }
+
+// atan2(py, px) < atan2(by, bx), exactly as the shader evaluates it.
+inline bool AngleBelow(float px, float py, float bx, float by) {
+  const bool up = Upper(px, py), bup = Upper(bx, by);
+  if (up != bup) return bup;
+  const float a = px * by, b = py * bx;
+  return a - b > 0.0f;
+}
+
+}  // namespace
+
+uint32_t ColumnOf(float x, float y, const float* dir, uint32_t width) {
+  // Largest k in [0, width-1] with phi_k > theta (k = 0 stands for "none": u = 0).
+  uint32_t lo = 0, hi = width - 1;
+  while (lo < hi) {
+    const uint32_t mid = (lo + hi + 1) >> 1;
+    if (AngleBelow(x, y, dir[2 * mid], dir[2 * mid + 1])) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+}
+
+uint32_t RowOf(float z, float r2, const float* bound, uint32_t beams) {
+  // Count of boundaries above the point; boundaries descend, so the predicate is a prefix.
+  const float zz = z * (z < 0.0f ? -z : z);
+  uint32_t lo = 0, hi = beams - 1;
+  while (lo < hi) {
+    const uint32_t mid = (lo + hi + 1) >> 1;  // boundary index mid - 1
+    const float s = bound[mid - 1] * r2;
+    if (s > zz) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+}
+
+void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
+  const uint32_t n = f.n, pixels = p.width * p.beams;
+  f.point_pixel.assign(n, kNone);
+  f.pixel_key.assign(pixels, kNone);
+  f.pixel_point.assign(pixels, kNone);
+  const bool has_ring = !cloud.ring.empty();
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!(f.flags[i] & kPointValid)) continue;
+    const float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
+    const uint32_t u = ColumnOf(x, y, t.column_dir.data(), p.width);
+    uint32_t v;
+    if (has_ring) {
+      const uint32_t ring = uint32_t(cloud.ring[i]);
+      v = p.ring_zero_is_top ? ring : p.beams - 1 - ring;
+    } else {
+      v = RowOf(z, f.r2[i], t.beam_bound.data(), p.beams);
+    }
+    const uint32_t pix = v * p.width + u;
+    f.point_pixel[i] = pix;
+    if (f.flags[i] & kPointNoise) continue;
+    f.pixel_key[pix] = std::min(f.pixel_key[pix], exact::Key(f.r2[i]));
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t pix = f.point_pixel[i];
+    if (pix == kNone || (f.flags[i] & kPointNoise)) continue;
+    if (exact::Key(f.r2[i]) == f.pixel_key[pix]) f.pixel_point[pix] = std::min(f.pixel_point[pix], i);
+  }
+}
+
+}  // namespace lpir
