@@ -18,7 +18,12 @@ struct Cloud {
   float y(size_t i) const { return xyzi[4 * i + 1]; }
   float z(size_t i) const { return xyzi[4 * i + 2]; }
   float intensity(size_t i) const { return xyzi[4 * i + 3]; }
-  void Push(float x, float y, float z, float i) { xyzi.insert(xyzi.end(), {x, y, z, i}); }
+  void Push(float x, float y, float z, float i) {
+    xyzi.push_back(x);
+    xyzi.push_back(y);
+    xyzi.push_back(z);
+    xyzi.push_back(i);
+  }
 };
 
 // Per-point ground truth or prediction: 1 ground, 0 non-ground.

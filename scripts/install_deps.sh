@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages lpir-gseg needs to build and test, only those that are missing:
+# checks each with dpkg-query, then `apt-get update` and `apt-get install` (through sudo when not
+# root). Set LPIR_SKIP_DEPS=1 to skip this step (another distribution, no root, offline).
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libgtest-dev libbenchmark-dev
+  libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
+)
+
+say() { echo "[install_deps] $*"; }
+
+if [[ "${LPIR_SKIP_DEPS:-0}" == "1" ]]; then
+  say "LPIR_SKIP_DEPS=1: not checking the system packages"
+  exit 0
+fi
+
+if ! command -v dpkg-query > /dev/null 2>&1; then
+  say "no dpkg-query: not a Debian system, so nothing is installed automatically."
+  say "make sure the equivalents of these Debian packages are installed: ${PACKAGES[*]}"
+  exit 0
+fi
+
+say "checking ${#PACKAGES[@]} Debian packages with dpkg-query"
+missing=()
+for package in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${db:Status-Status}\n' "${package}" 2> /dev/null | grep -qx installed; then
+    missing+=("${package}")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  say "all ${#PACKAGES[@]} packages are installed, nothing to do"
+  exit 0
+fi
+say "missing: ${missing[*]}"
+
+# Root runs apt-get itself; anyone else goes through sudo (asking for a password only when there
+# is a terminal to ask on: without one, sudo -n fails at once instead of waiting).
+as_root=()
+if [[ "$(id -u)" -ne 0 ]]; then
+  if ! command -v sudo > /dev/null 2>&1; then
+    say "error: not root and no sudo; as root, run:" >&2
+    say "  apt-get update && apt-get install -y --no-install-recommends ${missing[*]}" >&2
+    exit 1
+  fi
+  if [[ -t 0 ]]; then
+    as_root=(sudo)
+  else
+    as_root=(sudo -n)
+  fi
+fi
+
+run() {
+  say "+ $*"
+  "$@"
+}
+run "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+run "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive \
+  apt-get install -y --no-install-recommends "${missing[@]}"
+say "installed: ${missing[*]}"
