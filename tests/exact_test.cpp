@@ -1,0 +1,69 @@
+// The shared exact helpers: ordered keys, correctly rounded division and square root (checked
+// against double precision, where the float result must be the nearest float), integer sqrt.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "reference_cpu/exact.h"
+
+namespace lpir::exact {
+namespace {
+
+TEST(Exact, KeyIsMonotoneAndInvertible) {
+  const float values[] = {-1e30f, -3.5f, -1.0f, -1e-30f, -0.0f, 0.0f, 1e-30f, 0.5f, 2.0f, 1e30f};
+  for (size_t i = 0; i + 1 < std::size(values); ++i) {
+    EXPECT_LT(Key(values[i]), Key(values[i + 1])) << values[i] << " vs " << values[i + 1];
+    EXPECT_EQ(Bits(FromKey(Key(values[i]))), Bits(values[i]));
+  }
+}
+
+// The float nearest to `exact` (ties to even), the definition of a correctly rounded result.
+bool IsNearestFloat(float got, double exact) {
+  const double d = std::fabs(double(got) - exact);
+  const double up = std::fabs(double(std::nextafter(got, INFINITY)) - exact);
+  const double down = std::fabs(double(std::nextafter(got, -INFINITY)) - exact);
+  return d <= up && d <= down;
+}
+
+TEST(Exact, DivAndSqrtAreCorrectlyRounded) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> mant(1.0f, 2.0f);
+  std::uniform_int_distribution<int> expo(-40, 40);
+  for (int k = 0; k < 200000; ++k) {
+    const float a = std::ldexp(mant(rng), expo(rng)), b = std::ldexp(mant(rng), expo(rng));
+    const float q = Div(a, b);
+    ASSERT_TRUE(IsNearestFloat(q, double(a) / double(b))) << a << " / " << b;
+    const float s = Sqrt(a);
+    ASSERT_TRUE(IsNearestFloat(s, std::sqrt(double(a)))) << "sqrt " << a;
+  }
+}
+
+TEST(Exact, SubnormalsFlushToZero) {
+  EXPECT_EQ(Div(1e-30f, 1e10f), 0.0f);
+  EXPECT_EQ(Sqrt(1e-40f), 0.0f);
+}
+
+TEST(Exact, IsqrtIsFloorOfSquareRoot) {
+  std::mt19937_64 rng(3);
+  for (int k = 0; k < 100000; ++k) {
+    const uint64_t v = rng() >> (rng() % 64);
+    const uint64_t r = Isqrt(v);
+    ASSERT_LE(static_cast<unsigned __int128>(r) * r, v);
+    ASSERT_GT(static_cast<unsigned __int128>(r + 1) * (r + 1), v);
+  }
+  EXPECT_EQ(Isqrt(0), 0u);
+  EXPECT_EQ(Isqrt(~uint64_t(0)), 4294967295u);
+}
+
+TEST(Exact, DivToZeroAndToFixed) {
+  EXPECT_EQ(DivToZero(-7, 2), -3);
+  EXPECT_EQ(DivToZero(7, 2), 3);
+  EXPECT_EQ(ToFixed(1.2345f, 1000.0f), 1235);  // 1234.5 rounds half up
+  EXPECT_EQ(ToFixed(-1.2344f, 1000.0f), -1234);
+  EXPECT_EQ(Pow2(-3), 0.125f);
+  EXPECT_EQ(Exponent(10.0f), 3);
+}
+
+}  // namespace
+}  // namespace lpir::exact
