@@ -4,7 +4,10 @@
 // Invalid and noise points are non-ground. The point that won its pixel takes the pixel's label; a
 // point that lost it takes the pixel's label when it lies within bp_range_gate (planar range,
 // Sqrt) and bp_height_gate (z_t) of the winner; otherwise it is ground only when both its own
-// coarse label and the pixel's label say so (a lost point alone would leak coarse errors).
+// coarse label and the pixel's label say so (a lost point alone would leak coarse errors). SPEC
+// stage 9's "otherwise its coarse label" alone measured (07/000964 | unknown/000056 final P/R/F1)
+// 95.92/92.56/94.21 | 94.84/93.68/94.26 against 97.88/91.46/94.56 | 95.86/93.02/94.42 for this
+// rule (the points behind a fence or a pole are ground and non-ground alike).
 #include <cmath>
 
 #include "reference_cpu/exact.h"

@@ -11,6 +11,9 @@
 // Connectivity: 8-connected components of ground pixels, each labelled by its lowest pixel index
 // (pixel_comp, kNone elsewhere); components of fewer than min_component pixels become non-ground.
 // pixel_label: kPixGround / kPixNonGround, kPixEmpty where no pixel was measured or filled.
+// Defaults: the search settles on grow_grade 0 once the occlusion veto of stage 7 stops growth at
+// the foot of walls (grow_grade 0.05 at the final defaults: 94.33 | 94.48 F1 vs 94.56 | 94.42);
+// the rule stays for sensors whose walls need it.
 #include <cmath>
 #include <vector>
 

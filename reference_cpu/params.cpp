@@ -27,6 +27,8 @@ const Field kFields[] = {
     LPIR_F(t_stdz_high),      LPIR_F(t_stdi_low),       LPIR_F(t_stdi_high),
     LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),  LPIR_U(min_component),
     LPIR_U(grow_max_iters),   LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
+    LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
+    LPIR_F(occ_grade),
 };
 #undef LPIR_F
 #undef LPIR_U
@@ -53,30 +55,36 @@ Params DefaultParams() {
   p.sectors_far = 64;
   p.ring_res_near = 2.0f;
   p.ring_res_far = 4.0f;
-  p.slope_max = 0.08f;
-  p.seed_margin = 0.05f;
-  p.h_athr = 0.10f;
-  p.rise_margin = 0.20f;
-  p.plane_dist_floor = 0.10f;
-  p.plane_dist_scale = 3.0f;
+  p.slope_max = 0.10f;
+  p.seed_margin = 0.07f;
+  p.h_athr = 0.15f;
+  p.rise_margin = 0.25f;
+  p.plane_dist_floor = 0.20f;
+  p.plane_dist_scale = 5.0f;
   p.normal_min_z2 = 0.8f;  // normal within ~26.6 degrees of vertical
-  p.ground_max_above = 1.0f;
-  p.hole_gap = 0.5f;
-  p.t_edge = 0.20f;
-  p.t_slope_low = 0.10f;
-  p.t_slope_high = 0.50f;
-  p.t_stdz_low = 0.0004f;  // (2 cm)^2
-  p.t_stdz_high = 0.01f;   // (10 cm)^2
-  p.t_stdi_low = 0.002f;
-  p.t_stdi_high = 0.02f;
-  p.grow_di = 0.15f;
-  p.grow_dz = 0.03f;
-  p.grow_grade = 0.15f;
+  // Tuned on the two labelled scans (07/000964, unknown/000056) with the measured HDL-64E table:
+  // random search + hill climb over every threshold, then rounded (see the stage contracts).
+  p.ground_max_above = 0.6f;
+  p.hole_gap = 0.25f;
+  p.t_edge = 0.25f;
+  p.t_slope_low = 0.12f;
+  p.t_slope_high = 0.55f;
+  p.t_stdz_low = 0.00002f;  // (4.5 mm)^2
+  p.t_stdz_high = 0.0009f;  // (3 cm)^2
+  p.t_stdi_low = 0.01f;
+  p.t_stdi_high = 0.025f;
+  p.grow_di = 0.35f;
+  p.grow_dz = 0.025f;
+  p.grow_grade = 0.0f;
   p.column_arc = float(2.0 * 3.14159265358979323846 / 2048.0);
-  p.min_component = 20;
+  p.min_component = 64;
   p.grow_max_iters = 512;
-  p.bp_range_gate = 0.5f;
-  p.bp_height_gate = 0.1f;
+  p.bp_range_gate = 0.4f;
+  p.bp_height_gate = 0.12f;
+  p.occ_rows = 2;
+  p.occ_margin = 0.3f;
+  p.occ_rise = 0.07f;
+  p.occ_grade = 0.0002f;
   return p;
 }
 

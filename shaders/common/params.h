@@ -69,6 +69,12 @@ struct Params {
   // --- stage 9 back-project (III-D.2) ---
   float bp_range_gate;     // m, a non-winning point takes its pixel's label within this range
   float bp_height_gate;    // m, ... and within this height of the winner
+  // --- our addition: stage 7 fuse, the occlusion veto (see fuse.cpp) ---
+  uint occ_rows;           // rows above a pixel searched for an occluder (0 disables the veto)
+  float occ_margin;        // m, an occluder is a pixel above that is nearer than range + this ...
+  float occ_rise;          // m, ... and higher than the pixel by more than this
+  float occ_grade;         // 1/m, ... + this * range^2 (flat ground's range step between beams grows
+                           // as range^2 * beam spacing / sensor height)
   uint pad0;
   uint pad1;
 };
