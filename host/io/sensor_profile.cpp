@@ -1,0 +1,277 @@
+// Sensor profiles: parses and writes the `key value...` text files of sensors/ (format in
+// sensors/README.md), validating every line strictly.
+#include "host/io/sensor_profile.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "host/io/file_bytes.h"
+#include "host/io/io_error.h"
+#include "reference_cpu/params.h"
+
+namespace lpir {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every key a profile may hold; `param` may repeat (once per parameter name), the others not.
+const char* const kKeys[] = {"name",
+                             "beams",
+                             "width",
+                             "elevation_deg",
+                             "ring_zero_is_top",
+                             "intensity_scale",
+                             "sensor_height",
+                             "min_range",
+                             "max_range",
+                             "k_xz",
+                             "k_yz",
+                             "b_x",
+                             "b_y",
+                             "param"};
+const char* const kRequired[] = {"name", "beams", "width", "elevation_deg"};
+
+std::string KnownKeys() {
+  std::string all;
+  for (const char* k : kKeys) all += std::string(all.empty() ? "" : ", ") + k;
+  return all;
+}
+
+// Splits a line into whitespace-separated tokens after dropping a `#` comment.
+std::vector<std::string> Tokens(const std::string& line) {
+  std::string text = line.substr(0, line.find('#'));
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string t;
+  while (in >> t) out.push_back(t);
+  return out;
+}
+
+bool IsNumberStart(const std::string& t) {
+  char c = t[0];
+  return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+}
+
+// The reader of one file: throws IoError(path, "line N: ...") on the first problem.
+class Parser {
+ public:
+  explicit Parser(const std::string& path) : path_(path) {}
+
+  [[noreturn]] void Fail(int line, const std::string& problem) const {
+    throw IoError(path_, "line " + std::to_string(line) + ": " + problem);
+  }
+
+  float Float(int line, const std::string& key, const std::string& t) const {
+    errno = 0;
+    char* end = nullptr;
+    float v = std::strtof(t.c_str(), &end);
+    if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v))
+      Fail(line, key + ": '" + t + "' is not a finite number");
+    return v;
+  }
+
+  unsigned Unsigned(int line, const std::string& key, const std::string& t) const {
+    if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos)
+      Fail(line, key + ": '" + t + "' is not a whole number");
+    return static_cast<unsigned>(std::stoul(t));
+  }
+
+  SensorProfile Parse(const std::string& text) {
+    SensorProfile p;
+    p.overrides.clear();
+    std::map<std::string, int> seen;         // key -> line of its first appearance
+    std::map<std::string, int> params_seen;  // override name -> line
+    int elevation_line = 0;                  // line of the elevation_deg key
+    bool elevation_open = false;             // the previous line was elevation_deg (or its tail)
+    std::istringstream in(text);
+    std::string raw;
+    int line = 0;
+    while (std::getline(in, raw)) {
+      ++line;
+      std::vector<std::string> tok = Tokens(raw);
+      if (tok.empty()) continue;  // blank and comment lines keep an elevation table open
+      if (IsNumberStart(tok[0])) {
+        if (!elevation_open)
+          Fail(line, "numbers without a key (only elevation_deg continues on following lines)");
+        for (const std::string& t : tok) p.elevation_deg.push_back(Float(line, "elevation_deg", t));
+        continue;
+      }
+      elevation_open = false;
+      const std::string& key = tok[0];
+      bool known = false;
+      for (const char* k : kKeys) known = known || key == k;
+      if (!known) Fail(line, "unknown key '" + key + "' (known: " + KnownKeys() + ")");
+      if (key != "param") {
+        auto it = seen.find(key);
+        if (it != seen.end())
+          Fail(line,
+               "duplicate key '" + key + "' (first on line " + std::to_string(it->second) + ")");
+        seen[key] = line;
+      }
+      const size_t values = tok.size() - 1;
+      if (key == "elevation_deg") {
+        elevation_line = line;
+        elevation_open = true;
+        for (size_t i = 1; i < tok.size(); ++i) p.elevation_deg.push_back(Float(line, key, tok[i]));
+        continue;
+      }
+      if (key == "param") {
+        if (values != 2) Fail(line, "param expects a name and a value: param NAME VALUE");
+        const std::string& name = tok[1];
+        float v = Float(line, "param " + name, tok[2]);
+        Params defaults = DefaultParams();
+        try {
+          if (!ApplyOverride(defaults, name, v))
+            Fail(line, "param: unknown parameter '" + name + "'");
+        } catch (const std::invalid_argument& e) {
+          Fail(line, e.what());
+        }
+        auto it = params_seen.find(name);
+        if (it != params_seen.end())
+          Fail(line,
+               "duplicate param '" + name + "' (first on line " + std::to_string(it->second) + ")");
+        params_seen[name] = line;
+        p.overrides.emplace_back(name, v);
+        continue;
+      }
+      if (values != 1)
+        Fail(line, key + " expects exactly one value, got " + std::to_string(values));
+      const std::string& v = tok[1];
+      if (key == "name") {
+        p.name = v;
+      } else if (key == "beams") {
+        p.beams = Unsigned(line, key, v);
+        if (p.beams < 1 || p.beams > 4096) Fail(line, "beams must be 1..4096");
+      } else if (key == "width") {
+        p.width = Unsigned(line, key, v);
+        if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
+          Fail(line, "width " + v + " must be a positive multiple of 64 (at most 65536)");
+      } else if (key == "ring_zero_is_top") {
+        if (v != "0" && v != "1") Fail(line, "ring_zero_is_top must be 0 or 1, got '" + v + "'");
+        p.ring_zero_is_top = v == "1";
+      } else if (key == "intensity_scale") {
+        p.intensity_scale = Float(line, key, v);
+        if (!(p.intensity_scale > 0)) Fail(line, "intensity_scale must be > 0");
+      } else if (key == "sensor_height") {
+        p.sensor_height = Float(line, key, v);
+        if (!(p.sensor_height > 0)) Fail(line, "sensor_height must be > 0");
+      } else if (key == "min_range") {
+        p.min_range = Float(line, key, v);
+        if (p.min_range < 0) Fail(line, "min_range must be >= 0");
+      } else if (key == "max_range") {
+        p.max_range = Float(line, key, v);
+      } else if (key == "k_xz") {
+        p.k_xz = Float(line, key, v);
+      } else if (key == "k_yz") {
+        p.k_yz = Float(line, key, v);
+      } else if (key == "b_x") {
+        p.b_x = Float(line, key, v);
+      } else if (key == "b_y") {
+        p.b_y = Float(line, key, v);
+      }
+    }
+    for (const char* k : kRequired) {
+      if (!seen.count(k))
+        Fail(line + 1, std::string("end of file without the required key '") + k +
+                           "' (required: name, beams, width, elevation_deg)");
+    }
+    if (p.elevation_deg.size() != p.beams)
+      Fail(elevation_line, "elevation_deg has " + std::to_string(p.elevation_deg.size()) +
+                               " values but beams is " + std::to_string(p.beams));
+    for (size_t i = 0; i < p.elevation_deg.size(); ++i) {
+      if (p.elevation_deg[i] < -90 || p.elevation_deg[i] > 90)
+        Fail(elevation_line, "elevation_deg value " + std::to_string(i) + " is outside -90..90");
+      if (i > 0 && !(p.elevation_deg[i] < p.elevation_deg[i - 1]))
+        Fail(elevation_line, "elevation_deg must be strictly descending (top beam first): value " +
+                                 std::to_string(i) + " does not lie below value " +
+                                 std::to_string(i - 1));
+    }
+    if (!(p.max_range > p.min_range)) {
+      int at = seen.count("max_range") ? seen["max_range"] : seen["min_range"];
+      Fail(at, "max_range must be larger than min_range");
+    }
+    return p;
+  }
+
+ private:
+  std::string path_;
+};
+
+std::string FormatFloat(float v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.9g", static_cast<double>(v));
+  return buf;
+}
+
+SensorProfile LoadFile(const std::string& path) {
+  std::vector<char> bytes = ReadFileBytes(path);
+  return Parser(path).Parse(std::string(bytes.begin(), bytes.end()));
+}
+
+bool IsFile(const std::string& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
+}  // namespace
+
+SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::string& sensors_dir) {
+  // A bare name is looked up in sensors_dir first, so that a stray file of the same name in the
+  // working folder cannot shadow a shipped profile.
+  if (!name_or_path.empty() && name_or_path.find('/') == std::string::npos) {
+    std::string candidate = sensors_dir + "/" + name_or_path + ".txt";
+    if (IsFile(candidate)) return LoadFile(candidate);
+  }
+  if (IsFile(name_or_path)) return LoadFile(name_or_path);
+  std::string known;
+  for (const std::string& k : KnownSensorProfiles(sensors_dir))
+    known += std::string(known.empty() ? "" : ", ") + k;
+  throw std::invalid_argument("unknown sensor profile '" + name_or_path + "'; known: " +
+                              (known.empty() ? "(none in " + sensors_dir + ")" : known));
+}
+
+std::vector<std::string> KnownSensorProfiles(const std::string& sensors_dir) {
+  std::set<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(sensors_dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() == ".txt" && it->is_regular_file(ec))
+      names.insert(it->path().stem().string());
+  }
+  return std::vector<std::string>(names.begin(), names.end());
+}
+
+void WriteSensorProfile(const std::string& path, const SensorProfile& p) {
+  if (p.name.empty() || p.name.find_first_of(" \t\r\n#") != std::string::npos)
+    throw IoError(path, "cannot write a profile whose name '" + p.name + "' is not one word");
+  std::string s = "# Sensor profile (format: sensors/README.md).\n";
+  s += "name " + p.name + "\n";
+  s += "beams " + std::to_string(p.beams) + "\n";
+  s += "width " + std::to_string(p.width) + "\n";
+  s += "elevation_deg";
+  for (size_t i = 0; i < p.elevation_deg.size(); ++i) {
+    if (i > 0 && i % 8 == 0) s += "\n ";
+    s += " " + FormatFloat(p.elevation_deg[i]);
+  }
+  s += "\n";
+  s += std::string("ring_zero_is_top ") + (p.ring_zero_is_top ? "1" : "0") + "\n";
+  s += "intensity_scale " + FormatFloat(p.intensity_scale) + "\n";
+  s += "sensor_height " + FormatFloat(p.sensor_height) + "\n";
+  s += "min_range " + FormatFloat(p.min_range) + "\n";
+  s += "max_range " + FormatFloat(p.max_range) + "\n";
+  s += "k_xz " + FormatFloat(p.k_xz) + "\n";
+  s += "k_yz " + FormatFloat(p.k_yz) + "\n";
+  s += "b_x " + FormatFloat(p.b_x) + "\n";
+  s += "b_y " + FormatFloat(p.b_y) + "\n";
+  for (const auto& [name, value] : p.overrides)
+    s += "param " + name + " " + FormatFloat(value) + "\n";
+  WriteFileBytes(path, s.data(), s.size());
+}
+
+}  // namespace lpir

@@ -1,0 +1,207 @@
+// Evaluation protocols DG, PP, PW, GG on small hand-counted frames: exact counts per protocol,
+// the eq. 13 scores, summed versus per-frame-mean aggregation, 0/0 and error cases.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+#include "host/eval/metrics.h"
+
+namespace lpir {
+namespace {
+
+Counts Make(uint64_t tp, uint64_t fp, uint64_t fn, uint64_t tn, uint64_t ignored) {
+  Counts c;
+  c.tp = tp;
+  c.fp = fp;
+  c.fn = fn;
+  c.tn = tn;
+  c.ignored = ignored;
+  return c;
+}
+
+// Fourteen points covering every case; the comment gives DG / PP=GG / PW.
+struct Frame {
+  Labels pred;
+  std::vector<uint32_t> gt;
+  std::vector<float> z;
+};
+
+Frame Mixed() {
+  Frame f;
+  auto add = [&](uint32_t label, uint8_t pred, float z) {
+    f.gt.push_back(label);
+    f.pred.push_back(pred);
+    f.z.push_back(z);
+  };
+  add(40, 1, -1.7f);               //  0 road, ground:          TP / TP / TP
+  add(40, 0, -1.7f);               //  1 road, missed:          FN / FN / FN
+  add(72, 1, -1.6f);               //  2 terrain:               TP / TP / TP
+  add(48, 0, -1.8f);               //  3 sidewalk, missed:      FN / FN / FN
+  add(10, 1, -1.0f);               //  4 car as ground:         FP / FP / FP
+  add(10, 0, -0.5f);               //  5 car:                   TN / TN / TN
+  add(70, 1, -1.5f);               //  6 low vegetation, pred:  FP / ig / TP
+  add(70, 0, -1.5f);               //  7 low vegetation:        TN / ig / FN
+  add(70, 1, -0.5f);               //  8 high vegetation, pred: FP / ig / FP
+  add(0, 1, -1.7f);                //  9 unlabeled, pred:       FP / ig / ig
+  add(1, 0, -3.0f);                // 10 outlier:               TN / ig / TN
+  add(50, 0, 2.0f);                // 11 building:              TN / TN / TN
+  add(40 | (5u << 16), 1, -1.7f);  // 12 road with an instance: TP / TP / TP
+  add(70, 1, -1.2975f);            // 13 vegetation exactly at the threshold (not below):
+                                   //                           FP / ig / FP
+  return f;
+}
+
+TEST(EvalMetrics, GroundClasses) {
+  for (uint32_t c : {40u, 44u, 48u, 49u, 60u, 72u}) {
+    EXPECT_TRUE(IsGroundClass(c)) << c;
+    EXPECT_TRUE(IsGroundClass(c | (123u << 16))) << c;  // instance bits ignored
+  }
+  for (uint32_t c : {0u, 1u, 10u, 50u, 51u, 70u, 71u, 80u, 252u, 41u})
+    EXPECT_FALSE(IsGroundClass(c)) << c;
+}
+
+TEST(EvalMetrics, CountsPerProtocol) {
+  Frame f = Mixed();
+  EXPECT_EQ(CountFrame(Protocol::kDG, f.pred, f.gt, nullptr), Make(3, 5, 2, 4, 0));
+  EXPECT_EQ(CountFrame(Protocol::kPP, f.pred, f.gt, nullptr), Make(3, 1, 2, 2, 6));
+  EXPECT_EQ(CountFrame(Protocol::kGG, f.pred, f.gt, nullptr), Make(3, 1, 2, 2, 6));
+  EXPECT_EQ(CountFrame(Protocol::kPW, f.pred, f.gt, &f.z), Make(4, 3, 3, 3, 1));
+  // z is ignored by the protocols that do not need it.
+  EXPECT_EQ(CountFrame(Protocol::kDG, f.pred, f.gt, &f.z), Make(3, 5, 2, 4, 0));
+}
+
+TEST(EvalMetrics, PwUnlabeledOnlyLeavesPrecisionWhenPredictedGround) {
+  // Predicted-ground 0/1 points are not false positives; not-predicted ones are true negatives.
+  Labels pred = {1, 1, 0, 0, 1};
+  std::vector<uint32_t> gt = {0, 1, 0, 1, 40};
+  std::vector<float> z(5, -1.7f);
+  EXPECT_EQ(CountFrame(Protocol::kPW, pred, gt, &z), Make(1, 0, 0, 2, 2));
+  Scores s = ScoreCounts(CountFrame(Protocol::kPW, pred, gt, &z));
+  EXPECT_EQ(s.precision, 1.0);
+  // Under DG the same points are false positives.
+  EXPECT_EQ(CountFrame(Protocol::kDG, pred, gt, nullptr), Make(1, 2, 0, 2, 0));
+}
+
+TEST(EvalMetrics, ScoresFollowEquation13) {
+  Frame f = Mixed();
+  Scores dg = ScoreCounts(CountFrame(Protocol::kDG, f.pred, f.gt, nullptr));
+  EXPECT_DOUBLE_EQ(dg.precision, 3.0 / 8);
+  EXPECT_DOUBLE_EQ(dg.recall, 3.0 / 5);
+  EXPECT_DOUBLE_EQ(dg.f1, 6.0 / 13);  // 2 * (3/8) * (3/5) / (3/8 + 3/5)
+  EXPECT_DOUBLE_EQ(dg.iou, 3.0 / 10);
+  Scores pp = ScoreCounts(CountFrame(Protocol::kPP, f.pred, f.gt, nullptr));
+  EXPECT_DOUBLE_EQ(pp.precision, 3.0 / 4);
+  EXPECT_DOUBLE_EQ(pp.recall, 3.0 / 5);
+  EXPECT_DOUBLE_EQ(pp.f1, 2.0 / 3);
+  EXPECT_DOUBLE_EQ(pp.iou, 3.0 / 6);
+  Scores pw = ScoreCounts(CountFrame(Protocol::kPW, f.pred, f.gt, &f.z));
+  EXPECT_DOUBLE_EQ(pw.precision, 4.0 / 7);
+  EXPECT_DOUBLE_EQ(pw.recall, 4.0 / 7);
+  EXPECT_DOUBLE_EQ(pw.f1, 4.0 / 7);
+  EXPECT_DOUBLE_EQ(pw.iou, 4.0 / 10);
+}
+
+TEST(EvalMetrics, ZeroOverZeroIsZero) {
+  Scores none = ScoreCounts(Counts{});
+  EXPECT_EQ(none.precision, 0.0);
+  EXPECT_EQ(none.recall, 0.0);
+  EXPECT_EQ(none.f1, 0.0);
+  EXPECT_EQ(none.iou, 0.0);
+  // No ground anywhere and none predicted: still 0, not 1.
+  Labels pred = {0, 0};
+  std::vector<uint32_t> gt = {10, 50};
+  Counts c = CountFrame(Protocol::kDG, pred, gt, nullptr);
+  EXPECT_EQ(c, Make(0, 0, 0, 2, 0));
+  EXPECT_EQ(ScoreCounts(c).f1, 0.0);
+  // Ground predicted, none there: precision 0, recall 0/0 = 0.
+  Scores fp_only = ScoreCounts(Make(0, 4, 0, 0, 0));
+  EXPECT_EQ(fp_only.precision, 0.0);
+  EXPECT_EQ(fp_only.recall, 0.0);
+  EXPECT_EQ(fp_only.iou, 0.0);
+}
+
+TEST(EvalMetrics, SummedVersusPerFrameMean) {
+  Frame a = Mixed();
+  // Frame b: two road points found, one car called ground, one car right: TP 2, FP 1, TN 1.
+  Frame b;
+  b.pred = {1, 1, 0, 1};
+  b.gt = {40, 40, 10, 10};
+  b.z = {-1.7f, -1.7f, -1.0f, -1.0f};
+  for (Protocol p : AllProtocols()) {
+    SCOPED_TRACE(ProtocolName(p));
+    SequenceScores seq(p);
+    Counts ca = CountFrame(p, a.pred, a.gt, &a.z);
+    Counts cb = CountFrame(p, b.pred, b.gt, &b.z);
+    Scores sa = seq.Add(ca);
+    Scores sb = seq.Add(cb);
+    EXPECT_EQ(seq.frames(), 2u);
+    Counts sum = ca;
+    sum += cb;
+    EXPECT_EQ(seq.summed(), sum);
+    Scores t = seq.Total();
+    if (AveragesPerFrame(p)) {
+      EXPECT_DOUBLE_EQ(t.precision, (sa.precision + sb.precision) / 2);
+      EXPECT_DOUBLE_EQ(t.recall, (sa.recall + sb.recall) / 2);
+      EXPECT_DOUBLE_EQ(t.f1, (sa.f1 + sb.f1) / 2);
+      EXPECT_DOUBLE_EQ(t.iou, (sa.iou + sb.iou) / 2);
+    } else {
+      Scores s = ScoreCounts(sum);
+      EXPECT_DOUBLE_EQ(t.precision, s.precision);
+      EXPECT_DOUBLE_EQ(t.f1, s.f1);
+    }
+  }
+  // The numbers, by hand. DG sums: TP 5, FP 6, FN 2.
+  SequenceScores dg(Protocol::kDG);
+  dg.Add(CountFrame(Protocol::kDG, a.pred, a.gt, nullptr));
+  dg.Add(CountFrame(Protocol::kDG, b.pred, b.gt, nullptr));
+  EXPECT_DOUBLE_EQ(dg.Total().precision, 5.0 / 11);
+  EXPECT_DOUBLE_EQ(dg.Total().recall, 5.0 / 7);
+  EXPECT_DOUBLE_EQ(dg.Total().iou, 5.0 / 13);
+  // PP means: precision (3/4 + 2/3) / 2, recall (3/5 + 1) / 2, F1 (2/3 + 4/5) / 2.
+  SequenceScores pp(Protocol::kPP);
+  pp.Add(CountFrame(Protocol::kPP, a.pred, a.gt, nullptr));
+  pp.Add(CountFrame(Protocol::kPP, b.pred, b.gt, nullptr));
+  EXPECT_DOUBLE_EQ(pp.Total().precision, (3.0 / 4 + 2.0 / 3) / 2);
+  EXPECT_DOUBLE_EQ(pp.Total().recall, (3.0 / 5 + 1.0) / 2);
+  EXPECT_DOUBLE_EQ(pp.Total().f1, (2.0 / 3 + 4.0 / 5) / 2);
+  EXPECT_DOUBLE_EQ(pp.Total().iou, (3.0 / 6 + 2.0 / 3) / 2);
+  // GG sums: TP 5, FP 2, FN 2.
+  SequenceScores gg(Protocol::kGG);
+  gg.Add(CountFrame(Protocol::kGG, a.pred, a.gt, nullptr));
+  gg.Add(CountFrame(Protocol::kGG, b.pred, b.gt, nullptr));
+  EXPECT_DOUBLE_EQ(gg.Total().precision, 5.0 / 7);
+  EXPECT_DOUBLE_EQ(gg.Total().recall, 5.0 / 7);
+  // No frames: zeros.
+  EXPECT_EQ(SequenceScores(Protocol::kPW).Total().f1, 0.0);
+}
+
+TEST(EvalMetrics, ProtocolNames) {
+  for (Protocol p : AllProtocols()) EXPECT_EQ(ParseProtocol(ProtocolName(p)), p);
+  EXPECT_STREQ(ProtocolName(Protocol::kDG), "dg");
+  EXPECT_STREQ(ProtocolName(Protocol::kPW), "pw");
+  try {
+    ParseProtocol("kitti");
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown protocol 'kitti' (known: dg, pp, pw, gg)"),
+              std::string::npos);
+  }
+  EXPECT_TRUE(AveragesPerFrame(Protocol::kPP));
+  EXPECT_TRUE(AveragesPerFrame(Protocol::kPW));
+  EXPECT_FALSE(AveragesPerFrame(Protocol::kDG));
+  EXPECT_FALSE(AveragesPerFrame(Protocol::kGG));
+}
+
+TEST(EvalMetrics, Errors) {
+  Labels pred = {1, 0};
+  std::vector<uint32_t> gt = {40};
+  EXPECT_THROW(CountFrame(Protocol::kDG, pred, gt, nullptr), std::invalid_argument);
+  gt.push_back(40);
+  EXPECT_THROW(CountFrame(Protocol::kPW, pred, gt, nullptr), std::invalid_argument);
+  std::vector<float> z = {-1.7f};
+  EXPECT_THROW(CountFrame(Protocol::kPW, pred, gt, &z), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lpir

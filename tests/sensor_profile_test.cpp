@@ -1,0 +1,276 @@
+// Sensor profiles: every shipped profile loads and is consistent, write/read round-trips exactly,
+// and every malformed file is rejected with an IoError naming the file and the line.
+#include "host/io/sensor_profile.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "host/io/io_error.h"
+#include "reference_cpu/params.h"
+#include "tests/test_util.h"
+
+namespace lpir {
+namespace {
+
+// A temporary folder removed at the end of the test.
+struct ScopedDir {
+  std::string path = test::TempDir();
+  ~ScopedDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+const char* const kShipped[] = {"hdl32e", "hdl64e", "os1-128", "os1-64", "vlp16", "vlp32c"};
+
+std::string WriteText(const std::string& dir, const std::string& name, const std::string& text) {
+  std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char kValid[] =
+    "# a valid profile\n"
+    "name tiny\n"
+    "beams 4\n"
+    "width 1024\n"
+    "elevation_deg 3.0 1.0   # the table continues\n"
+    "  -1.0 -3.0\n"
+    "ring_zero_is_top 1\n"
+    "intensity_scale 0.00392156863\n"
+    "sensor_height 1.84\n"
+    "min_range 2\n"
+    "max_range 100\n"
+    "param slope_max 0.06\n"
+    "param min_component 30\n";
+
+TEST(SensorProfile, EveryShippedProfileLoadsAndIsConsistent) {
+  std::vector<std::string> known = KnownSensorProfiles(test::SensorsDir());
+  EXPECT_EQ(known, std::vector<std::string>(std::begin(kShipped), std::end(kShipped)));
+  for (const char* name : kShipped) {
+    SCOPED_TRACE(name);
+    SensorProfile p = LoadSensorProfile(name, test::SensorsDir());
+    EXPECT_EQ(p.name, name);
+    EXPECT_EQ(p.elevation_deg.size(), p.beams);
+    EXPECT_EQ(p.width % 64, 0u);
+    for (size_t i = 1; i < p.elevation_deg.size(); ++i)
+      EXPECT_LT(p.elevation_deg[i], p.elevation_deg[i - 1]) << "beam " << i;
+    EXPECT_GT(p.intensity_scale, 0.0f);
+    EXPECT_GT(p.sensor_height, 0.0f);
+    EXPECT_LT(p.min_range, p.max_range);
+    // The pipeline accepts it: parameters and tables derive without complaint.
+    Params params = ParamsForSensor(p);
+    Tables tables = MakeTables(p, params);
+    EXPECT_EQ(tables.beam_bound.size(), p.beams - 1);
+  }
+}
+
+TEST(SensorProfile, ShippedGeometryMatchesTheDatasheets) {
+  const std::string dir = test::SensorsDir();
+  SensorProfile hdl64 = LoadSensorProfile("hdl64e", dir);
+  ASSERT_EQ(hdl64.beams, 64u);
+  EXPECT_NEAR(hdl64.elevation_deg.front(), 2.0, 0.3);   // datasheet: +2.0 ...
+  EXPECT_NEAR(hdl64.elevation_deg.back(), -24.9, 0.3);  // ... to -24.9 degrees
+  // Upper block (32 beams) ~1/3 degree apart, lower block ~1/2 degree.
+  EXPECT_NEAR((hdl64.elevation_deg[0] - hdl64.elevation_deg[31]) / 31, 1.0 / 3, 0.03);
+  EXPECT_NEAR((hdl64.elevation_deg[32] - hdl64.elevation_deg[63]) / 31, 0.5, 0.03);
+  EXPECT_FLOAT_EQ(hdl64.sensor_height, 1.73f);
+  EXPECT_FALSE(hdl64.ring_zero_is_top);
+
+  SensorProfile hdl32 = LoadSensorProfile("hdl32e", dir);
+  EXPECT_NEAR(hdl32.elevation_deg.front(), 10.67, 0.01);
+  EXPECT_NEAR(hdl32.elevation_deg.back(), -30.67, 0.01);
+  EXPECT_FALSE(hdl32.ring_zero_is_top);  // nuScenes: ring 0 is the bottom beam
+
+  SensorProfile os1 = LoadSensorProfile("os1-64", dir);
+  EXPECT_EQ(os1.width, 2048u);
+  EXPECT_TRUE(os1.ring_zero_is_top);
+  EXPECT_NEAR(os1.elevation_deg.front(), 16.6, 0.5);
+  EXPECT_NEAR(os1.elevation_deg.back(), -16.6, 0.5);
+
+  SensorProfile vlp32c = LoadSensorProfile("vlp32c", dir);
+  EXPECT_FLOAT_EQ(vlp32c.elevation_deg.front(), 15.0f);
+  EXPECT_FLOAT_EQ(vlp32c.elevation_deg.back(), -25.0f);
+
+  EXPECT_EQ(LoadSensorProfile("os1-128", dir).beams, 128u);
+  EXPECT_EQ(LoadSensorProfile("vlp16", dir).beams, 16u);
+}
+
+TEST(SensorProfile, ParsesEveryKey) {
+  ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  SensorProfile p = LoadSensorProfile(WriteText(dir, "tiny.txt", kValid), dir + "/nowhere");
+  EXPECT_EQ(p.name, "tiny");
+  EXPECT_EQ(p.beams, 4u);
+  EXPECT_EQ(p.width, 1024u);
+  EXPECT_EQ(p.elevation_deg, (std::vector<float>{3.0f, 1.0f, -1.0f, -3.0f}));
+  EXPECT_TRUE(p.ring_zero_is_top);
+  EXPECT_FLOAT_EQ(p.intensity_scale, 1.0f / 255);
+  EXPECT_FLOAT_EQ(p.sensor_height, 1.84f);
+  EXPECT_FLOAT_EQ(p.min_range, 2.0f);
+  EXPECT_FLOAT_EQ(p.max_range, 100.0f);
+  EXPECT_EQ(p.k_xz, 0.0f);  // absent keys keep their defaults
+  ASSERT_EQ(p.overrides.size(), 2u);
+  EXPECT_EQ(p.overrides[0].first, "slope_max");
+  EXPECT_FLOAT_EQ(p.overrides[0].second, 0.06f);
+  EXPECT_EQ(p.overrides[1].first, "min_component");
+  EXPECT_EQ(ParamsForSensor(p).min_component, 30u);
+}
+
+TEST(SensorProfile, NameLooksInTheSensorsFolderAndPathsWorkToo) {
+  ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  WriteText(dir, "tiny.txt", kValid);
+  EXPECT_EQ(LoadSensorProfile("tiny", dir).name, "tiny");
+  EXPECT_EQ(LoadSensorProfile(dir + "/tiny.txt", test::SensorsDir()).name, "tiny");
+  EXPECT_EQ(KnownSensorProfiles(dir), std::vector<std::string>{"tiny"});
+}
+
+TEST(SensorProfile, RoundTripsExactly) {
+  ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  for (const char* name : kShipped) {
+    SCOPED_TRACE(name);
+    SensorProfile a = LoadSensorProfile(name, test::SensorsDir());
+    a.k_xz = 0.0123456789f;  // values that need all nine digits
+    a.k_yz = -1.0f / 3;
+    a.b_x = 1.7312345f;
+    a.b_y = 1e-7f;
+    a.overrides = {{"t_edge", 0.1f / 3}, {"rings_far", 30.0f}};
+    std::string path = dir + "/" + name + ".txt";
+    WriteSensorProfile(path, a);
+    SensorProfile b = LoadSensorProfile(path, dir + "/nowhere");
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.beams, a.beams);
+    EXPECT_EQ(b.width, a.width);
+    EXPECT_EQ(b.elevation_deg, a.elevation_deg);  // bit-exact floats
+    EXPECT_EQ(b.ring_zero_is_top, a.ring_zero_is_top);
+    EXPECT_EQ(b.intensity_scale, a.intensity_scale);
+    EXPECT_EQ(b.sensor_height, a.sensor_height);
+    EXPECT_EQ(b.min_range, a.min_range);
+    EXPECT_EQ(b.max_range, a.max_range);
+    EXPECT_EQ(b.k_xz, a.k_xz);
+    EXPECT_EQ(b.k_yz, a.k_yz);
+    EXPECT_EQ(b.b_x, a.b_x);
+    EXPECT_EQ(b.b_y, a.b_y);
+    EXPECT_EQ(b.overrides, a.overrides);
+  }
+}
+
+TEST(SensorProfile, UnknownNameListsTheKnownProfiles) {
+  try {
+    LoadSensorProfile("hdl128x", test::SensorsDir());
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    std::string m = e.what();
+    EXPECT_NE(m.find("unknown sensor profile 'hdl128x'"), std::string::npos) << m;
+    EXPECT_NE(m.find("known: hdl32e, hdl64e, os1-128, os1-64, vlp16, vlp32c"), std::string::npos)
+        << m;
+  }
+}
+
+struct BadCase {
+  const char* what;
+  std::string text;
+  int line;
+  const char* says;
+};
+
+// kValid with line `line` (1-based) replaced by `replacement` ("" deletes it).
+std::string Edit(int line, const std::string& replacement) {
+  std::string out;
+  std::string text = kValid;
+  int n = 0;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    ++n;
+    std::string current = text.substr(start, end - start);
+    if (n != line)
+      out += current + "\n";
+    else if (!replacement.empty())
+      out += replacement + "\n";
+    start = end + 1;
+  }
+  return out;
+}
+
+TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
+  // kValid's lines: 1 comment, 2 name, 3 beams, 4 width, 5 elevation_deg, 6 continuation,
+  // 7 ring_zero_is_top, 8 intensity_scale, 9 sensor_height, 10 min_range, 11 max_range,
+  // 12-13 param.
+  const BadCase cases[] = {
+      {"unknown key", Edit(9, "sensor_hieght 1.8"), 9, "unknown key 'sensor_hieght'"},
+      {"duplicate key", Edit(1, "width 2048"), 4, "duplicate key 'width' (first on line 1)"},
+      {"bad number", Edit(8, "intensity_scale 0.5x"), 8, "'0.5x' is not a finite number"},
+      {"bad number in table", Edit(6, "  -1.0 minus3"), 6, "'minus3' is not a finite number"},
+      {"number in the table", Edit(6, "  -1.0 -3,0"), 6, "'-3,0' is not a finite number"},
+      {"non-finite", Edit(10, "min_range 1e99"), 10, "not a finite number"},
+      {"whole number", Edit(3, "beams 4.0"), 3, "'4.0' is not a whole number"},
+      {"too few elevations", Edit(6, "  -1.0"), 5, "elevation_deg has 3 values but beams is 4"},
+      {"too many elevations", Edit(6, "  -1.0 -3.0 -5.0"), 5, "has 5 values but beams is 4"},
+      {"not descending", Edit(6, "  1.0 -3.0"), 5, "strictly descending"},
+      {"ascending", Edit(5, "elevation_deg -3.0 -1.0"), 5, "strictly descending"},
+      {"width not /64", Edit(4, "width 1800"), 4, "width 1800 must be a positive multiple of 64"},
+      {"unknown param", Edit(12, "param slope_maximum 0.06"), 12,
+       "unknown parameter 'slope_maximum'"},
+      {"param value rejected", Edit(13, "param min_component 2.5"), 13, "whole number"},
+      {"duplicate param", Edit(13, "param slope_max 0.07"), 13, "duplicate param 'slope_max'"},
+      {"param arity", Edit(12, "param slope_max"), 12, "param expects a name and a value"},
+      {"two values", Edit(9, "sensor_height 1.8 1.9"), 9, "expects exactly one value, got 2"},
+      {"no value", Edit(2, "name"), 2, "expects exactly one value, got 0"},
+      {"ring flag", Edit(7, "ring_zero_is_top yes"), 7, "ring_zero_is_top must be 0 or 1"},
+      {"stray numbers", Edit(8, "1.0 2.0"), 8, "numbers without a key"},
+      {"range order", Edit(11, "max_range 1.5"), 11, "max_range must be larger than min_range"},
+      {"negative height", Edit(9, "sensor_height -1.73"), 9, "sensor_height must be > 0"},
+      {"missing name", Edit(2, ""), 13, "without the required key 'name'"},
+      {"missing table", Edit(5, ""), 5, "numbers without a key"},
+  };
+  ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  int index = 0;
+  for (const BadCase& c : cases) {
+    SCOPED_TRACE(c.what);
+    std::string path = WriteText(dir, "bad" + std::to_string(index++) + ".txt", c.text);
+    try {
+      LoadSensorProfile(path, dir);
+      ADD_FAILURE() << "accepted:\n" << c.text;
+    } catch (const IoError& e) {
+      std::string m = e.what();
+      EXPECT_EQ(m.rfind(path + ": line " + std::to_string(c.line) + ": ", 0), 0u) << m;
+      EXPECT_NE(m.find(c.says), std::string::npos) << m;
+    }
+  }
+}
+
+TEST(SensorProfile, MissingTableReportedAtTheEnd) {
+  ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  std::string path = WriteText(dir, "p.txt", "name x\nbeams 2\nwidth 64\n");
+  try {
+    LoadSensorProfile(path, dir);
+    FAIL() << "accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": line 4: end of file without the required key "
+                                                "'elevation_deg'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SensorProfile, MissingFileIsUnknownAndUnwritableFolderAnIoError) {
+  ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  EXPECT_THROW(LoadSensorProfile(dir + "/absent.txt", dir), std::invalid_argument);
+  EXPECT_THROW(WriteSensorProfile(dir + "/no/such/folder.txt",
+                                  LoadSensorProfile("vlp16", test::SensorsDir())),
+               IoError);
+}
+
+}  // namespace
+}  // namespace lpir
