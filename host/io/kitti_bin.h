@@ -14,5 +14,8 @@ enum class BinLayout { kKitti4, kNuScenes5 };
 // kNuScenes5 the fifth float becomes `ring` (must be a whole number >= 0, else IoError).
 Cloud ReadKittiBin(const std::string& path, BinLayout layout = BinLayout::kKitti4);
 void WriteKittiBin(const std::string& path, const Cloud& cloud);
+// kKitti4 as above (any ring is dropped); kNuScenes5 appends the ring as a float (the cloud must
+// have one ring per point, else IoError).
+void WriteKittiBin(const std::string& path, const Cloud& cloud, BinLayout layout);
 
 }  // namespace lpir
