@@ -1,1 +1,66 @@
-int main() { return 0; }
+// The CPU reference, single-threaded, on the six consecutive SemanticKITTI 00 scans: one
+// benchmark per scan, each repetition one whole frame (stages 1-9), 20 repetitions so the
+// reported median is over 20 runs. Per-stage milliseconds are counters (mean per frame).
+// Run: build/reference_bench  (data from ../shared/data; absent -> nothing to run, says so).
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "host/io/kitti_bin.h"
+#include "host/io/sensor_profile.h"
+#include "host/segmenter.h"
+
+namespace lpir {
+namespace {
+
+void BM_Reference(benchmark::State& state, const std::string& path) {
+  const Cloud cloud = ReadKittiBin(path);
+  Segmenter segmenter(LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR));
+  // Check before timing: every point labelled, some ground, some non-ground.
+  const Frame& check = segmenter.Segment(cloud);
+  size_t ground = 0;
+  for (uint8_t l : check.label) ground += l;
+  if (check.label.size() != cloud.size() || ground == 0 || ground == cloud.size()) {
+    state.SkipWithError("reference output failed its sanity check");
+    return;
+  }
+  StageTimes times, sum;
+  for (auto _ : state) {
+    segmenter.Segment(cloud, &times);
+    for (int k = 0; k < 9; ++k) sum.ms[k] += times.ms[k];
+  }
+  for (int k = 0; k < 9; ++k)
+    state.counters[std::string(kStageNames[k]) + "_ms"] =
+        benchmark::Counter(sum.ms[k] / double(state.iterations()));
+  state.counters["points"] = double(cloud.size());
+}
+
+}  // namespace
+}  // namespace lpir
+
+int main(int argc, char** argv) {
+  const std::string dir = std::string(LPIR_DATA_DIR) + "/kitti/00/velodyne";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    std::printf("reference_bench: %s not found (../shared/data absent): nothing to benchmark\n",
+                dir.c_str());
+    return 0;
+  }
+  for (int i = 0; i <= 5; ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%06d", i);
+    const std::string path = dir + "/" + name + ".bin";
+    benchmark::RegisterBenchmark(("BM_Reference/kitti00_" + std::string(name)).c_str(),
+                                 lpir::BM_Reference, path)
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(20)
+        ->ReportAggregatesOnly(true);
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
