@@ -144,12 +144,19 @@ Tables MakeTables(const SensorProfile& s, const Params& p) {
     throw std::invalid_argument("sensor profile '" + s.name + "': elevation table has " +
                                 std::to_string(s.elevation_deg.size()) + " entries for " +
                                 std::to_string(s.beams) + " beams");
+  if (!s.beam_origin_z.empty() && s.beam_origin_z.size() != s.beams)
+    throw std::invalid_argument("sensor profile '" + s.name + "': beam_origin_z has " +
+                                std::to_string(s.beam_origin_z.size()) + " entries for " +
+                                std::to_string(s.beams) + " beams");
   Tables t;
   const double kPi = 3.14159265358979323846;
   for (unsigned b = 0; b + 1 < s.beams; ++b) {
     double mid = 0.5 * (double(s.elevation_deg[b]) + double(s.elevation_deg[b + 1])) * kPi / 180;
     double tn = std::tan(mid);
     t.beam_bound.push_back(float(tn * std::fabs(tn)));
+    t.beam_origin.push_back(s.beam_origin_z.empty()
+                                ? 0.0f
+                                : float(0.5 * (double(s.beam_origin_z[b]) + s.beam_origin_z[b + 1])));
   }
   t.column_dir.resize(2 * size_t(p.width));
   for (unsigned k = 0; k < p.width; ++k) {

@@ -27,6 +27,9 @@ struct Tables {
   // Row boundaries: beams - 1 entries, descending. Boundary b lies between row b and row b + 1 at
   // elevation e_b; stored as t*|t| with t = tan(e_b), compared with z*|z| / r^2 without dividing.
   std::vector<float> beam_bound;
+  // Height of boundary b's laser origin (the mean of rows b and b + 1), m: the elevation compared
+  // with beam_bound[b] is that of z - beam_origin[b].
+  std::vector<float> beam_origin;
   // Column boundaries: width entries of (cos, sin) of phi_k = pi - 2*pi*k/width (entry 0 unused).
   std::vector<float> column_dir;
   // Ring boundaries: squared outer radius of every ring, ascending, rings_near + rings_far entries.

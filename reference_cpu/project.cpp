@@ -5,8 +5,10 @@
 //   u = floor((1 - theta / pi) / 2 * width) of eq. 1, found by walking from a polynomial guess with
 //   the exact angle order AngleBelow (half-plane, then the sign of one cross product x*s - y*c).
 // Row: with ring indices, v = ring (ring_zero_is_top) or beams - 1 - ring; else v = #{b :
-//   beam_bound[b] * r2 > z * |z|}, i.e. the beams whose lower boundary lies above the point's
-//   elevation, compared as tan^2 with signs, by binary search.
+//   beam_bound[b] * r2 > h * |h|}, h = z - beam_origin[b], i.e. the beams whose lower boundary
+//   lies above the point's elevation seen from that boundary's laser origin, compared as tan^2
+//   with signs, by binary search. (The HDL-64E's lasers sit 0.1-0.2 m above its centre: seen
+//   from the centre, a point 10 m away reads up to 1 degree high, three rows.)
 // Winner: the smallest r2 on the pixel (ordered key, atomic min), then the lowest point index
 //   among those with that key. Noise points get a pixel but never compete (they are not ground
 //   evidence); invalid points get neither.
@@ -63,14 +65,15 @@ uint32_t ColumnOf(float x, float y, const float* dir, uint32_t width) {
   return uint32_t(u);
 }
 
-uint32_t RowOf(float z, float r2, const float* bound, uint32_t beams) {
+uint32_t RowOf(float z, float r2, const float* bound, const float* origin, uint32_t beams) {
   // Count of boundaries above the point; boundaries descend, so the predicate is a prefix.
-  const float zz = z * (z < 0.0f ? -z : z);
   uint32_t lo = 0, hi = beams - 1;
   while (lo < hi) {
     const uint32_t mid = (lo + hi + 1) >> 1;  // boundary index mid - 1
+    const float h = z - origin[mid - 1];
+    const float hh = h * (h < 0.0f ? -h : h);
     const float s = bound[mid - 1] * r2;
-    if (s > zz) lo = mid;
+    if (s > hh) lo = mid;
     else hi = mid - 1;
   }
   return lo;
@@ -91,7 +94,7 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
       const uint32_t ring = uint32_t(cloud.ring[i]);
       v = p.ring_zero_is_top ? ring : p.beams - 1 - ring;
     } else {
-      v = RowOf(z, f.r2[i], t.beam_bound.data(), p.beams);
+      v = RowOf(z, f.r2[i], t.beam_bound.data(), t.beam_origin.data(), p.beams);
     }
     const uint32_t pix = v * p.width + u;
     f.point_pixel[i] = pix;

@@ -12,6 +12,9 @@ struct SensorProfile {
   unsigned beams = 64;                // image rows
   unsigned width = 2048;              // image columns (one per azimuth step, 360 degrees)
   std::vector<float> elevation_deg;   // beam elevations, degrees, row 0 (top) first, descending
+  // Height of each beam's laser origin above the sensor frame's origin, m, row 0 first (empty:
+  // all 0). The HDL-64E fires from 0.1-0.2 m above its centre, which bends near elevations.
+  std::vector<float> beam_origin_z;
   bool ring_zero_is_top = false;      // when the file has a ring field: true if ring 0 is the top beam
   float intensity_scale = 1.0f;       // raw intensity * scale = intensity in [0, 1]
   float sensor_height = 1.73f;        // m, sensor above the ground it stands on

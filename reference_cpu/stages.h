@@ -20,7 +20,8 @@ void BackProject(const Params& p, Frame& f);                                    
 
 // Exact geometric lookups shared by the stages and their tests.
 uint32_t ColumnOf(float x, float y, const float* column_dir, uint32_t width);  // eq. 1, u
-uint32_t RowOf(float z, float r2, const float* beam_bound, uint32_t beams);    // eq. 1, v
+uint32_t RowOf(float z, float r2, const float* beam_bound, const float* beam_origin,
+               uint32_t beams);                                                 // eq. 1, v
 uint32_t RingOf(float r2, const float* ring_bound2, uint32_t rings);           // eq. 4, i
 
 }  // namespace lpir

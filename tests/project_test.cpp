@@ -84,12 +84,12 @@ TEST(Project, RowIsTheBeamNearestInElevation) {
     for (double off : {-0.3, 0.0, 0.3}) {  // within half the 1-degree spacing
       const double e = (s.elevation_deg[b] + off) * kPi / 180.0;
       const float r = 25.0f, z = float(25.0 * std::tan(e));
-      EXPECT_EQ(RowOf(z, r * r, t.beam_bound.data(), p.beams), b) << "beam " << b << " " << off;
+      EXPECT_EQ(RowOf(z, r * r, t.beam_bound.data(), t.beam_origin.data(), p.beams), b) << "beam " << b << " " << off;
     }
   }
   // Beyond the table's ends: the top and bottom rows.
-  EXPECT_EQ(RowOf(100.0f, 1.0f, t.beam_bound.data(), p.beams), 0u);
-  EXPECT_EQ(RowOf(-100.0f, 1.0f, t.beam_bound.data(), p.beams), p.beams - 1);
+  EXPECT_EQ(RowOf(100.0f, 1.0f, t.beam_bound.data(), t.beam_origin.data(), p.beams), 0u);
+  EXPECT_EQ(RowOf(-100.0f, 1.0f, t.beam_bound.data(), t.beam_origin.data(), p.beams), p.beams - 1);
 }
 
 TEST(Project, NearestPointWinsThenLowestIndexAndNoiseNeverWins) {

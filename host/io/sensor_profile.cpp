@@ -26,6 +26,7 @@ const char* const kKeys[] = {"name",
                              "beams",
                              "width",
                              "elevation_deg",
+                             "beam_origin_z",
                              "ring_zero_is_top",
                              "intensity_scale",
                              "sensor_height",
@@ -89,21 +90,25 @@ class Parser {
     std::map<std::string, int> seen;         // key -> line of its first appearance
     std::map<std::string, int> params_seen;  // override name -> line
     int elevation_line = 0;                  // line of the elevation_deg key
-    bool elevation_open = false;             // the previous line was elevation_deg (or its tail)
+    int origin_line = 0;                     // line of the beam_origin_z key
+    std::vector<float>* open_list = nullptr;  // the list the previous line was (or continued)
+    std::string open_key;
     std::istringstream in(text);
     std::string raw;
     int line = 0;
     while (std::getline(in, raw)) {
       ++line;
       std::vector<std::string> tok = Tokens(raw);
-      if (tok.empty()) continue;  // blank and comment lines keep an elevation table open
+      if (tok.empty()) continue;  // blank and comment lines keep a list open
       if (IsNumberStart(tok[0])) {
-        if (!elevation_open)
-          Fail(line, "numbers without a key (only elevation_deg continues on following lines)");
-        for (const std::string& t : tok) p.elevation_deg.push_back(Float(line, "elevation_deg", t));
+        if (!open_list)
+          Fail(line,
+               "numbers without a key (only elevation_deg and beam_origin_z continue on "
+               "following lines)");
+        for (const std::string& t : tok) open_list->push_back(Float(line, open_key, t));
         continue;
       }
-      elevation_open = false;
+      open_list = nullptr;
       const std::string& key = tok[0];
       bool known = false;
       for (const char* k : kKeys) known = known || key == k;
@@ -116,10 +121,11 @@ class Parser {
         seen[key] = line;
       }
       const size_t values = tok.size() - 1;
-      if (key == "elevation_deg") {
-        elevation_line = line;
-        elevation_open = true;
-        for (size_t i = 1; i < tok.size(); ++i) p.elevation_deg.push_back(Float(line, key, tok[i]));
+      if (key == "elevation_deg" || key == "beam_origin_z") {
+        (key == "elevation_deg" ? elevation_line : origin_line) = line;
+        open_list = key == "elevation_deg" ? &p.elevation_deg : &p.beam_origin_z;
+        open_key = key;
+        for (size_t i = 1; i < tok.size(); ++i) open_list->push_back(Float(line, key, tok[i]));
         continue;
       }
       if (key == "param") {
@@ -193,6 +199,11 @@ class Parser {
                                  std::to_string(i) + " does not lie below value " +
                                  std::to_string(i - 1));
     }
+    if (origin_line && p.beam_origin_z.size() != p.beams)
+      Fail(origin_line, "beam_origin_z has " + std::to_string(p.beam_origin_z.size()) +
+                            " values but beams is " + std::to_string(p.beams));
+    for (float oz : p.beam_origin_z)
+      if (!(oz >= -1.0f && oz <= 1.0f)) Fail(origin_line, "beam_origin_z values must be within 1 m");
     if (!(p.max_range > p.min_range)) {
       int at = seen.count("max_range") ? seen["max_range"] : seen["min_range"];
       Fail(at, "max_range must be larger than min_range");
@@ -260,6 +271,14 @@ void WriteSensorProfile(const std::string& path, const SensorProfile& p) {
     s += " " + FormatFloat(p.elevation_deg[i]);
   }
   s += "\n";
+  if (!p.beam_origin_z.empty()) {
+    s += "beam_origin_z";
+    for (size_t i = 0; i < p.beam_origin_z.size(); ++i) {
+      if (i > 0 && i % 8 == 0) s += "\n ";
+      s += " " + FormatFloat(p.beam_origin_z[i]);
+    }
+    s += "\n";
+  }
   s += std::string("ring_zero_is_top ") + (p.ring_zero_is_top ? "1" : "0") + "\n";
   s += "intensity_scale " + FormatFloat(p.intensity_scale) + "\n";
   s += "sensor_height " + FormatFloat(p.sensor_height) + "\n";
