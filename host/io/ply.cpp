@@ -68,9 +68,8 @@ PlyHeader ParseHeader(const std::string& path, LineCursor* cursor) {
       if (has_format) throw IoError(path, at + "format given twice");
       if (tokens.size() != 3) throw IoError(path, at + "format needs a type and a version");
       if (tokens[1] == "binary_big_endian") {
-        throw IoError(path,
-                      "format binary_big_endian is unsupported (only ascii and "
-                      "binary_little_endian)");
+        throw IoError(path, at + "format binary_big_endian is unsupported (convert to "
+                                 "binary_little_endian or ascii)");
       }
       if (tokens[1] != "ascii" && tokens[1] != "binary_little_endian") {
         throw IoError(path, at + "unknown format " + Quote(tokens[1]));
