@@ -47,12 +47,21 @@ inline float Div(float a, float b) { return Ftz(Ftz(a) / Ftz(b)); }
 // Correctly rounded sqrt(a) for finite a >= 0 (subnormals flushed).
 inline float Sqrt(float a) { return Ftz(std::sqrt(Ftz(a))); }
 
+// floor(y) as an integer, exactly, for |y| < 2^62 (GLSL floor() is exact too). Truncation, then
+// one step down for negative non-integers: a float of magnitude >= 2^23 is an integer already, and
+// below that the truncated value converts back exactly. (No libm call: without SSE4.1 std::floor
+// is a function call, a third of the cost of a stage that converts every point.)
+inline int64_t FloorToInt(float y) {
+  const int64_t t = static_cast<int64_t>(y);
+  return static_cast<float>(t) > y ? t - 1 : t;
+}
+
 // round(x * scale) to int64 as floor(x * scale + 0.5), each step one rounded float op; |x * scale|
 // must stay below 2^62 (callers clamp).
 inline int64_t ToFixed(float x, float scale) {
   float y = x * scale;
   y = y + 0.5f;
-  return static_cast<int64_t>(std::floor(y));
+  return FloorToInt(y);
 }
 
 // floor(sqrt(v)) for v >= 0, exact (bit by bit, no float).
@@ -77,6 +86,22 @@ inline uint64_t Isqrt(uint64_t v) {
 inline int64_t DivToZero(int64_t num, int64_t den) {
   uint64_t q = (num < 0 ? uint64_t(-num) : uint64_t(num)) / uint64_t(den);
   return num < 0 ? -int64_t(q) : int64_t(q);
+}
+
+// int64 -> float, rounded to nearest even by integer operations. Vulkan leaves the rounding of a
+// conversion that is not exact to the device, so only this helper converts integers that may
+// exceed 2^24 in magnitude.
+inline float I64ToFloat(int64_t v) {
+  const uint64_t sign = v < 0 ? 0x80000000u : 0u;
+  uint64_t m = v < 0 ? uint64_t(0) - uint64_t(v) : uint64_t(v);
+  if (m < (uint64_t(1) << 24)) return static_cast<float>(v);  // exact
+  int shift = (63 - __builtin_clzll(m)) - 23;  // the top bit to bit 23 (GLSL: findMSB)
+  uint64_t q = m >> shift;
+  const uint64_t rem = m & ((uint64_t(1) << shift) - 1), half = uint64_t(1) << (shift - 1);
+  if (rem > half || (rem == half && (q & 1))) ++q;
+  if (q == (uint64_t(1) << 24)) q >>= 1, ++shift;
+  // value = q * 2^shift with q in [2^23, 2^24): exponent 23 + shift
+  return FromBits(uint32_t(sign | (uint64_t(23 + shift + 127) << 23) | (q & 0x7FFFFFu)));
 }
 
 // 2^e as a float, exactly, for -126 <= e <= 127.

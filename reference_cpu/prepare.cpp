@@ -13,12 +13,13 @@ namespace lpir {
 void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   const uint32_t n = uint32_t(cloud.size());
   f.n = n;
-  f.flags.assign(n, 0u);
-  f.zt.assign(n, 0.0f);
-  f.r2.assign(n, 0.0f);
-  f.inten.assign(n, 0.0f);
+  f.flags.resize(n);
+  f.zt.resize(n);
+  f.r2.resize(n);
+  f.inten.resize(n);
   const bool has_ring = !cloud.ring.empty();
   for (uint32_t i = 0; i < n; ++i) {
+    f.flags[i] = 0u, f.zt[i] = 0.0f, f.r2[i] = 0.0f, f.inten[i] = 0.0f;  // until proven valid
     const float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
     const float in = cloud.xyzi[4 * i + 3];
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) continue;

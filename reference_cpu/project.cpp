@@ -50,7 +50,7 @@ inline int32_t GuessColumn(float x, float y, uint32_t width) {
   if (x < 0.0f) a = 3.14159274f - a;
   if (y < 0.0f) a = -a;                                  // theta = atan2(y, x)
   const float turns = (3.14159274f - a) * 0.159154937f;  // (pi - theta) / (2 pi), eq. 1
-  return int32_t(std::floor(turns * float(width)));
+  return int32_t(exact::FloorToInt(turns * float(width)));
 }
 
 uint32_t ColumnOf(float x, float y, const float* dir, uint32_t width) {

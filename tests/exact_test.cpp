@@ -56,6 +56,21 @@ TEST(Exact, IsqrtIsFloorOfSquareRoot) {
   EXPECT_EQ(Isqrt(~uint64_t(0)), 4294967295u);
 }
 
+TEST(Exact, I64ToFloatRoundsToNearestEven) {
+  std::mt19937_64 rng(11);
+  for (int k = 0; k < 200000; ++k) {
+    const int64_t v = int64_t(rng() >> (rng() % 63)) * (k % 2 ? 1 : -1);
+    ASSERT_EQ(Bits(I64ToFloat(v)), Bits(static_cast<float>(v))) << v;  // x86 cvtsi2ss is RNE
+  }
+  EXPECT_EQ(I64ToFloat((int64_t(1) << 24) + 1), 16777216.0f);  // tie to even
+  EXPECT_EQ(I64ToFloat((int64_t(1) << 24) + 3), 16777220.0f);  // tie to even (up)
+}
+
+TEST(Exact, FloorToIntMatchesFloor) {
+  const float values[] = {-2.5f, -2.0f, -0.5f, -0.0f, 0.0f, 0.5f, 1.0f, 7.99f, -1e7f, 3e9f};
+  for (float y : values) EXPECT_EQ(FloorToInt(y), int64_t(std::floor(y))) << y;
+}
+
 TEST(Exact, DivToZeroAndToFixed) {
   EXPECT_EQ(DivToZero(-7, 2), -3);
   EXPECT_EQ(DivToZero(7, 2), 3);

@@ -13,10 +13,13 @@ std::vector<char> ReadFileBytes(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw IoError(path, "read failed");
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw IoError(path, "cannot tell its size");
+  std::vector<char> bytes(static_cast<size_t>(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(bytes.data(), size)) throw IoError(path, "read failed");
   return bytes;
 }
 
