@@ -252,8 +252,12 @@ SimScan Simulate(const SensorProfile& sensor, const SimOptions& options) {
   scan.labels.reserve(static_cast<size_t>(rows) * cols * 3 / 4);
 
   Ray ray;
-  ray.o[0] = 0, ray.o[1] = 0, ray.o[2] = scene.sensor_z;
   for (unsigned v = 0; v < rows; ++v) {
+    // Each beam fires from its laser's origin, beam_origin_z above the sensor frame's origin (the
+    // HDL-64E's blocks sit 0.1-0.2 m above its centre), as the profile says the real one does.
+    const double oz = sensor.beam_origin_z.empty() ? 0.0 : sensor.beam_origin_z[v];
+    const double origin_sensor[3] = {0.0, 0.0, oz};
+    scene.SensorToWorld(origin_sensor, ray.o);
     for (unsigned u = 0; u < cols; ++u) {
       double ds[3];
       sensor_dir(v, u, ds);
@@ -330,7 +334,7 @@ SimScan Simulate(const SensorProfile& sensor, const SimOptions& options) {
       }
       if (sigma > 0) t += sigma * rng.Normal();
 
-      const double px = t * ds[0], py = t * ds[1], pz = t * ds[2];
+      const double px = t * ds[0], py = t * ds[1], pz = oz + t * ds[2];
       const double r2 = px * px + py * py;
       if (t <= 0 || r2 < min_r2 || r2 > max_r2) continue;
       refl = std::max(0.0, std::min(1.0, refl));
