@@ -92,6 +92,28 @@ TEST(Project, RowIsTheBeamNearestInElevation) {
   EXPECT_EQ(RowOf(-100.0f, 1.0f, t.beam_bound.data(), t.beam_origin.data(), p.beams), p.beams - 1);
 }
 
+TEST(Project, RowEqualsTheBoundaryCount) {
+  SensorProfile s = test::SmallSensor();
+  s.beam_origin_z.assign(s.beams, 0.2f);
+  for (unsigned b = s.beams / 2; b < s.beams; ++b) s.beam_origin_z[b] = 0.1f;  // two blocks
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> range(1.0f, 90.0f), height(-30.0f, 10.0f);
+  for (int k = 0; k < 20000; ++k) {
+    const float r = range(rng), z = height(rng), r2 = r * r;
+    uint32_t count = 0;
+    for (uint32_t b = 0; b + 1 < p.beams; ++b) {
+      const float h = z - t.beam_origin[b];
+      const float hh = h * (h < 0.0f ? -h : h);
+      const float bound = t.beam_bound[b] * r2;
+      count += bound > hh;
+    }
+    ASSERT_EQ(RowOf(z, r2, t.beam_bound.data(), t.beam_origin.data(), p.beams), count)
+        << "z " << z << " r " << r;
+  }
+}
+
 TEST(Project, NearestPointWinsThenLowestIndexAndNoiseNeverWins) {
   SensorProfile s = test::SmallSensor();
   const Params p = ParamsForSensor(s);
