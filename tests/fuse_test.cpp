@@ -1,0 +1,184 @@
+// Stage 7, fuse (III-D.2): the pixel class against the winning point's coarse label, hole-filled
+// pixels, and the occlusion veto (our addition, see reference_cpu/fuse.cpp). Inputs by hand.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "reference_cpu/stages.h"
+
+namespace lpir {
+namespace {
+
+const char* Name(uint32_t c) {
+  switch (c) {
+    case kPixNonGround:
+      return "non-ground";
+    case kPixGround:
+      return "ground";
+    case kPixUnknown:
+      return "unknown";
+    default:
+      return "empty";
+  }
+}
+
+// An image of `beams` x `width` pixels, every pixel empty; Measure() gives a pixel a point.
+struct Image {
+  Params p = DefaultParams();
+  Frame f;
+  Image(uint32_t width, uint32_t beams) {
+    p.width = width;
+    p.beams = beams;
+    const size_t pixels = size_t(width) * beams;
+    f.pixel_class.assign(pixels, kPixEmpty);
+    f.pixel_point.assign(pixels, kNone);
+    f.pixel_filled.assign(pixels, 0u);
+    f.f_range.assign(pixels, 0.0f);
+    f.f_height.assign(pixels, 0.0f);
+  }
+  uint32_t Pix(uint32_t v, uint32_t u) const { return v * p.width + u; }
+  // A measured pixel with its own point and that point's coarse label.
+  void Measure(uint32_t v, uint32_t u, uint32_t cls, bool coarse_ground, float range = 10.0f,
+               float height = -1.7f) {
+    const uint32_t pix = Pix(v, u);
+    f.pixel_class[pix] = cls;
+    f.pixel_point[pix] = f.n++;
+    f.coarse.push_back(coarse_ground ? 1u : 0u);
+    f.pixel_filled[pix] = 1u;
+    f.f_range[pix] = range;
+    f.f_height[pix] = height;
+  }
+  // A hole-filled pixel: features and a class, no point.
+  void Fill(uint32_t v, uint32_t u, uint32_t cls, float range = 10.0f, float height = -1.7f) {
+    const uint32_t pix = Pix(v, u);
+    f.pixel_class[pix] = cls;
+    f.pixel_filled[pix] = 2u;
+    f.f_range[pix] = range;
+    f.f_height[pix] = height;
+  }
+  uint32_t Fused(uint32_t v, uint32_t u) const { return f.pixel_fused[Pix(v, u)]; }
+};
+
+TEST(Fuse, PixelClassAgainstTheCoarseLabel) {
+  // Contract: agreement keeps the class; ground vs non-ground disagreement -> unknown; an unknown
+  // pixel takes ground from a coarse-ground point and stays unknown otherwise.
+  struct Row {
+    uint32_t cls;
+    bool coarse;
+    uint32_t want;
+  };
+  const Row table[] = {
+      {kPixGround, true, kPixGround},     {kPixGround, false, kPixUnknown},
+      {kPixNonGround, true, kPixUnknown}, {kPixNonGround, false, kPixNonGround},
+      {kPixUnknown, true, kPixGround},    {kPixUnknown, false, kPixUnknown},
+  };
+  for (uint32_t occ_rows : {0u, 2u}) {  // isolated pixels: the veto must not matter
+    Image im(8, 3);
+    im.p.occ_rows = occ_rows;
+    // Every case on row 1 in a column of its own (the veto looks up its own column only).
+    uint32_t u = 0;
+    for (const Row& r : table) im.Measure(1, u++, r.cls, r.coarse);
+    Fuse(im.p, im.f);
+    u = 0;
+    for (const Row& r : table) {
+      EXPECT_EQ(im.Fused(1, u), r.want)
+          << "class " << Name(r.cls) << ", coarse " << (r.coarse ? "ground" : "non-ground")
+          << ", occ_rows " << occ_rows << ": got " << Name(im.Fused(1, u));
+      ++u;
+    }
+    for (uint32_t pix = 0; pix < im.f.pixel_fused.size(); ++pix)
+      if (im.f.pixel_class[pix] == kPixEmpty) {
+        EXPECT_EQ(im.f.pixel_fused[pix], kPixEmpty);
+      }
+  }
+}
+
+TEST(Fuse, HoleFilledPixelHasNoCoarseOpinionAndIsUnknown) {
+  Image im(8, 2);
+  im.p.occ_rows = 0;
+  im.Fill(1, 1, kPixGround);
+  im.Fill(1, 3, kPixNonGround);
+  im.Fill(1, 5, kPixUnknown);
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(1, 1), kPixUnknown);
+  EXPECT_EQ(im.Fused(1, 3), kPixUnknown);
+  EXPECT_EQ(im.Fused(1, 5), kPixUnknown);
+}
+
+// The occlusion veto: a pixel with an occluder among the occ_rows pixels above it in its column
+// (nearer than range + occ_margin + occ_grade * range^2 and higher by more than occ_rise) is
+// non-ground.
+class FuseVeto : public ::testing::Test {
+ protected:
+  Image im{8, 6};
+  const uint32_t v = 4;  // the pixel under test sits on row 4
+  const float r = 15.0f, z = -1.7f;
+  float reach = 0;
+  void SetUp() override {
+    if (im.p.occ_rows == 0) im.p.occ_rows = 2;  // the default may disable it; test the rule
+    ASSERT_LE(im.p.occ_rows, v) << "the image is too short for the veto's reach";
+    reach = r + im.p.occ_margin + im.p.occ_grade * r * r;
+  }
+  // Ground pixel (class and coarse agree) at (v, u).
+  void Ground(uint32_t u) { im.Measure(v, u, kPixGround, true, r, z); }
+};
+
+TEST_F(FuseVeto, NearerAndHigherPixelJustAboveVetoesGround) {
+  Ground(0);
+  im.Measure(v - 1, 0, kPixNonGround, false, r - 1.0f, z + im.p.occ_rise + 0.1f);
+  // An occluder occ_rows above, ranged just inside the reach.
+  Ground(2);
+  im.Measure(v - im.p.occ_rows, 2, kPixNonGround, false, reach - 0.01f, z + im.p.occ_rise + 0.01f);
+  // A hole-filled occluder counts too (it is filled, with a range and a height).
+  Ground(4);
+  im.Fill(v - 1, 4, kPixNonGround, r, z + 1.0f);
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 4), kPixNonGround);
+}
+
+TEST_F(FuseVeto, VetoOverridesAnUnknownCoarseGroundSeed) {
+  im.Measure(v, 0, kPixUnknown, true, r, z);  // would become ground without the veto
+  im.Measure(v - 1, 0, kPixNonGround, false, r, z + 1.0f);
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+}
+
+TEST_F(FuseVeto, LowerOrFartherPixelsDoNotVeto) {
+  // Not higher by more than occ_rise.
+  Ground(0);
+  im.Measure(v - 1, 0, kPixNonGround, false, r - 1.0f, z + im.p.occ_rise * 0.5f);
+  // Lower.
+  Ground(1);
+  im.Measure(v - 1, 1, kPixNonGround, false, r - 1.0f, z - 0.5f);
+  // Farther than the reach (flat ground's next beam up lies there).
+  Ground(2);
+  im.Measure(v - 1, 2, kPixGround, true, reach + 0.05f, z + im.p.occ_rise + 0.5f);
+  // Beyond occ_rows above.
+  Ground(3);
+  im.Measure(v - im.p.occ_rows - 1, 3, kPixNonGround, false, r - 1.0f, z + 1.0f);
+  // Below (rows further down are nearer; they never occlude).
+  Ground(4);
+  im.Measure(v + 1, 4, kPixNonGround, false, r - 1.0f, z + 1.0f);
+  // In the neighbouring column.
+  Ground(5);
+  im.Measure(v - 1, 6, kPixNonGround, false, r - 1.0f, z + 1.0f);
+  Fuse(im.p, im.f);
+  for (uint32_t u = 0; u <= 5; ++u) EXPECT_EQ(im.Fused(v, u), kPixGround) << "column " << u;
+}
+
+TEST_F(FuseVeto, TopRowsHaveNothingAboveAndZeroRowsDisablesIt) {
+  im.Measure(0, 0, kPixGround, true, r, z);  // row 0: no rows above
+  Ground(1);
+  im.Measure(v - 1, 1, kPixNonGround, false, r - 1.0f, z + 1.0f);  // an occluder ...
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(0, 0), kPixGround);
+  EXPECT_EQ(im.Fused(v, 1), kPixNonGround);
+  im.p.occ_rows = 0;  // ... ignored once the veto is off
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 1), kPixGround);
+}
+
+}  // namespace
+}  // namespace lpir

@@ -1,0 +1,320 @@
+// Stage 8, grow (Alg. 1, IV-A): region growing from ground seeds through unknown pixels, its
+// schedule independence against an independent Jacobi fixed point, and the connectivity
+// constraint. Inputs (pixel_fused and the feature maps) by hand.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "reference_cpu/stages.h"
+
+namespace lpir {
+namespace {
+
+struct Image {
+  Params p = DefaultParams();
+  Frame f;
+  Image(uint32_t width, uint32_t beams, uint32_t fill = kPixEmpty) {
+    p.width = width;
+    p.beams = beams;
+    p.column_arc = float(2.0 * 3.14159265358979323846 / double(width));
+    const size_t pixels = size_t(width) * beams;
+    f.pixel_fused.assign(pixels, fill);
+    f.f_range.assign(pixels, 10.0f);
+    f.f_height.assign(pixels, -1.7f);
+    f.f_inten.assign(pixels, 0.3f);
+  }
+  uint32_t Pix(uint32_t v, uint32_t u) const { return v * p.width + u; }
+  void Set(uint32_t v, uint32_t u, uint32_t cls, float height, float inten = 0.3f,
+           float range = 10.0f) {
+    const uint32_t pix = Pix(v, u);
+    f.pixel_fused[pix] = cls;
+    f.f_height[pix] = height;
+    f.f_inten[pix] = inten;
+    f.f_range[pix] = range;
+  }
+  void Run() { Grow(p, f); }
+  uint32_t Grown(uint32_t v, uint32_t u) const { return f.pixel_grown[Pix(v, u)]; }
+};
+
+// The height change one step from ground pixel q to its neighbour r may make (contract: grow_dz
+// + grow_grade * (|dr| + r * column_arc when the column changes), r the range of the ground pixel
+// the step starts from).
+float Allowed(const Params& p, const Frame& f, uint32_t q, uint32_t r) {
+  float step = std::fabs(f.f_range[r] - f.f_range[q]);
+  if (r % p.width != q % p.width) step = step + f.f_range[q] * p.column_arc;
+  return p.grow_dz + p.grow_grade * step;
+}
+
+TEST(Grow, StopsAtAHeightOrIntensityStep) {
+  // One row of unknown pixels between empty rows; a seed at column 2. Going right: small steps,
+  // then a height jump at column 7; going left: an intensity jump between columns 1 and 0.
+  const uint32_t w = 16;
+  Image im(w, 3);
+  im.p.min_component = 0;
+  const float allowed = im.p.grow_dz + im.p.grow_grade * (10.0f * im.p.column_arc);
+  const float small = 0.4f * im.p.grow_dz;
+  float z = -1.7f;
+  for (uint32_t u = 0; u < w; ++u) {
+    if (u == 7) z += allowed + 0.02f;  // too high a step
+    im.Set(1, u, kPixUnknown, z, 0.3f);
+    z += small;
+  }
+  im.Set(1, 0, kPixUnknown, im.f.f_height[im.Pix(1, 0)], 0.3f + im.p.grow_di + 0.05f);
+  im.Set(1, 2, kPixGround, im.f.f_height[im.Pix(1, 2)], 0.3f);
+  im.Run();
+  for (uint32_t u = 0; u < w; ++u) {
+    const bool ground = u >= 1 && u <= 6;
+    EXPECT_EQ(im.Grown(1, u), ground ? kPixGround : kPixNonGround) << "column " << u;
+  }
+  // The empty rows stay empty; no unknown survives.
+  for (uint32_t u = 0; u < w; ++u) {
+    EXPECT_EQ(im.Grown(0, u), kPixEmpty);
+    EXPECT_EQ(im.Grown(2, u), kPixEmpty);
+  }
+}
+
+TEST(Grow, StepsWithinTheThresholdsAllGrow) {
+  // Changes just under the limits (intensity 0.99 grow_di, height 0.99 of the allowance) grow;
+  // non-ground and empty pixels block.
+  Image im(8, 1);
+  im.p.min_component = 0;
+  const float allowed = im.p.grow_dz + im.p.grow_grade * (10.0f * im.p.column_arc);
+  im.Set(0, 0, kPixGround, -1.7f, 0.2f);
+  im.Set(0, 1, kPixUnknown, -1.7f + 0.99f * allowed, 0.2f + 0.99f * im.p.grow_di);
+  im.Set(0, 2, kPixUnknown, -1.7f, 0.2f);    // a step back down from column 1: still allowed
+  im.Set(0, 3, kPixNonGround, -1.7f, 0.2f);  // non-ground blocks
+  im.Set(0, 4, kPixUnknown, -1.7f, 0.2f);
+  im.Set(0, 5, kPixEmpty, -1.7f, 0.2f);  // empty blocks
+  im.Set(0, 6, kPixUnknown, -1.7f, 0.2f);
+  im.Set(0, 7, kPixEmpty, -1.7f, 0.2f);
+  im.Run();
+  EXPECT_EQ(im.Grown(0, 1), kPixGround);
+  EXPECT_EQ(im.Grown(0, 2), kPixGround);
+  EXPECT_EQ(im.Grown(0, 3), kPixNonGround);
+  EXPECT_EQ(im.Grown(0, 4), kPixNonGround);
+  EXPECT_EQ(im.Grown(0, 5), kPixEmpty);
+  EXPECT_EQ(im.Grown(0, 6), kPixNonGround);
+}
+
+TEST(Grow, GrowsAcrossTheColumnWrapAndDiagonally) {
+  const uint32_t w = 10;
+  Image im(w, 4);
+  im.p.min_component = 0;
+  // Seed at (1, 0); column 1 is non-ground, so the only way is left across the wrap: (1, 9),
+  // then diagonally down to (2, 8), then (3, 7).
+  im.Set(1, 0, kPixGround, -1.7f);
+  im.Set(1, 1, kPixNonGround, -1.7f);
+  im.Set(1, 9, kPixUnknown, -1.7f);
+  im.Set(2, 8, kPixUnknown, -1.7f);
+  im.Set(3, 7, kPixUnknown, -1.7f);
+  im.Set(3, 2, kPixUnknown, -1.7f);  // unreachable: (2,1) (2,2) (2,3) are empty
+  im.Run();
+  EXPECT_EQ(im.Grown(1, 9), kPixGround);
+  EXPECT_EQ(im.Grown(2, 8), kPixGround);
+  EXPECT_EQ(im.Grown(3, 7), kPixGround);
+  EXPECT_EQ(im.Grown(3, 2), kPixNonGround);
+  EXPECT_EQ(im.Grown(1, 1), kPixNonGround);
+}
+
+TEST(Grow, GradeTermCountsTheStepLength) {
+  // With grow_grade > 0 a step across columns far from the sensor may climb more than one at the
+  // same range change near it (the planar step includes r * column_arc).
+  Image im(64, 1);
+  im.p.min_component = 0;
+  im.p.grow_grade = 0.05f;
+  const float near_r = 5.0f, far_r = 60.0f;
+  const float climb = im.p.grow_dz + im.p.grow_grade * (30.0f * im.p.column_arc);
+  ASSERT_GT(im.p.grow_dz + im.p.grow_grade * far_r * im.p.column_arc, climb);
+  ASSERT_LT(im.p.grow_dz + im.p.grow_grade * near_r * im.p.column_arc, climb);
+  im.Set(0, 0, kPixGround, -1.7f, 0.3f, near_r);
+  im.Set(0, 1, kPixUnknown, -1.7f + climb, 0.3f, near_r);
+  im.Set(0, 10, kPixGround, -1.7f, 0.3f, far_r);
+  im.Set(0, 11, kPixUnknown, -1.7f + climb, 0.3f, far_r);
+  im.Run();
+  EXPECT_EQ(im.Grown(0, 1), kPixNonGround);
+  EXPECT_EQ(im.Grown(0, 11), kPixGround);
+}
+
+// The independent Jacobi schedule: every sweep reads the previous sweep's labels only; an unknown
+// pixel with a ground 8-neighbour (columns wrap, rows do not) whose step passes becomes ground;
+// repeat until nothing changes; left-over unknowns are non-ground.
+std::vector<uint32_t> JacobiGrow(const Params& p, const Frame& f) {
+  const int w = int(p.width), h = int(p.beams);
+  std::vector<uint32_t> cur = f.pixel_fused;
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<uint32_t> next = cur;
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const uint32_t r = uint32_t(v * w + u);
+        if (cur[r] != kPixUnknown) continue;
+        for (int dv = -1; dv <= 1 && next[r] == kPixUnknown; ++dv)
+          for (int du = -1; du <= 1; ++du) {
+            if ((dv == 0 && du == 0) || v + dv < 0 || v + dv >= h) continue;
+            const uint32_t q = uint32_t((v + dv) * w + (u + du + w) % w);
+            if (cur[q] != kPixGround) continue;
+            if (std::fabs(f.f_inten[r] - f.f_inten[q]) <= p.grow_di &&
+                std::fabs(f.f_height[r] - f.f_height[q]) <= Allowed(p, f, q, r)) {
+              next[r] = kPixGround;
+              changed = true;
+              break;
+            }
+          }
+      }
+    cur.swap(next);
+  }
+  for (uint32_t& c : cur)
+    if (c == kPixUnknown) c = kPixNonGround;
+  return cur;
+}
+
+// A random label image: random heights and ranges near a step's allowance, occasional
+// intensity jumps.
+Image RandomImage(uint32_t seed, float grow_grade) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<uint32_t> width_pick(8, 48), beams_pick(2, 16);
+  Image im(width_pick(rng), beams_pick(rng));
+  im.p.min_component = 0;
+  im.p.grow_grade = grow_grade;
+  std::discrete_distribution<int> cls({3, 2, 12, 1});  // ground, non-ground, unknown, empty
+  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+  const uint32_t classes[4] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty};
+  const float di = im.p.grow_di;
+  // Heights spread over about twice a typical step allowance, so that many steps sit near it.
+  const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
+  for (uint32_t v = 0; v < im.p.beams; ++v)
+    for (uint32_t u = 0; u < im.p.width; ++u) {
+      const uint32_t pix = im.Pix(v, u);
+      im.f.pixel_fused[pix] = classes[cls(rng)];
+      im.f.f_height[pix] = -1.7f + 2.0f * typical * uni(rng);
+      im.f.f_inten[pix] = 0.2f + (uni(rng) < 0.15f ? 1.5f * di : 0.0f) + 0.1f * di * uni(rng);
+      im.f.f_range[pix] = 30.0f - 1.5f * float(v) + 2.0f * uni(rng);
+    }
+  // Seeds are rare: growth has to travel.
+  for (uint32_t& c : im.f.pixel_fused)
+    if (c == kPixGround && uni(rng) < 0.7f) c = kPixUnknown;
+  return im;
+}
+
+TEST(Grow, EqualsTheJacobiFixedPointOnRandomImages) {
+  uint32_t grown_total = 0, seeds_total = 0;
+  for (float grade : {DefaultParams().grow_grade, 0.05f})
+    for (uint32_t seed = 0; seed < 200; ++seed) {
+      Image im = RandomImage(seed, grade);
+      const std::vector<uint32_t> want = JacobiGrow(im.p, im.f);
+      im.Run();
+      ASSERT_EQ(im.f.pixel_grown, want)
+          << "seed " << seed << " grade " << grade << " size " << im.p.beams << " x " << im.p.width;
+      for (uint32_t pix = 0; pix < want.size(); ++pix) {
+        seeds_total += im.f.pixel_fused[pix] == kPixGround;
+        grown_total += im.f.pixel_fused[pix] == kPixUnknown && want[pix] == kPixGround;
+      }
+    }
+  // The images exercise growth, not just the seeds.
+  EXPECT_GT(grown_total, seeds_total);
+}
+
+TEST(Grow, SmallComponentsBecomeNonGroundAndComponentsAreLabelledByTheirLowestPixel) {
+  const uint32_t m = DefaultParams().min_component;
+  ASSERT_GE(m, 2u) << "the connectivity constraint must remove something";
+  const uint32_t w = std::max(64u, 2 * m), h = 8;
+  Image im(w, h);
+  // A: exactly m ground pixels on row 3, wrapping round from column w - m/2 -> survives; its
+  // lowest pixel index is row 3, column 0.
+  for (uint32_t k = 0; k < m; ++k) im.Set(3, (w - m / 2 + k) % w, kPixGround, -1.7f);
+  // B: m - 1 pixels on row 5 in two diagonal-touching pieces -> removed.
+  for (uint32_t k = 0; k + 1 < m; ++k) im.Set(k < m / 2 ? 5 : 6, 3 + k, kPixGround, -1.7f);
+  // C: m pixels in two pieces joined only diagonally across the wrap (rows 0 and 1) -> survives;
+  // its lowest index is on row 0.
+  for (uint32_t k = 0; k < m; ++k) {
+    if (k < m / 2)
+      im.Set(0, w - 1 - k, kPixGround, -1.7f);  // row 0, columns w-1 down
+    else
+      im.Set(1, k - m / 2, kPixGround, -1.7f);  // row 1, columns 0 up
+  }
+  im.p.min_component = m;
+  im.Run();
+  const uint32_t comp_a = im.Pix(3, 0), comp_c = im.Pix(0, w - m / 2);
+  uint32_t a = 0, b = 0, c = 0;
+  for (uint32_t v = 0; v < h; ++v)
+    for (uint32_t u = 0; u < w; ++u) {
+      const uint32_t pix = im.Pix(v, u);
+      if (im.f.pixel_grown[pix] != kPixGround) {
+        EXPECT_EQ(im.f.pixel_comp[pix], kNone) << "pixel " << pix;
+        EXPECT_EQ(im.f.pixel_label[pix], im.f.pixel_grown[pix]) << "pixel " << pix;
+        continue;
+      }
+      if (v == 3) {
+        ++a;
+        EXPECT_EQ(im.f.pixel_comp[pix], comp_a) << "pixel " << pix;
+        EXPECT_EQ(im.f.pixel_label[pix], kPixGround) << "pixel " << pix;
+      } else if (v == 5 || v == 6) {
+        ++b;
+        EXPECT_EQ(im.f.pixel_label[pix], kPixNonGround) << "pixel " << pix;
+      } else {
+        ++c;
+        EXPECT_EQ(im.f.pixel_comp[pix], comp_c) << "pixel " << pix;
+        EXPECT_EQ(im.f.pixel_label[pix], kPixGround) << "pixel " << pix;
+      }
+    }
+  EXPECT_EQ(a, m);
+  EXPECT_EQ(b, m - 1);
+  EXPECT_EQ(c, m);
+  // Empty stays empty in the final label.
+  EXPECT_EQ(im.f.pixel_label[im.Pix(4, 40)], kPixEmpty);
+}
+
+TEST(Grow, ComponentLabelsAreTheLowestIndexOnRandomImages) {
+  // Independent check by union-find: every ground pixel of pixel_grown carries the lowest pixel
+  // index of its 8-connected component; pixel_label is ground exactly for components of at least
+  // min_component pixels.
+  for (uint32_t seed = 0; seed < 60; ++seed) {
+    Image im = RandomImage(1000 + seed, 0.0f);
+    im.p.min_component = 1 + seed % 12;
+    im.Run();
+    const uint32_t w = im.p.width, h = im.p.beams, pixels = w * h;
+    std::vector<uint32_t> parent(pixels);
+    for (uint32_t k = 0; k < pixels; ++k) parent[k] = k;
+    auto find = [&](uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (uint32_t v = 0; v < h; ++v)
+      for (uint32_t u = 0; u < w; ++u) {
+        const uint32_t a = v * w + u;
+        if (im.f.pixel_grown[a] != kPixGround) continue;
+        for (int dv = 0; dv <= 1; ++dv)
+          for (int du = -1; du <= 1; ++du) {
+            if (dv == 0 && du <= 0) continue;
+            if (v + dv >= h) continue;
+            const uint32_t b = (v + dv) * w + (u + w + uint32_t(du + 1) - 1) % w;
+            if (im.f.pixel_grown[b] != kPixGround) continue;
+            const uint32_t ra = find(a), rb = find(b);
+            if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+          }
+      }
+    std::vector<uint32_t> size(pixels, 0);
+    for (uint32_t k = 0; k < pixels; ++k)
+      if (im.f.pixel_grown[k] == kPixGround) ++size[find(k)];
+    for (uint32_t k = 0; k < pixels; ++k) {
+      if (im.f.pixel_grown[k] != kPixGround) {
+        ASSERT_EQ(im.f.pixel_comp[k], kNone);
+        continue;
+      }
+      const uint32_t root = find(k);  // the lowest index of the component (roots are minima)
+      const bool keep = size[root] >= im.p.min_component;
+      ASSERT_EQ(im.f.pixel_label[k], keep ? kPixGround : kPixNonGround)
+          << "seed " << seed << " pixel " << k;
+      if (keep) {
+        ASSERT_EQ(im.f.pixel_comp[k], root) << "seed " << seed << " pixel " << k;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lpir

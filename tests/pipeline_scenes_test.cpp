@@ -1,0 +1,245 @@
+// The whole pipeline (lpir::Segmenter, HDL-64E profile) on simulated scenes with known truth
+// (apps/sim): a flat plane, the plane with a car and a wall, and urban streets with a ramp,
+// curbs, sidewalks, cars, buildings and vegetation. Plus determinism of every Frame buffer.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "host/eval/metrics.h"
+#include "host/io/sensor_profile.h"
+#include "host/segmenter.h"
+
+namespace lpir {
+namespace {
+
+SensorProfile Hdl64() { return LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR); }
+
+SimScan Scene(SceneKind kind, uint32_t seed) {
+  SimOptions o;
+  o.seed = seed;
+  o.kind = kind;
+  return Simulate(Hdl64(), o);
+}
+
+// Points of one class (or of a predicate) and how many of them were labelled ground.
+struct Tally {
+  size_t points = 0, ground = 0;
+  double Fraction() const { return points ? double(ground) / double(points) : 0.0; }
+};
+
+Tally CountClass(const SimScan& scan, const Frame& f, uint32_t cls) {
+  Tally t;
+  for (size_t i = 0; i < scan.labels.size(); ++i)
+    if ((scan.labels[i] & 0xFFFF) == cls) ++t.points, t.ground += f.label[i];
+  return t;
+}
+
+Labels Predicted(const Frame& f) { return Labels(f.label.begin(), f.label.end()); }
+
+TEST(PipelineScenes, FlatPlaneIsAllGround) {
+  const SimScan scan = Scene(kFlat, 3);
+  Segmenter seg(Hdl64());
+  const Frame& f = seg.Segment(scan.cloud);
+  ASSERT_EQ(f.label.size(), scan.cloud.size());
+  const Counts c = CountFrame(Protocol::kDG, Predicted(f), scan.labels, nullptr);
+  const Scores s = ScoreCounts(c);
+  RecordProperty("recall", std::to_string(s.recall));
+  EXPECT_GT(c.tp, 50000u);
+  EXPECT_GE(s.recall, 0.99);
+  EXPECT_EQ(c.fp, 0u) << "reflection noise (the only non-ground) labelled ground";
+}
+
+TEST(PipelineScenes, CarAndWallOnAFlatPlaneAreNotGround) {
+  for (uint32_t seed : {1u, 2u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const SimScan scan = Scene(kFlatWithObjects, seed);
+    Segmenter seg(Hdl64());
+    const Frame& f = seg.Segment(scan.cloud);
+    const Tally car = CountClass(scan, f, SkClass::kCar);
+    const Tally wall = CountClass(scan, f, SkClass::kBuilding);
+    const Tally road = CountClass(scan, f, SkClass::kRoad);
+    EXPECT_GT(car.points, 500u);
+    EXPECT_GT(wall.points, 2000u);
+    EXPECT_EQ(car.ground, 0u);
+    EXPECT_EQ(wall.ground, 0u);
+    RecordProperty("road_recall_seed" + std::to_string(seed), std::to_string(road.Fraction()));
+    EXPECT_GE(road.Fraction(), 0.98);
+  }
+}
+
+// What one urban street scored.
+struct Street {
+  Counts dg;
+  Tally car, ramp, sidewalk;
+  double grade = 0;
+};
+
+Street Score(const SimScan& scan, const Frame& f) {
+  Street st;
+  st.dg = CountFrame(Protocol::kDG, Predicted(f), scan.labels, nullptr);
+  st.car = CountClass(scan, f, SkClass::kCar);
+  st.sidewalk = CountClass(scan, f, SkClass::kSidewalk);  // sidewalk tops and curb faces
+  // The ramp's road surface: road or paint on the road, along the climbing stretch (world frame).
+  const SimScene& sc = scan.scene;
+  st.grade = sc.ramp_grade;
+  for (size_t i = 0; i < scan.labels.size(); ++i) {
+    const uint32_t cls = scan.labels[i] & 0xFFFF;
+    if (cls != SkClass::kRoad && cls != SkClass::kLaneMarking) continue;
+    const double p[3] = {scan.cloud.x(i), scan.cloud.y(i), scan.cloud.z(i)};
+    double w[3];
+    sc.SensorToWorld(p, w);
+    if (w[0] < sc.ramp_start_x || w[0] > sc.ramp_start_x + sc.ramp_length) continue;
+    if (std::abs(w[1] - sc.road_center_y) > sc.road_half_width) continue;
+    ++st.ramp.points, st.ramp.ground += f.label[i];
+  }
+  return st;
+}
+
+// Floors a little under what seeds 1, 2, 4 measure pooled, at the defaults re-tuned for rows from
+// the laser origins: DG P 0.9996 R 0.9445 F1 0.9713 (per seed 0.9717 / 0.9709 / 0.9713), ramp
+// 1644 / 1685 = 0.976 (per seed 0.977 / 0.988 / 0.953), sidewalk and curb 63458 / 67531 = 0.940.
+// (Before that re-tune: F1 0.9723, ramp 0.955, sidewalk 0.946.)
+constexpr double kUrbanF1Floor = 0.97;  // the target: DG F1 >= 97 %
+constexpr double kUrbanPrecisionFloor = 0.99;
+constexpr double kRampGroundFloor = 0.94;      // road points on the 8-10 % ramp labelled ground
+constexpr double kSidewalkGroundFloor = 0.92;  // sidewalk and curb points labelled ground
+
+// Streets without a car parked right beside the sensor (see the disabled test below for those).
+TEST(PipelineScenes, UrbanStreets) {
+  Segmenter seg(Hdl64());
+  Counts summed;
+  Tally ramp, sidewalk;
+  for (uint32_t seed : {1u, 2u, 4u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const SimScan scan = Scene(kUrban, seed);
+    const Street st = Score(scan, seg.Segment(scan.cloud));
+    summed += st.dg;
+    ramp.points += st.ramp.points, ramp.ground += st.ramp.ground;
+    sidewalk.points += st.sidewalk.points, sidewalk.ground += st.sidewalk.ground;
+    std::printf(
+        "seed %u: DG F1 %.4f, car %zu / %zu, ramp %zu / %zu = %.4f (grade %.3f), "
+        "sidewalk %zu / %zu = %.4f\n",
+        seed, ScoreCounts(st.dg).f1, st.car.ground, st.car.points, st.ramp.ground, st.ramp.points,
+        st.ramp.Fraction(), st.grade, st.sidewalk.ground, st.sidewalk.points,
+        st.sidewalk.Fraction());
+    EXPECT_GT(st.car.points, 1000u);
+    EXPECT_EQ(st.car.ground, 0u) << "car points labelled ground";
+    ASSERT_GE(st.grade, 0.08);
+    EXPECT_GT(st.ramp.points, 300u);
+    EXPECT_GT(st.sidewalk.points, 1000u);
+  }
+  // DG sums the counts over the sequence.
+  const Scores s = ScoreCounts(summed);
+  std::printf(
+      "summed: DG P %.4f R %.4f F1 %.4f, ramp %zu / %zu = %.4f, sidewalk %zu / %zu = "
+      "%.4f\n",
+      s.precision, s.recall, s.f1, ramp.ground, ramp.points, ramp.Fraction(), sidewalk.ground,
+      sidewalk.points, sidewalk.Fraction());
+  RecordProperty("dg_f1", std::to_string(s.f1));
+  RecordProperty("ramp_ground", std::to_string(ramp.Fraction()));
+  RecordProperty("sidewalk_ground", std::to_string(sidewalk.Fraction()));
+  EXPECT_GE(s.f1, kUrbanF1Floor);
+  EXPECT_GE(s.precision, kUrbanPrecisionFloor);
+  EXPECT_GE(ramp.Fraction(), kRampGroundFloor);
+  EXPECT_GE(sidewalk.Fraction(), kSidewalkGroundFloor);
+}
+
+// A car parked right beside the sensor (2-6 m away, seed 3): its roof cells have only roof cells
+// around them (no rise over the 3x3 neighbourhood), so only the slope prior of stage 4 keeps the
+// roof out of the seeds (ground_max_above; 5727 of 29240 car points were ground at 0.6).
+TEST(PipelineScenes, CarParkedBesideTheSensorIsNotGround) {
+  Segmenter seg(Hdl64());
+  const SimScan scan = Scene(kUrban, 3);
+  const Street st = Score(scan, seg.Segment(scan.cloud));
+  EXPECT_GT(st.car.points, 10000u);
+  EXPECT_EQ(st.car.ground, 0u) << "car points labelled ground";
+  EXPECT_GE(ScoreCounts(st.dg).precision, kUrbanPrecisionFloor);
+}
+
+// FINDING (disabled until fixed): seeds 13 and 18 also park a car beside the sensor, and its roof
+// still becomes ground (1932 of 24539 and 110 of 38359 car points at the re-tuned defaults). The
+// entry (seed 13): a ring-1 cell (2-4 m) whose 10 mode-1 seeds, 1.4 m beyond the car, fit a plane
+// tilted by about 25 degrees (Q14 normal (307, -6895, 14858), n_z^2 = 0.82: accepted, since
+// normal_min_z2 = 0.7 allows 33 degrees, far beyond slope_max); the roof, 1 m above the road, lies
+// 0.29 m from that plane, within plane_dist_floor: coarse ground, and stage 8 grows it over the
+// whole roof.
+TEST(PipelineScenes, DISABLED_CarRoofIsNotGroundNextToATiltedCellPlane) {
+  Segmenter seg(Hdl64());
+  for (uint32_t seed : {13u, 18u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const SimScan scan = Scene(kUrban, seed);
+    const Street st = Score(scan, seg.Segment(scan.cloud));
+    EXPECT_GT(st.car.points, 10000u);
+    EXPECT_EQ(st.car.ground, 0u) << "car points labelled ground";
+  }
+}
+
+// Every buffer of a Frame, by name, as bytes.
+struct Buffer {
+  const char* name;
+  const void* data;
+  size_t bytes;
+};
+template <typename T>
+Buffer Of(const char* name, const std::vector<T>& v) {
+  return {name, v.data(), v.size() * sizeof(T)};
+}
+std::vector<Buffer> Buffers(const Frame& f) {
+  return {Of("flags", f.flags),
+          Of("zt", f.zt),
+          Of("r2", f.r2),
+          Of("inten", f.inten),
+          Of("point_pixel", f.point_pixel),
+          Of("pixel_key", f.pixel_key),
+          Of("pixel_point", f.pixel_point),
+          Of("point_cell", f.point_cell),
+          Of("cell_zmin", f.cell_zmin),
+          Of("cell_zmax", f.cell_zmax),
+          Of("cell_count", f.cell_count),
+          Of("cell_seed_mode", f.cell_seed_mode),
+          Of("cell_plane", f.cell_plane),
+          Of("coarse", f.coarse),
+          Of("pixel_filled", f.pixel_filled),
+          Of("f_range", f.f_range),
+          Of("f_inten", f.f_inten),
+          Of("f_height", f.f_height),
+          Of("f_slope", f.f_slope),
+          Of("f_edge_l", f.f_edge_l),
+          Of("f_edge_r", f.f_edge_r),
+          Of("f_varz", f.f_varz),
+          Of("f_vari", f.f_vari),
+          Of("pixel_class", f.pixel_class),
+          Of("pixel_fused", f.pixel_fused),
+          Of("pixel_grown", f.pixel_grown),
+          Of("pixel_comp", f.pixel_comp),
+          Of("pixel_label", f.pixel_label),
+          Of("label", f.label),
+          Of("why", f.why)};
+}
+
+TEST(PipelineScenes, SegmentingTwiceGivesIdenticalBytes) {
+  const SimScan scan = Scene(kUrban, 4);
+  const SimScan other = Scene(kUrban, 5);
+  Segmenter a(Hdl64()), b(Hdl64());
+  const Frame first = a.Segment(scan.cloud);  // a copy
+  a.Segment(other.cloud);                     // the reused buffers hold another frame meanwhile
+  const Frame& again = a.Segment(scan.cloud);
+  const Frame& fresh = b.Segment(scan.cloud);
+  const std::vector<Buffer> x = Buffers(first), y = Buffers(again), z = Buffers(fresh);
+  ASSERT_EQ(x.size(), 30u);
+  for (size_t k = 0; k < x.size(); ++k) {
+    SCOPED_TRACE(x[k].name);
+    EXPECT_GT(x[k].bytes, 0u);
+    ASSERT_EQ(x[k].bytes, y[k].bytes);
+    ASSERT_EQ(x[k].bytes, z[k].bytes);
+    EXPECT_EQ(0, std::memcmp(x[k].data, y[k].data, x[k].bytes));
+    EXPECT_EQ(0, std::memcmp(x[k].data, z[k].data, x[k].bytes));
+  }
+  EXPECT_EQ(first.n, scan.cloud.size());
+}
+
+}  // namespace
+}  // namespace lpir
