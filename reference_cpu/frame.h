@@ -44,7 +44,7 @@ struct Frame {
   // 4 coarse segment: per cell and per point.
   std::vector<uint32_t> cell_seed_mode;  // 0 no seeds, 1 lowest points, 2 whole cell (eq. 5)
   std::vector<int32_t> cell_plane;       // per cell 8 ints: n (Q14 unit normal x,y,z), mean (mm
-                                         // x,y,z), threshold (1e-4 m), seed count
+                                         // x,y,z), threshold (mm * 2^14; -1: no ground), seeds
   std::vector<uint32_t> coarse;          // per point 1 ground, 0 non-ground
 
   // 5 feature maps: per pixel (empty pixels hold 0).
