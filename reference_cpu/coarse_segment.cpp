@@ -147,24 +147,33 @@ bool PlaneNormal(const int64_t m[6], int64_t n[3]) {
   return true;
 }
 
+
+// Buffers reused from frame to frame (the reference is single-threaded).
+struct Scratch {
+  std::vector<int64_t> sum, mom, dist_sum;
+  std::vector<int32_t> fixed;  // per point with a cell: x, y, z_t in mm
+  std::vector<uint8_t> seed;
+};
+thread_local Scratch scratch;
+
 }  // namespace
 
 void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
   const uint32_t n = f.n, cells = CellCount(p);
   f.cell_seed_mode.assign(cells, 0u);
   f.cell_plane.assign(size_t(cells) * 8, 0);
-  f.coarse.assign(n, 0u);
+  f.coarse.resize(n);
+  Scratch& s = scratch;
 
   // Seed mode per cell (eq. 5).
   const float lambda_near = p.ring_res_near * p.slope_max + p.seed_margin;
   const float lambda_far = p.ring_res_far * p.slope_max + p.seed_margin;
+  const uint32_t near_cells = p.rings_near * p.sectors_near;
   const float base = -p.sensor_height + p.ground_max_above;
-  std::vector<float> lambda(cells);
   for (uint32_t c = 0; c < cells; ++c) {
-    const CellGeometry g = Geometry(p, c);
-    const float lam = g.ring < p.rings_near ? lambda_near : lambda_far;
-    lambda[c] = lam;
     if (f.cell_count[c] == 0) continue;
+    const CellGeometry g = Geometry(p, c);
+    const float lam = c < near_cells ? lambda_near : lambda_far;
     const float hmin = exact::FromKey(f.cell_zmin[c]), hmax = exact::FromKey(f.cell_zmax[c]);
     const uint32_t nkey = NeighbourMin(p, f, c);
     const float hnmin = nkey == kNone ? hmin : exact::FromKey(nkey);
@@ -175,37 +184,46 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
     f.cell_seed_mode[c] = spread <= p.h_athr ? 2u : 1u;
   }
 
-  // Seeds: sums for the mean, then centred second moments (int64, order-independent).
-  std::vector<int64_t> sum(size_t(cells) * 4, 0), mom(size_t(cells) * 6, 0);
-  std::vector<uint8_t> seed(n, 0);
-  std::vector<int64_t> fx(n), fy(n), fz(n);
+  // Seeds, and every celled point in mm once: sums for the mean, then centred second moments
+  // (int64, order-independent).
+  s.sum.assign(size_t(cells) * 4, 0);
+  s.mom.assign(size_t(cells) * 6, 0);
+  s.dist_sum.assign(cells, 0);
+  s.fixed.resize(size_t(n) * 3);
+  s.seed.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
+    s.seed[i] = 0;
     const uint32_t c = f.point_cell[i];
-    if (c == kNone || f.cell_seed_mode[c] == 0) continue;
+    if (c == kNone) continue;
+    int32_t* q = &s.fixed[size_t(i) * 3];
+    q[0] = int32_t(exact::ToFixed(cloud.xyzi[4 * i], kMm));
+    q[1] = int32_t(exact::ToFixed(cloud.xyzi[4 * i + 1], kMm));
+    q[2] = int32_t(exact::ToFixed(f.zt[i], kMm));
+    const uint32_t mode = f.cell_seed_mode[c];
+    if (mode == 0) continue;
     const float dz = f.zt[i] - exact::FromKey(f.cell_zmin[c]);
-    if (f.cell_seed_mode[c] == 1 && !(dz <= lambda[c])) continue;
-    seed[i] = 1;
-    fx[i] = exact::ToFixed(cloud.xyzi[4 * i], kMm);
-    fy[i] = exact::ToFixed(cloud.xyzi[4 * i + 1], kMm);
-    fz[i] = exact::ToFixed(f.zt[i], kMm);
-    int64_t* s = &sum[size_t(c) * 4];
-    s[0] += 1, s[1] += fx[i], s[2] += fy[i], s[3] += fz[i];
+    const float lam = c < near_cells ? lambda_near : lambda_far;
+    if (mode == 1 && !(dz <= lam)) continue;
+    s.seed[i] = 1;
+    int64_t* sc = &s.sum[size_t(c) * 4];
+    sc[0] += 1, sc[1] += q[0], sc[2] += q[1], sc[3] += q[2];
   }
   for (uint32_t c = 0; c < cells; ++c) {
-    int64_t* s = &sum[size_t(c) * 4];
+    const int64_t* sc = &s.sum[size_t(c) * 4];
     int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    if (s[0] == 0) continue;
-    plane[3] = int32_t(exact::DivToZero(s[1], s[0]));
-    plane[4] = int32_t(exact::DivToZero(s[2], s[0]));
-    plane[5] = int32_t(exact::DivToZero(s[3], s[0]));
-    plane[7] = int32_t(s[0]);
+    if (sc[0] == 0) continue;
+    plane[3] = int32_t(exact::DivToZero(sc[1], sc[0]));
+    plane[4] = int32_t(exact::DivToZero(sc[2], sc[0]));
+    plane[5] = int32_t(exact::DivToZero(sc[3], sc[0]));
+    plane[7] = int32_t(sc[0]);
   }
   for (uint32_t i = 0; i < n; ++i) {
-    if (!seed[i]) continue;
+    if (!s.seed[i]) continue;
     const uint32_t c = f.point_cell[i];
     const int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    const int64_t dx = fx[i] - plane[3], dy = fy[i] - plane[4], dz = fz[i] - plane[5];
-    int64_t* m = &mom[size_t(c) * 6];
+    const int32_t* q = &s.fixed[size_t(i) * 3];
+    const int64_t dx = q[0] - plane[3], dy = q[1] - plane[4], dz = q[2] - plane[5];
+    int64_t* m = &s.mom[size_t(c) * 6];
     m[0] += dx * dx, m[1] += dx * dy, m[2] += dx * dz, m[3] += dy * dy, m[4] += dy * dz,
         m[5] += dz * dz;
   }
@@ -216,23 +234,22 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
     int32_t* plane = &f.cell_plane[size_t(c) * 8];
     if (plane[7] == 0) continue;
     int64_t nq[3] = {0, 0, kQ};
-    if (plane[7] < kMinPlaneSeeds || !PlaneNormal(&mom[size_t(c) * 6], nq)) nq[0] = 0, nq[1] = 0, nq[2] = kQ;
+    if (plane[7] < kMinPlaneSeeds || !PlaneNormal(&s.mom[size_t(c) * 6], nq))
+      nq[0] = 0, nq[1] = 0, nq[2] = kQ;
     plane[0] = int32_t(nq[0]), plane[1] = int32_t(nq[1]), plane[2] = int32_t(nq[2]);
   }
 
   // Threshold: mean |distance| of the seeds.
-  std::vector<int64_t> dist_sum(cells, 0);
   auto distance = [&](uint32_t i, const int32_t* plane) {
-    const int64_t dx = exact::ToFixed(cloud.xyzi[4 * i], kMm) - plane[3];
-    const int64_t dy = exact::ToFixed(cloud.xyzi[4 * i + 1], kMm) - plane[4];
-    const int64_t dz = exact::ToFixed(f.zt[i], kMm) - plane[5];
+    const int32_t* q = &s.fixed[size_t(i) * 3];
+    const int64_t dx = q[0] - plane[3], dy = q[1] - plane[4], dz = q[2] - plane[5];
     const int64_t d = plane[0] * dx + plane[1] * dy + plane[2] * dz;
     return d < 0 ? -d : d;
   };
   for (uint32_t i = 0; i < n; ++i) {
-    if (!seed[i]) continue;
+    if (!s.seed[i]) continue;
     const uint32_t c = f.point_cell[i];
-    dist_sum[c] += distance(i, &f.cell_plane[size_t(c) * 8]);
+    s.dist_sum[c] += distance(i, &f.cell_plane[size_t(c) * 8]);
   }
   const int64_t floor_q = exact::ToFixed(p.plane_dist_floor, kDistUnit);
   const int64_t scale_q = exact::ToFixed(p.plane_dist_scale, 256.0f);
@@ -243,17 +260,20 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
       plane[6] = -1;
       continue;
     }
-    const int64_t mean_scaled = exact::DivToZero(scale_q * dist_sum[c], 256 * int64_t(plane[7]));
+    const int64_t mean_scaled =
+        exact::DivToZero(scale_q * s.dist_sum[c], 256 * int64_t(plane[7]));
     plane[6] = int32_t(std::min<int64_t>(std::max(floor_q, mean_scaled), 0x7FFFFFFF));
   }
 
   // Coarse label per point.
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t c = f.point_cell[i];
-    if (c == kNone) continue;
-    const int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    if (plane[7] == 0 || plane[6] < 0) continue;
-    f.coarse[i] = distance(i, plane) <= plane[6] ? 1u : 0u;
+    uint32_t ground = 0;
+    if (c != kNone) {
+      const int32_t* plane = &f.cell_plane[size_t(c) * 8];
+      ground = plane[7] != 0 && plane[6] >= 0 && distance(i, plane) <= plane[6];
+    }
+    f.coarse[i] = ground;
   }
 }
 

@@ -27,27 +27,26 @@
 namespace lpir {
 namespace {
 
-// The 8 neighbours of pix (columns wrap, rows do not); returns how many were written.
+// The 8 neighbours of pix (columns wrap, rows do not), written to out; returns how many.
 inline int Neighbours(uint32_t pix, uint32_t w, uint32_t h, uint32_t out[8]) {
-  const uint32_t v = pix / w, u = pix % w;
+  const uint32_t v = pix / w, u = pix - v * w, row = v * w;
+  const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
   int n = 0;
-  for (int dv = -1; dv <= 1; ++dv) {
-    const int64_t vv = int64_t(v) + dv;
-    if (vv < 0 || vv >= int64_t(h)) continue;
-    for (int du = -1; du <= 1; ++du) {
-      if (dv == 0 && du == 0) continue;
-      out[n++] = uint32_t(vv) * w + (u + w + uint32_t(du + 1) - 1) % w;
-    }
-  }
+  if (v > 0) out[0] = row - w + ul, out[1] = row - w + u, out[2] = row - w + ur, n = 3;
+  out[n] = row + ul, out[n + 1] = row + ur, n += 2;
+  if (v + 1 < h) out[n] = row + w + ul, out[n + 1] = row + w + u, out[n + 2] = row + w + ur, n += 3;
   return n;
 }
+
+// The breadth-first queue, reused from frame to frame (the reference is single-threaded).
+thread_local std::vector<uint32_t> queue;
 
 }  // namespace
 
 void Grow(const Params& p, Frame& f) {
   const uint32_t w = p.width, h = p.beams, pixels = w * h;
   f.pixel_grown = f.pixel_fused;
-  std::vector<uint32_t> queue;
+  queue.clear();
   queue.reserve(pixels);
   for (uint32_t pix = 0; pix < pixels; ++pix)
     if (f.pixel_grown[pix] == kPixGround) queue.push_back(pix);
@@ -55,13 +54,16 @@ void Grow(const Params& p, Frame& f) {
   for (size_t head = 0; head < queue.size(); ++head) {
     const uint32_t q = queue[head];
     const int count = Neighbours(q, w, h, nb);
+    const float iq = f.f_inten[q], zq = f.f_height[q], rq = f.f_range[q];
+    const float arc = rq * p.column_arc;
+    const uint32_t uq = q % w;
     for (int k = 0; k < count; ++k) {
       const uint32_t r = nb[k];
       if (f.pixel_grown[r] != kPixUnknown) continue;
-      const float di = std::fabs(f.f_inten[r] - f.f_inten[q]);
-      const float dz = std::fabs(f.f_height[r] - f.f_height[q]);
-      float step = std::fabs(f.f_range[r] - f.f_range[q]);
-      if (r % w != q % w) step = step + f.f_range[q] * p.column_arc;
+      const float di = std::fabs(f.f_inten[r] - iq);
+      const float dz = std::fabs(f.f_height[r] - zq);
+      float step = std::fabs(f.f_range[r] - rq);
+      if (r % w != uq) step = step + arc;
       const float allowed = p.grow_dz + p.grow_grade * step;
       if (di <= p.grow_di && dz <= allowed) {
         f.pixel_grown[r] = kPixGround;
@@ -69,11 +71,14 @@ void Grow(const Params& p, Frame& f) {
       }
     }
   }
-  for (uint32_t pix = 0; pix < pixels; ++pix)
+  f.pixel_comp.resize(pixels);
+  f.pixel_label.resize(pixels);
+  for (uint32_t pix = 0; pix < pixels; ++pix) {
     if (f.pixel_grown[pix] == kPixUnknown) f.pixel_grown[pix] = kPixNonGround;
+    f.pixel_label[pix] = f.pixel_grown[pix];
+    f.pixel_comp[pix] = kNone;
+  }
 
-  f.pixel_comp.assign(pixels, kNone);
-  f.pixel_label = f.pixel_grown;
   for (uint32_t start = 0; start < pixels; ++start) {
     if (f.pixel_grown[start] != kPixGround || f.pixel_comp[start] != kNone) continue;
     queue.clear();

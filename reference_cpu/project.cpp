@@ -4,6 +4,8 @@
 // Column: u = #{k in 1..width-1 : phi_k > theta}, theta = atan2(y, x), phi_k = pi - 2 pi k / width:
 //   u = floor((1 - theta / pi) / 2 * width) of eq. 1, found by walking from a polynomial guess with
 //   the exact angle order AngleBelow (half-plane, then the sign of one cross product x*s - y*c).
+//   The answer is unique, so the reference first tries next to the previous point's column
+//   (scans come in sweep order) and walks only when it is not there: same column, less work.
 // Row: with ring indices, v = ring (ring_zero_is_top) or beams - 1 - ring; else v = #{b :
 //   beam_bound[b] * r2 > h * |h|}, h = z - beam_origin[b], i.e. the beams whose lower boundary
 //   lies above the point's elevation seen from that boundary's laser origin, compared as tan^2
@@ -65,6 +67,31 @@ uint32_t ColumnOf(float x, float y, const float* dir, uint32_t width) {
   return uint32_t(u);
 }
 
+namespace {
+
+// P(k) of ColumnOf for k in [0, width]: true for k = 0 ("none"), false for k = width.
+inline bool Below(float x, float y, const float* dir, uint32_t width, uint32_t k) {
+  if (k == 0) return true;
+  if (k >= width) return false;
+  return AngleBelow(x, y, dir[2 * k], dir[2 * k + 1]);
+}
+
+// ColumnOf when a nearby column is known (the previous point of a scan in sweep order): the
+// column is the unique k with P(k) and not P(k + 1), so checking that at the hint and its two
+// neighbours gives exactly ColumnOf's answer when it lies there; otherwise ColumnOf decides.
+inline uint32_t ColumnNear(float x, float y, const float* dir, uint32_t width, uint32_t hint) {
+  const uint32_t first = hint == 0 ? 0 : hint - 1;
+  bool below = Below(x, y, dir, width, first);
+  for (uint32_t k = first; k <= hint + 1 && k < width; ++k) {
+    const bool next = Below(x, y, dir, width, k + 1);
+    if (below && !next) return k;
+    below = next;
+  }
+  return ColumnOf(x, y, dir, width);
+}
+
+}  // namespace
+
 uint32_t RowOf(float z, float r2, const float* bound, const float* origin, uint32_t beams) {
   // Count of boundaries above the point; boundaries descend, so the predicate is a prefix.
   uint32_t lo = 0, hi = beams - 1;
@@ -85,10 +112,12 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
   f.pixel_key.assign(pixels, kNone);
   f.pixel_point.assign(pixels, kNone);
   const bool has_ring = !cloud.ring.empty();
+  uint32_t hint = 0;
   for (uint32_t i = 0; i < n; ++i) {
     if (!(f.flags[i] & kPointValid)) continue;
     const float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
-    const uint32_t u = ColumnOf(x, y, t.column_dir.data(), p.width);
+    const uint32_t u = ColumnNear(x, y, t.column_dir.data(), p.width, hint);
+    hint = u;
     uint32_t v;
     if (has_ring) {
       const uint32_t ring = uint32_t(cloud.ring[i]);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 
 #include "reference_cpu/exact.h"
@@ -112,6 +113,35 @@ TEST(Project, RowEqualsTheBoundaryCount) {
     ASSERT_EQ(RowOf(z, r2, t.beam_bound.data(), t.beam_origin.data(), p.beams), count)
         << "z " << z << " r " << r;
   }
+}
+
+// The reference starts each column search next to the previous point's column; the answer must
+// not depend on that, so a sweep-ordered cloud and a shuffled copy map every point alike.
+TEST(Project, PixelsDoNotDependOnPointOrder) {
+  SensorProfile s = test::SmallSensor();
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  Cloud sweep;
+  for (unsigned b = 0; b < s.beams; ++b) {
+    for (int k = 0; k < 700; ++k) {
+      const double az = 3.0 * kPi * k / 700.0;  // one and a half turns: hints wrap around
+      const double e = s.elevation_deg[b] * kPi / 180.0, r = 4.0 + 0.01 * k;
+      sweep.Push(float(r * std::cos(az)), float(r * std::sin(az)), float(r * std::tan(e)), 0.3f);
+    }
+  }
+  std::vector<uint32_t> order(sweep.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mt19937 rng(9);
+  std::shuffle(order.begin(), order.end(), rng);
+  Cloud shuffled;
+  for (uint32_t i : order) shuffled.Push(sweep.x(i), sweep.y(i), sweep.z(i), sweep.intensity(i));
+  Frame a, b;
+  Prepare(sweep, p, a);
+  Project(sweep, p, t, a);
+  Prepare(shuffled, p, b);
+  Project(shuffled, p, t, b);
+  for (uint32_t k = 0; k < order.size(); ++k)
+    ASSERT_EQ(b.point_pixel[k], a.point_pixel[order[k]]) << "point " << order[k];
 }
 
 TEST(Project, NearestPointWinsThenLowestIndexAndNoiseNeverWins) {
