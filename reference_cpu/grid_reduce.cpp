@@ -8,6 +8,7 @@
 // u / (width / sectors) with the zone's sector count. Cell = near rings x near sectors, then far.
 // Reductions: integer min/max/add, order-independent.
 #include <algorithm>
+#include <vector>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
@@ -31,15 +32,30 @@ void GridReduce(const Params& p, const Tables& t, Frame& f) {
   f.cell_zmax.assign(cells, 0u);
   f.cell_count.assign(cells, 0u);
   const uint32_t cols_near = p.width / p.sectors_near, cols_far = p.width / p.sectors_far;
+  const float* bound2 = t.ring_bound2.data();
+  // Sector of every column in each zone, so the per-point loop divides nothing.
+  thread_local std::vector<uint32_t> sector_near, sector_far;
+  sector_near.resize(p.width), sector_far.resize(p.width);
+  for (uint32_t u = 0; u < p.width; ++u) sector_near[u] = u / cols_near, sector_far[u] = u / cols_far;
+  const float inv_width = exact::Div(1.0f, float(p.width));
+  uint32_t hint = 0;  // the previous point's ring: the ring is unique, so a right hint is the answer
   for (uint32_t i = 0; i < n; ++i) {
     if (f.flags[i] != kPointValid) continue;  // invalid or noise
-    const uint32_t ring = RingOf(f.r2[i], t.ring_bound2.data(), rings);
+    const float r2 = f.r2[i];
+    const bool hint_right =
+        (hint == 0 || r2 >= bound2[hint - 1]) && (hint == rings || r2 < bound2[hint]);
+    const uint32_t ring = hint_right ? hint : RingOf(r2, bound2, rings);
+    hint = ring;
     if (ring >= rings) continue;
-    const uint32_t u = f.point_pixel[i] % p.width;
+    const uint32_t pix = f.point_pixel[i];
+    uint32_t v = uint32_t(float(pix) * inv_width);  // pix / width, then made exact
+    while (v * p.width > pix) --v;
+    while ((v + 1) * p.width <= pix) ++v;
+    const uint32_t u = pix - v * p.width;
     const uint32_t cell = ring < p.rings_near
-                              ? ring * p.sectors_near + u / cols_near
+                              ? ring * p.sectors_near + sector_near[u]
                               : p.rings_near * p.sectors_near +
-                                    (ring - p.rings_near) * p.sectors_far + u / cols_far;
+                                    (ring - p.rings_near) * p.sectors_far + sector_far[u];
     f.point_cell[i] = cell;
     const uint32_t key = exact::Key(f.zt[i]);
     f.cell_zmin[cell] = std::min(f.cell_zmin[cell], key);

@@ -6,6 +6,7 @@
 //   the exact angle order AngleBelow (half-plane, then the sign of one cross product x*s - y*c).
 //   The answer is unique, so the reference first tries next to the previous point's column
 //   (scans come in sweep order) and walks only when it is not there: same column, less work.
+//   Rows likewise: the previous point's row is checked first (RowNear), then the search.
 // Row: with ring indices, v = ring (ring_zero_is_top) or beams - 1 - ring; else v = #{b :
 //   beam_bound[b] * r2 > h * |h|}, h = z - beam_origin[b], i.e. the beams whose lower boundary
 //   lies above the point's elevation seen from that boundary's laser origin, compared as tan^2
@@ -92,19 +93,44 @@ inline uint32_t ColumnNear(float x, float y, const float* dir, uint32_t width, u
 
 }  // namespace
 
+namespace {
+
+// True when boundary b lies above the point: tan^2 of the boundary (signed) times r2 exceeds
+// h * |h|, h the point's height above that boundary's laser origin.
+inline bool BoundAbove(float z, float r2, const float* bound, const float* origin, uint32_t b) {
+  const float h = z - origin[b];
+  const float hh = h * (h < 0.0f ? -h : h);
+  const float s = bound[b] * r2;
+  return s > hh;
+}
+
+}  // namespace
+
 uint32_t RowOf(float z, float r2, const float* bound, const float* origin, uint32_t beams) {
   // Count of boundaries above the point; boundaries descend, so the predicate is a prefix.
   uint32_t lo = 0, hi = beams - 1;
   while (lo < hi) {
     const uint32_t mid = (lo + hi + 1) >> 1;  // boundary index mid - 1
-    const float h = z - origin[mid - 1];
-    const float hh = h * (h < 0.0f ? -h : h);
-    const float s = bound[mid - 1] * r2;
-    if (s > hh) lo = mid;
+    if (BoundAbove(z, r2, bound, origin, mid - 1)) lo = mid;
     else hi = mid - 1;
   }
   return lo;
 }
+
+namespace {
+
+// RowOf when the previous point's row is known: the row is the unique v with boundary v - 1 above
+// the point and boundary v not (boundary -1 counts as above, boundary beams - 1 as not), so
+// checking the hint gives exactly RowOf's answer when it is right; otherwise RowOf decides.
+inline uint32_t RowNear(float z, float r2, const float* bound, const float* origin, uint32_t beams,
+                        uint32_t hint) {
+  const bool above_before = hint == 0 || BoundAbove(z, r2, bound, origin, hint - 1);
+  const bool above_here = hint + 1 < beams && BoundAbove(z, r2, bound, origin, hint);
+  if (above_before && !above_here) return hint;
+  return RowOf(z, r2, bound, origin, beams);
+}
+
+}  // namespace
 
 void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
   const uint32_t n = f.n, pixels = p.width * p.beams;
@@ -112,7 +138,7 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
   f.pixel_key.assign(pixels, kNone);
   f.pixel_point.assign(pixels, kNone);
   const bool has_ring = !cloud.ring.empty();
-  uint32_t hint = 0;
+  uint32_t hint = 0, row_hint = 0;
   for (uint32_t i = 0; i < n; ++i) {
     if (!(f.flags[i] & kPointValid)) continue;
     const float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
@@ -123,7 +149,8 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
       const uint32_t ring = uint32_t(cloud.ring[i]);
       v = p.ring_zero_is_top ? ring : p.beams - 1 - ring;
     } else {
-      v = RowOf(z, f.r2[i], t.beam_bound.data(), t.beam_origin.data(), p.beams);
+      v = RowNear(z, f.r2[i], t.beam_bound.data(), t.beam_origin.data(), p.beams, row_hint);
+      row_hint = v;
     }
     const uint32_t pix = v * p.width + u;
     f.point_pixel[i] = pix;
