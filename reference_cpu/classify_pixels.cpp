@@ -20,19 +20,27 @@ inline int Vote(float value, float low, float high) {
 
 void ClassifyPixels(const Params& p, Frame& f) {
   const uint32_t pixels = p.width * p.beams;
-  f.pixel_class.assign(pixels, kPixEmpty);
+  f.pixel_class.resize(pixels);
+  // Raw pointers: the outputs never alias the inputs, so the loop keeps nothing in memory.
+  const uint32_t* __restrict filled = f.pixel_filled.data();
+  const float* __restrict edge_l = f.f_edge_l.data();
+  const float* __restrict edge_r = f.f_edge_r.data();
+  const float* __restrict slope_map = f.f_slope.data();
+  const float* __restrict varz = f.f_varz.data();
+  const float* __restrict vari = f.f_vari.data();
+  uint32_t* __restrict out = f.pixel_class.data();
+  const Params q = p;  // thresholds in registers
   for (uint32_t pix = 0; pix < pixels; ++pix) {
-    if (!f.pixel_filled[pix]) continue;
-    const bool edge = f.f_edge_l[pix] >= p.t_edge || f.f_edge_r[pix] >= p.t_edge;  // eq. 8
-    const float slope = f.f_slope[pix];
-    const int s = (slope < 0.0f ? 0 : Vote(slope, p.t_slope_low, p.t_slope_high)) +  // eq. 9
-                  Vote(f.f_varz[pix], p.t_stdz_low, p.t_stdz_high) +                 // eq. 10
-                  Vote(f.f_vari[pix], p.t_stdi_low, p.t_stdi_high);                  // eq. 11
+    const bool edge = (edge_l[pix] >= q.t_edge) | (edge_r[pix] >= q.t_edge);  // eq. 8
+    const float slope = slope_map[pix];
+    const int s = (slope < 0.0f ? 0 : Vote(slope, q.t_slope_low, q.t_slope_high)) +  // eq. 9
+                  Vote(varz[pix], q.t_stdz_low, q.t_stdz_high) +                     // eq. 10
+                  Vote(vari[pix], q.t_stdi_low, q.t_stdi_high);                      // eq. 11
     uint32_t c;  // eq. 12
     if (s > 0) c = kPixNonGround;
     else if (!edge && s < 0) c = kPixGround;
     else c = kPixUnknown;
-    f.pixel_class[pix] = c;
+    out[pix] = filled[pix] ? c : kPixEmpty;
   }
 }
 
