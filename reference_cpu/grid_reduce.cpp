@@ -27,40 +27,53 @@ uint32_t RingOf(float r2, const float* bound2, uint32_t rings) {
 
 void GridReduce(const Params& p, const Tables& t, Frame& f) {
   const uint32_t n = f.n, cells = CellCount(p), rings = p.rings_near + p.rings_far;
-  f.point_cell.assign(n, kNone);
+  const uint32_t width = p.width, rings_near = p.rings_near;
+  const uint32_t sectors_near = p.sectors_near, sectors_far = p.sectors_far;
+  f.point_cell.resize(n);
   f.cell_zmin.assign(cells, kNone);
   f.cell_zmax.assign(cells, 0u);
   f.cell_count.assign(cells, 0u);
-  const uint32_t cols_near = p.width / p.sectors_near, cols_far = p.width / p.sectors_far;
+  const uint32_t cols_near = width / sectors_near, cols_far = width / sectors_far;
   const float* bound2 = t.ring_bound2.data();
   // Sector of every column in each zone, so the per-point loop divides nothing.
   thread_local std::vector<uint32_t> sector_near, sector_far;
-  sector_near.resize(p.width), sector_far.resize(p.width);
-  for (uint32_t u = 0; u < p.width; ++u) sector_near[u] = u / cols_near, sector_far[u] = u / cols_far;
-  const float inv_width = exact::Div(1.0f, float(p.width));
+  sector_near.resize(width), sector_far.resize(width);
+  for (uint32_t u = 0; u < width; ++u) sector_near[u] = u / cols_near, sector_far[u] = u / cols_far;
+  const float inv_width = exact::Div(1.0f, float(width));
+  const uint32_t* __restrict flags = f.flags.data();
+  const float* __restrict r2s = f.r2.data();
+  const float* __restrict zt = f.zt.data();
+  const uint32_t* __restrict point_pixel = f.point_pixel.data();
+  uint32_t* __restrict point_cell = f.point_cell.data();
+  uint32_t* __restrict zmin = f.cell_zmin.data();
+  uint32_t* __restrict zmax = f.cell_zmax.data();
+  uint32_t* __restrict count = f.cell_count.data();
+  const uint32_t* __restrict sn = sector_near.data();
+  const uint32_t* __restrict sf = sector_far.data();
+  const uint32_t far_base = rings_near * sectors_near;
   uint32_t hint = 0;  // the previous point's ring: the ring is unique, so a right hint is the answer
   for (uint32_t i = 0; i < n; ++i) {
-    if (f.flags[i] != kPointValid) continue;  // invalid or noise
-    const float r2 = f.r2[i];
+    point_cell[i] = kNone;
+    if (flags[i] != kPointValid) continue;  // invalid or noise
+    const float r2 = r2s[i];
     const bool hint_right =
         (hint == 0 || r2 >= bound2[hint - 1]) && (hint == rings || r2 < bound2[hint]);
     const uint32_t ring = hint_right ? hint : RingOf(r2, bound2, rings);
     hint = ring;
     if (ring >= rings) continue;
-    const uint32_t pix = f.point_pixel[i];
+    const uint32_t pix = point_pixel[i];
     uint32_t v = uint32_t(float(pix) * inv_width);  // pix / width, then made exact
-    while (v * p.width > pix) --v;
-    while ((v + 1) * p.width <= pix) ++v;
-    const uint32_t u = pix - v * p.width;
-    const uint32_t cell = ring < p.rings_near
-                              ? ring * p.sectors_near + sector_near[u]
-                              : p.rings_near * p.sectors_near +
-                                    (ring - p.rings_near) * p.sectors_far + sector_far[u];
-    f.point_cell[i] = cell;
-    const uint32_t key = exact::Key(f.zt[i]);
-    f.cell_zmin[cell] = std::min(f.cell_zmin[cell], key);
-    f.cell_zmax[cell] = std::max(f.cell_zmax[cell], key);
-    f.cell_count[cell] += 1;
+    while (v * width > pix) --v;
+    while ((v + 1) * width <= pix) ++v;
+    const uint32_t u = pix - v * width;
+    const uint32_t cell = ring < rings_near
+                              ? ring * sectors_near + sn[u]
+                              : far_base + (ring - rings_near) * sectors_far + sf[u];
+    point_cell[i] = cell;
+    const uint32_t key = exact::Key(zt[i]);
+    zmin[cell] = std::min(zmin[cell], key);
+    zmax[cell] = std::max(zmax[cell], key);
+    count[cell] += 1;
   }
 }
 

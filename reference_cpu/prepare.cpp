@@ -17,29 +17,34 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   f.zt.resize(n);
   f.r2.resize(n);
   f.inten.resize(n);
-  const bool has_ring = !cloud.ring.empty();
+  const float* __restrict xyzi = cloud.xyzi.data();
+  const int32_t* __restrict ring = cloud.ring.empty() ? nullptr : cloud.ring.data();
+  uint32_t* __restrict flags_out = f.flags.data();
+  float* __restrict zt_out = f.zt.data();
+  float* __restrict r2_out = f.r2.data();
+  float* __restrict inten_out = f.inten.data();
+  const Params q = p;  // parameters in registers
   for (uint32_t i = 0; i < n; ++i) {
-    f.flags[i] = 0u, f.zt[i] = 0.0f, f.r2[i] = 0.0f, f.inten[i] = 0.0f;  // until proven valid
-    const float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
-    const float in = cloud.xyzi[4 * i + 3];
+    flags_out[i] = 0u, zt_out[i] = 0.0f, r2_out[i] = 0.0f, inten_out[i] = 0.0f;  // until valid
+    const float x = xyzi[4 * i], y = xyzi[4 * i + 1], z = xyzi[4 * i + 2], in = xyzi[4 * i + 3];
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) continue;
     if (x == 0.0f && y == 0.0f && z == 0.0f) continue;
-    if (has_ring && (cloud.ring[i] < 0 || uint32_t(cloud.ring[i]) >= p.beams)) continue;
+    if (ring && (ring[i] < 0 || uint32_t(ring[i]) >= q.beams)) continue;
     const float xx = x * x, yy = y * y;
     const float r2 = xx + yy;
-    if (!(r2 >= p.min_range2) || !(r2 <= p.max_range2)) continue;
+    if (!(r2 >= q.min_range2) || !(r2 <= q.max_range2)) continue;
     const float zz = z * z;
-    if (!(zz <= p.max_range2)) continue;  // |z| beyond the sensor's range: garbage
-    const float tx = p.k_xz * x, ty = p.k_yz * y;
+    if (!(zz <= q.max_range2)) continue;  // |z| beyond the sensor's range: garbage
+    const float tx = q.k_xz * x, ty = q.k_yz * y;
     const float tilt = tx + ty;
     const float zt = z - tilt;  // eq. 3
-    const float inten = in * p.intensity_scale;
+    const float inten = in * q.intensity_scale;
     uint32_t flags = kPointValid;
-    if (zt < p.h_noise && inten < p.i_noise) flags |= kPointNoise;
-    f.flags[i] = flags;
-    f.zt[i] = zt;
-    f.r2[i] = r2;
-    f.inten[i] = inten;
+    if (zt < q.h_noise && inten < q.i_noise) flags |= kPointNoise;
+    flags_out[i] = flags;
+    zt_out[i] = zt;
+    r2_out[i] = r2;
+    inten_out[i] = inten;
   }
 }
 

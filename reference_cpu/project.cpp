@@ -4,8 +4,8 @@
 // Column: u = #{k in 1..width-1 : phi_k > theta}, theta = atan2(y, x), phi_k = pi - 2 pi k / width:
 //   u = floor((1 - theta / pi) / 2 * width) of eq. 1, found by walking from a polynomial guess with
 //   the exact angle order AngleBelow (half-plane, then the sign of one cross product x*s - y*c).
-//   The answer is unique, so the reference first tries next to the previous point's column
-//   (scans come in sweep order) and walks only when it is not there: same column, less work.
+//   The answer is unique, so the reference first tries the previous point's column plus its last
+//   step (scans come in sweep order) and walks only when it is not there: same column, less work.
 //   Rows likewise: the previous point's row is checked first (RowNear), then the search.
 // Row: with ring indices, v = ring (ring_zero_is_top) or beams - 1 - ring; else v = #{b :
 //   beam_bound[b] * r2 > h * |h|}, h = z - beam_origin[b], i.e. the beams whose lower boundary
@@ -77,16 +77,16 @@ inline bool Below(float x, float y, const float* dir, uint32_t width, uint32_t k
   return AngleBelow(x, y, dir[2 * k], dir[2 * k + 1]);
 }
 
-// ColumnOf when a nearby column is known (the previous point of a scan in sweep order): the
-// column is the unique k with P(k) and not P(k + 1), so checking that at the hint and its two
-// neighbours gives exactly ColumnOf's answer when it lies there; otherwise ColumnOf decides.
-inline uint32_t ColumnNear(float x, float y, const float* dir, uint32_t width, uint32_t hint) {
-  const uint32_t first = hint == 0 ? 0 : hint - 1;
-  bool below = Below(x, y, dir, width, first);
-  for (uint32_t k = first; k <= hint + 1 && k < width; ++k) {
-    const bool next = Below(x, y, dir, width, k + 1);
-    if (below && !next) return k;
-    below = next;
+// ColumnOf when a likely column is known (the previous point's column plus its last step: scans
+// come in sweep order). The column is the unique k with P(k) and not P(k + 1), so confirming that
+// at the guess or a neighbour gives exactly ColumnOf's answer; otherwise ColumnOf decides.
+inline uint32_t ColumnNear(float x, float y, const float* dir, uint32_t width, uint32_t guess) {
+  const bool at = Below(x, y, dir, width, guess), next = Below(x, y, dir, width, guess + 1);
+  if (at && !next) return guess;
+  if (next) {  // the column lies after the guess
+    if (!Below(x, y, dir, width, guess + 2)) return guess + 1;
+  } else if (Below(x, y, dir, width, guess - 1)) {  // before it (guess > 0 here: P(0) holds)
+    return guess - 1;
   }
   return ColumnOf(x, y, dir, width);
 }
@@ -133,34 +133,49 @@ inline uint32_t RowNear(float z, float r2, const float* bound, const float* orig
 }  // namespace
 
 void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
-  const uint32_t n = f.n, pixels = p.width * p.beams;
-  f.point_pixel.assign(n, kNone);
+  const uint32_t n = f.n, pixels = p.width * p.beams, width = p.width, beams = p.beams;
+  f.point_pixel.resize(n);
   f.pixel_key.assign(pixels, kNone);
   f.pixel_point.assign(pixels, kNone);
+  const float* __restrict xyzi = cloud.xyzi.data();
+  const uint32_t* __restrict flags = f.flags.data();
+  const float* __restrict r2 = f.r2.data();
+  uint32_t* __restrict point_pixel = f.point_pixel.data();
+  uint32_t* __restrict pixel_key = f.pixel_key.data();
+  uint32_t* __restrict pixel_point = f.pixel_point.data();
+  const float* dir = t.column_dir.data();
+  const float* bound = t.beam_bound.data();
+  const float* origin = t.beam_origin.data();
   const bool has_ring = !cloud.ring.empty();
-  uint32_t hint = 0, row_hint = 0;
+  uint32_t column = 0, row = 0;  // the previous valid point's
+  int32_t step = 0;              // and its column step, clamped to -1..1
   for (uint32_t i = 0; i < n; ++i) {
-    if (!(f.flags[i] & kPointValid)) continue;
-    const float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
-    const uint32_t u = ColumnNear(x, y, t.column_dir.data(), p.width, hint);
-    hint = u;
+    if (!(flags[i] & kPointValid)) {
+      point_pixel[i] = kNone;
+      continue;
+    }
+    const float x = xyzi[4 * i], y = xyzi[4 * i + 1], z = xyzi[4 * i + 2];
+    const int32_t guess = std::min(std::max(int32_t(column) + step, 0), int32_t(width) - 1);
+    const uint32_t u = ColumnNear(x, y, dir, width, uint32_t(guess));
+    step = u > column ? 1 : (u < column ? -1 : 0);
+    column = u;
     uint32_t v;
     if (has_ring) {
       const uint32_t ring = uint32_t(cloud.ring[i]);
-      v = p.ring_zero_is_top ? ring : p.beams - 1 - ring;
+      v = p.ring_zero_is_top ? ring : beams - 1 - ring;
     } else {
-      v = RowNear(z, f.r2[i], t.beam_bound.data(), t.beam_origin.data(), p.beams, row_hint);
-      row_hint = v;
+      v = RowNear(z, r2[i], bound, origin, beams, row);
+      row = v;
     }
-    const uint32_t pix = v * p.width + u;
-    f.point_pixel[i] = pix;
-    if (f.flags[i] & kPointNoise) continue;
-    f.pixel_key[pix] = std::min(f.pixel_key[pix], exact::Key(f.r2[i]));
+    const uint32_t pix = v * width + u;
+    point_pixel[i] = pix;
+    if (flags[i] & kPointNoise) continue;
+    pixel_key[pix] = std::min(pixel_key[pix], exact::Key(r2[i]));
   }
   for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t pix = f.point_pixel[i];
-    if (pix == kNone || (f.flags[i] & kPointNoise)) continue;
-    if (exact::Key(f.r2[i]) == f.pixel_key[pix]) f.pixel_point[pix] = std::min(f.pixel_point[pix], i);
+    const uint32_t pix = point_pixel[i];
+    if (pix == kNone || (flags[i] & kPointNoise)) continue;
+    if (exact::Key(r2[i]) == pixel_key[pix]) pixel_point[pix] = std::min(pixel_point[pix], i);
   }
 }
 
