@@ -1,0 +1,53 @@
+// Stage 1, prepare, on Vulkan: shaders/prepare.comp behind the generic dispatcher. PrepareStage
+// is the per-frame piece (bound once to the frame's buffers, recorded every frame); RunPrepare is
+// the one-shot twin of lpir::Prepare for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/cloud.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/prepare.comp, each buffer holding at least n elements.
+struct PrepareBuffers {
+  const Buffer* params = nullptr;  // one Params (uniform); has_ring says whether ring is read
+  const Buffer* points = nullptr;  // vec4 x, y, z, raw intensity per point
+  const Buffer* ring = nullptr;    // int32 per point; any buffer when has_ring is 0
+  const Buffer* flags = nullptr;   // out: uint32 kPoint* bits
+  const Buffer* zt = nullptr;      // out: float corrected height, eq. 3
+  const Buffer* r2 = nullptr;      // out: float squared planar range
+  const Buffer* inten = nullptr;   // out: float scaled intensity
+};
+
+class PrepareStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<PrepareStage> Create(const Device& device, const PrepareBuffers& buffers);
+
+  // Records the dispatch over n points (no barrier: the caller orders it with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t n) const;
+
+ private:
+  explicit PrepareStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// Stage 1 on the GPU, the twin of lpir::Prepare(cloud, p, f): allocates device-local buffers for
+// this cloud, uploads, runs, and fills f.n, f.flags, f.zt, f.r2 and f.inten (nothing else of f is
+// touched). has_ring is taken from the cloud, as reference_cpu/pipeline.cpp does. `gpu_ns`, when
+// given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps on the queue). Waits
+// for the GPU; a frame pipeline keeps its buffers and records into one command buffer instead.
+Status RunPrepare(const Context& context, const Cloud& cloud, const Params& p, Frame& f,
+                  double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

@@ -1,0 +1,67 @@
+// CommandBuffer: one primary command buffer in a pool of its own on the device's compute queue,
+// with the few commands the stages record (bind, push, dispatch, barriers, copies, timestamps),
+// so stage code never touches raw Vulkan calls. Re-recorded each frame: Begin resets it.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/compute_pipeline.h"
+#include "host/vk/descriptor_set.h"
+#include "host/vk/device.h"
+#include "host/vk/fence.h"
+#include "host/vk/handle.h"
+#include "host/vk/result.h"
+#include "host/vk/timestamp_queries.h"
+
+namespace lpir::vk {
+
+class CommandBuffer {
+ public:
+  static Result<CommandBuffer> Create(const Device& device);
+
+  CommandBuffer(CommandBuffer&&) noexcept = default;
+  CommandBuffer& operator=(CommandBuffer&&) noexcept = default;
+
+  Status Begin();  // resets; one-time submit
+  Status End();
+  // Submits to the device's queue; `fence` signals when the work is done.
+  Status Submit(const Fence& fence) const;
+  // Submit, then wait for `fence` and reset it.
+  Status SubmitAndWait(Fence& fence) const;
+
+  void BindPipeline(const ComputePipeline& pipeline);
+  void BindDescriptorSet(const ComputePipeline& pipeline, const DescriptorSet& set);
+  void PushConstants(const ComputePipeline& pipeline, const void* data, uint32_t bytes);
+  void Dispatch(uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1);
+
+  // A global memory barrier (every buffer: the stages share big buffers, so there is nothing to
+  // gain from per-buffer ranges).
+  void Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+               VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+  void ComputeToCompute();   // a dispatch's writes -> the next dispatch's reads and writes
+  void ComputeToTransfer();  // a dispatch's writes -> copies from them; reads -> copies over them
+  void TransferToCompute();  // copies and fills -> dispatches
+  void ComputeToHost();      // a dispatch's writes -> host reads of a mapped buffer
+  void TransferToHost();     // copies -> host reads of a mapped buffer
+
+  void CopyBuffer(const Buffer& src, const Buffer& dst, VkDeviceSize bytes,
+                  VkDeviceSize src_offset = 0, VkDeviceSize dst_offset = 0);
+  void FillBuffer(const Buffer& dst, uint32_t value);  // the whole buffer
+
+  void ResetQueries(const TimestampQueries& queries);
+  // Timestamp `index`, written once every earlier command has completed.
+  void WriteTimestamp(const TimestampQueries& queries, uint32_t index);
+
+  VkCommandBuffer handle() const { return cmd_.get(); }
+
+ private:
+  CommandBuffer() = default;
+
+  DeviceHandle<VkCommandPool, vkDestroyCommandPool> pool_;  // frees the command buffer with it
+  ResetOnMove<VkCommandBuffer> cmd_;
+  ResetOnMove<VkQueue> queue_;
+};
+
+}  // namespace lpir::vk

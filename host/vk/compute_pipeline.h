@@ -1,0 +1,63 @@
+// ComputePipeline: one compute shader from SPIR-V embedded at build time (<build>/shaders/
+// <stage>.spv.h, k<Stage>Spv), with its descriptor set layout (set 0: binding i of the type
+// bindings[i], storage or uniform buffers), an optional push-constant block, and the workgroup
+// size given as specialization constant 0 (shaders declare `layout(local_size_x_id = 0) in;`).
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/vk/device.h"
+#include "host/vk/handle.h"
+#include "host/vk/result.h"
+
+namespace lpir::vk {
+
+struct Spirv {
+  const uint32_t* words = nullptr;
+  size_t bytes = 0;
+};
+template <size_t N>
+Spirv SpirvOf(const uint32_t (&words)[N]) {
+  return Spirv{words, sizeof(words)};
+}
+
+struct PipelineDesc {
+  std::string name;  // the stage's name, for error messages
+  Spirv code;
+  std::vector<VkDescriptorType> bindings;  // set 0, binding i
+  uint32_t push_constant_bytes = 0;        // 0: none (at most 128, the guaranteed minimum)
+  uint32_t local_size_x = 64;              // specialization constant 0
+};
+
+class ComputePipeline {
+ public:
+  static Result<ComputePipeline> Create(const Device& device, const PipelineDesc& desc);
+
+  ComputePipeline(ComputePipeline&&) noexcept = default;
+  ComputePipeline& operator=(ComputePipeline&&) noexcept = default;
+
+  VkPipeline handle() const { return pipeline_.get(); }
+  VkPipelineLayout layout() const { return layout_.get(); }
+  VkDescriptorSetLayout set_layout() const { return set_layout_.get(); }
+  const std::vector<VkDescriptorType>& bindings() const { return bindings_; }
+  uint32_t push_constant_bytes() const { return push_constant_bytes_; }
+  uint32_t local_size_x() const { return local_size_x_; }
+  const std::string& name() const { return name_; }
+
+ private:
+  ComputePipeline() = default;
+
+  DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> set_layout_;
+  DeviceHandle<VkPipelineLayout, vkDestroyPipelineLayout> layout_;
+  DeviceHandle<VkPipeline, vkDestroyPipeline> pipeline_;
+  std::vector<VkDescriptorType> bindings_;
+  uint32_t push_constant_bytes_ = 0;
+  uint32_t local_size_x_ = 0;
+  std::string name_;
+};
+
+}  // namespace lpir::vk

@@ -1,0 +1,35 @@
+// Kernel creation and recording.
+#include "host/vk/kernel.h"
+
+#include <string>
+
+namespace lpir::vk {
+
+Result<Kernel> Kernel::Create(const Device& device, const PipelineDesc& desc,
+                              const std::vector<const Buffer*>& buffers) {
+  LPIR_VK_ASSIGN_OR_RETURN(ComputePipeline pipeline, ComputePipeline::Create(device, desc));
+  LPIR_VK_ASSIGN_OR_RETURN(DescriptorSet set, DescriptorSet::Create(device, pipeline, buffers));
+  return Kernel(std::move(pipeline), std::move(set), device.limits().maxComputeWorkGroupCount[0]);
+}
+
+Status Kernel::Record(CommandBuffer& cmd, uint32_t invocations, const void* push) const {
+  const uint32_t local = pipeline_.local_size_x();
+  const uint32_t groups = uint32_t((uint64_t(invocations) + local - 1) / local);
+  if (groups > max_groups_) {
+    Error e;
+    e.result = VK_ERROR_UNKNOWN;
+    e.message = pipeline_.name() + ": " + std::to_string(invocations) + " invocations need " +
+                std::to_string(groups) + " workgroups, the device dispatches at most " +
+                std::to_string(max_groups_);
+    return e;
+  }
+  if (groups == 0) return Status();
+  cmd.BindPipeline(pipeline_);
+  cmd.BindDescriptorSet(pipeline_, set_);
+  if (pipeline_.push_constant_bytes())
+    cmd.PushConstants(pipeline_, push, pipeline_.push_constant_bytes());
+  cmd.Dispatch(groups);
+  return Status();
+}
+
+}  // namespace lpir::vk

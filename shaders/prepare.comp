@@ -1,0 +1,80 @@
+// Stage 1, prepare (paper III-B.1, eq. 3): the GPU twin of reference_cpu/prepare.cpp, same bytes.
+// One invocation per point i < n (push constant).
+// In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
+//     1 xyzi (vec4 per point: x, y, z m, raw intensity), 2 ring (int per point, or a dummy).
+// Out per point: 3 flags (kPointValid 1, kPointNoise 2), 4 zt, 5 r2, 6 inten (floats).
+// Valid: x, y, z, intensity finite; not exactly (0, 0, 0) (-0 counts as 0); ring (when present)
+// inside [0, beams); min_range2 <= r2 <= max_range2; z^2 <= max_range2. Everything of an invalid
+// point is written as 0. Finiteness and the origin test look at the bits, so a device that flushes
+// subnormals or folds NaN tests away agrees with the CPU.
+// Operations, in this order, each one rounded float op (`precise`, never an FMA): xx = x*x,
+// yy = y*y, r2 = xx + yy; zz = z*z; tx = k_xz*x, ty = k_yz*y, tilt = tx + ty, zt = z - tilt
+// (eq. 3); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
+// No ties: each point is its own invocation.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "common/params.h"
+
+layout(local_size_x_id = 0) in;
+
+layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
+layout(std430, set = 0, binding = 1) readonly buffer Points { vec4 xyzi[]; };
+layout(std430, set = 0, binding = 2) readonly buffer Rings { int ring[]; };
+layout(std430, set = 0, binding = 3) writeonly buffer Flags { uint flags[]; };
+layout(std430, set = 0, binding = 4) writeonly buffer Zt { float zt[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer R2 { float r2[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer Inten { float inten[]; };
+
+layout(push_constant) uniform Push { uint n; } pc;
+
+const uint kPointValid = 1u;  // reference_cpu/frame.h
+const uint kPointNoise = 2u;
+
+bool Finite(float f) { return (floatBitsToUint(f) & 0x7F800000u) != 0x7F800000u; }
+
+void Write(uint i, uint f, float z, float r, float in_) {
+  flags[i] = f;
+  zt[i] = z;
+  r2[i] = r;
+  inten[i] = in_;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.n) return;
+  vec4 point = xyzi[i];
+  float x = point.x, y = point.y, z = point.z, in_raw = point.w;
+  if (!Finite(x) || !Finite(y) || !Finite(z) || !Finite(in_raw)) {
+    Write(i, 0u, 0.0, 0.0, 0.0);
+    return;
+  }
+  if (((floatBitsToUint(x) | floatBitsToUint(y) | floatBitsToUint(z)) & 0x7FFFFFFFu) == 0u) {
+    Write(i, 0u, 0.0, 0.0, 0.0);
+    return;
+  }
+  if (p.has_ring != 0u && (ring[i] < 0 || uint(ring[i]) >= p.beams)) {
+    Write(i, 0u, 0.0, 0.0, 0.0);
+    return;
+  }
+  precise float xx = x * x;
+  precise float yy = y * y;
+  precise float r = xx + yy;
+  if (!(r >= p.min_range2) || !(r <= p.max_range2)) {
+    Write(i, 0u, 0.0, 0.0, 0.0);
+    return;
+  }
+  precise float zz = z * z;
+  if (!(zz <= p.max_range2)) {  // |z| beyond the sensor's range: garbage
+    Write(i, 0u, 0.0, 0.0, 0.0);
+    return;
+  }
+  precise float tx = p.k_xz * x;
+  precise float ty = p.k_yz * y;
+  precise float tilt = tx + ty;
+  precise float height = z - tilt;  // eq. 3
+  precise float in_scaled = in_raw * p.intensity_scale;
+  uint f = kPointValid;
+  if (height < p.h_noise && in_scaled < p.i_noise) f |= kPointNoise;
+  Write(i, f, height, r, in_scaled);
+}
