@@ -84,7 +84,8 @@ inline uint64_t Isqrt(uint64_t v) {
 // Integer division of a signed numerator by a positive denominator, rounding toward zero, done on
 // magnitudes only (shader integer division is only portable for non-negative operands).
 inline int64_t DivToZero(int64_t num, int64_t den) {
-  uint64_t q = (num < 0 ? uint64_t(-num) : uint64_t(num)) / uint64_t(den);
+  const uint64_t mag = num < 0 ? uint64_t(0) - uint64_t(num) : uint64_t(num);  // no signed overflow
+  const uint64_t q = mag / uint64_t(den);
   return num < 0 ? -int64_t(q) : int64_t(q);
 }
 

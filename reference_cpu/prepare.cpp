@@ -2,10 +2,12 @@
 // In: cloud xyzi (+ ring). Out per point: flags (kPointValid, kPointNoise), zt, r2, inten.
 // Valid: x, y, z, intensity finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2; z^2 <= max_range2; ring
 // (when present) inside [0, beams). Everything of an invalid point is written as 0.
+// Subnormal inputs (x, y, z, intensity) and outputs (zt, r2, inten) are flushed to zero.
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
 // sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
 #include <cmath>
 
+#include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 
 namespace lpir {
@@ -26,7 +28,11 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   const Params q = p;  // parameters in registers
   for (uint32_t i = 0; i < n; ++i) {
     flags_out[i] = 0u, zt_out[i] = 0.0f, r2_out[i] = 0.0f, inten_out[i] = 0.0f;  // until valid
-    const float x = xyzi[4 * i], y = xyzi[4 * i + 1], z = xyzi[4 * i + 2], in = xyzi[4 * i + 3];
+    // Subnormal inputs and outputs are flushed to zero, so a device that flushes them agrees
+    // (Vulkan leaves denormal handling to the device). A valid point has r2 >= min_range2, so no
+    // intermediate underflow can reach an output otherwise.
+    const float x = exact::Ftz(xyzi[4 * i]), y = exact::Ftz(xyzi[4 * i + 1]);
+    const float z = exact::Ftz(xyzi[4 * i + 2]), in = exact::Ftz(xyzi[4 * i + 3]);
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) continue;
     if (x == 0.0f && y == 0.0f && z == 0.0f) continue;
     if (ring && (ring[i] < 0 || uint32_t(ring[i]) >= q.beams)) continue;
@@ -40,11 +46,11 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
     const float zt = z - tilt;  // eq. 3
     const float inten = in * q.intensity_scale;
     uint32_t flags = kPointValid;
-    if (zt < q.h_noise && inten < q.i_noise) flags |= kPointNoise;
+    if (exact::Ftz(zt) < q.h_noise && exact::Ftz(inten) < q.i_noise) flags |= kPointNoise;
     flags_out[i] = flags;
-    zt_out[i] = zt;
-    r2_out[i] = r2;
-    inten_out[i] = inten;
+    zt_out[i] = exact::Ftz(zt);
+    r2_out[i] = exact::Ftz(r2);
+    inten_out[i] = exact::Ftz(inten);
   }
 }
 

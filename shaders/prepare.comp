@@ -3,6 +3,7 @@
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
 //     1 xyzi (vec4 per point: x, y, z m, raw intensity), 2 ring (int per point, or a dummy).
 // Out per point: 3 flags (kPointValid 1, kPointNoise 2), 4 zt, 5 r2, 6 inten (floats).
+// Subnormal inputs and outputs are flushed to zero (exact_Ftz), as in the reference.
 // Valid: x, y, z, intensity finite; not exactly (0, 0, 0) (-0 counts as 0); ring (when present)
 // inside [0, beams); min_range2 <= r2 <= max_range2; z^2 <= max_range2. Everything of an invalid
 // point is written as 0. Finiteness and the origin test look at the bits, so a device that flushes
@@ -15,6 +16,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -44,7 +46,9 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.n) return;
   vec4 point = xyzi[i];
-  float x = point.x, y = point.y, z = point.z, in_raw = point.w;
+  // Subnormal inputs and outputs are flushed to zero, as in the reference.
+  float x = exact_Ftz(point.x), y = exact_Ftz(point.y), z = exact_Ftz(point.z);
+  float in_raw = exact_Ftz(point.w);
   if (!Finite(x) || !Finite(y) || !Finite(z) || !Finite(in_raw)) {
     Write(i, 0u, 0.0, 0.0, 0.0);
     return;
@@ -74,7 +78,8 @@ void main() {
   precise float tilt = tx + ty;
   precise float height = z - tilt;  // eq. 3
   precise float in_scaled = in_raw * p.intensity_scale;
+  float height_out = exact_Ftz(height), in_out = exact_Ftz(in_scaled);
   uint f = kPointValid;
-  if (height < p.h_noise && in_scaled < p.i_noise) f |= kPointNoise;
-  Write(i, f, height, r, in_scaled);
+  if (height_out < p.h_noise && in_out < p.i_noise) f |= kPointNoise;
+  Write(i, f, height_out, exact_Ftz(r), in_out);
 }

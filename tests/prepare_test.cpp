@@ -67,6 +67,19 @@ TEST(Prepare, CorrectsHeightByTheTiltOfEq3) {
   EXPECT_EQ(f.inten[0], 0.5f * p.intensity_scale);
 }
 
+TEST(Prepare, SubnormalInputsAndOutputsAreFlushed) {
+  const Params p = ParamsForSensor(test::SmallSensor());
+  const float sub = exact::FromBits(0x00012345u);
+  Cloud c;
+  c.Push(10.0f, 0.0f, sub, sub);         // subnormal height and intensity
+  c.Push(10.0f, 0.0f, -1.0f, 1e-38f);    // intensity * scale underflows
+  const Frame f = RunPrepare(c, p);
+  EXPECT_EQ(f.flags[0] & kPointValid, kPointValid);
+  EXPECT_EQ(exact::Bits(f.zt[0]), 0u);
+  EXPECT_EQ(exact::Bits(f.inten[0]), 0u);
+  EXPECT_EQ(exact::Bits(f.inten[1]) & 0x7FFFFFFFu, 0u);
+}
+
 TEST(Prepare, DimPointsFarBelowTheGroundAreReflectionNoise) {
   const Params p = ParamsForSensor(test::SmallSensor());
   Cloud c;
