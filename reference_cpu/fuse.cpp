@@ -38,41 +38,102 @@
 #include "reference_cpu/stages.h"
 
 namespace lpir {
+namespace {
+
+// The coarse opinion of a pixel without a point (a hole-filled one): unknown, which Decide turns
+// into unknown whatever the class.
+constexpr uint32_t kNoOpinion = kPixUnknown;
+
+// Columns handled at a time.
+constexpr uint32_t kPiece = 256;
+
+// The occluder bounds of one row's pixels: reach = (r + occ_margin) + occ_grade * r^2 and
+// top = z + occ_rise (computed for every pixel, used where the pixel is not empty).
+void Bounds(const Params& p, const float* __restrict range, const float* __restrict height,
+            uint32_t w, float* __restrict reach, float* __restrict top) {
+  const float margin = p.occ_margin, rise = p.occ_rise, occ_grade = p.occ_grade;
+  for (uint32_t u = 0; u < w; ++u) {
+    const float r = range[u];
+    const float rr = r * r;
+    const float grade = occ_grade * rr;
+    const float near = r + margin;
+    reach[u] = near + grade;
+    top[u] = height[u] + rise;
+  }
+}
+
+// Marks the pixels of a row that the row above_* occludes (filled there, nearer than the reach,
+// higher than the top); the three tests have no side effects, so they are evaluated together.
+// The first row above sets the marks, the next ones add to them.
+void Occlude(const uint32_t* __restrict above_filled, const float* __restrict above_range,
+             const float* __restrict above_height, const float* __restrict reach,
+             const float* __restrict top, uint32_t w, bool first, uint32_t* __restrict occluded) {
+  for (uint32_t u = 0; u < w; ++u) {
+    const uint32_t occluder = uint32_t(above_filled[u] != 0) & uint32_t(above_range[u] < reach[u]) &
+                              uint32_t(above_height[u] > top[u]);
+    occluded[u] = first ? occluder : occluded[u] | occluder;
+  }
+}
+
+// The coarse label of each pixel's winning point, kNoOpinion where the pixel has none.
+void Opinions(const uint32_t* __restrict point, const uint32_t* __restrict coarse, uint32_t w,
+              uint32_t* __restrict opinion) {
+  static_assert(kPixNonGround == 0 && kPixGround == 1, "the opinion is the coarse bit");
+  for (uint32_t u = 0; u < w; ++u) {  // without branches: coarse[0] stands in for no point
+    const uint32_t i = point[u], has = uint32_t(i != kNone);
+    const uint32_t ground = uint32_t(coarse[i & (0u - has)] != 0);
+    opinion[u] = (ground & has) | (has ^ 1u) * kNoOpinion;
+  }
+}
+
+// The rule of the contract for one row, given each pixel's occlusion mark and coarse opinion
+// (kPixGround, kPixNonGround or kNoOpinion); selects only, so that the loop vectorises. Where the
+// class is unknown the vote is the opinion when ground; elsewhere it is the class when the
+// opinion agrees; else unknown (always so without an opinion).
+void Decide(const uint32_t* __restrict cls, const uint32_t* __restrict occluded,
+            const uint32_t* __restrict opinion, uint32_t w, uint32_t* __restrict fused) {
+  for (uint32_t u = 0; u < w; ++u) {
+    const uint32_t c = cls[u], o = opinion[u];
+    const uint32_t agree =
+        uint32_t(c == o) | (uint32_t(c == kPixUnknown) & uint32_t(o == kPixGround));
+    const uint32_t vote = agree ? o : kPixUnknown;
+    const uint32_t kept = occluded[u] ? kPixNonGround : vote;
+    fused[u] = c == kPixEmpty ? kPixEmpty : kept;
+  }
+}
+
+}  // namespace
 
 void Fuse(const Params& p, Frame& f) {
-  const uint32_t w = p.width, pixels = w * p.beams;
-  f.pixel_fused.assign(pixels, kPixEmpty);
-  for (uint32_t pix = 0; pix < pixels; ++pix) {
-    const uint32_t c = f.pixel_class[pix];
-    if (c == kPixEmpty) continue;
-    if (p.occ_rows) {
-      const uint32_t v = pix / w;
-      const float r = f.f_range[pix];
-      const float rr = r * r;
-      const float grade = p.occ_grade * rr;
-      const float near = r + p.occ_margin;
-      const float reach = near + grade;
-      const float top = f.f_height[pix] + p.occ_rise;
-      bool occluded = false;
-      for (uint32_t k = 1; k <= p.occ_rows && k <= v; ++k) {
-        const uint32_t q = pix - k * w;
-        if (f.pixel_filled[q] && f.f_range[q] < reach && f.f_height[q] > top) occluded = true;
+  const uint32_t w = p.width, h = p.beams, pixels = w * h;
+  f.pixel_fused.resize(pixels);
+  const uint32_t* __restrict cls = f.pixel_class.data();
+  const uint32_t* __restrict point = f.pixel_point.data();
+  static const uint32_t kNoPoints[1] = {0};  // read in place of coarse[0] when there are no points
+  const uint32_t* __restrict coarse = f.coarse.empty() ? kNoPoints : f.coarse.data();
+  const uint32_t* __restrict filled = f.pixel_filled.data();
+  const float* __restrict range = f.f_range.data();
+  const float* __restrict height = f.f_height.data();
+  uint32_t* __restrict fused = f.pixel_fused.data();
+  // Pieces of rows, so that the scratch stays in the L1 cache.
+  float reach[kPiece], top[kPiece];
+  uint32_t occluded[kPiece], opinion[kPiece];
+  for (uint32_t v = 0; v < h; ++v) {
+    // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
+    const uint32_t rows_above = p.occ_rows < v ? p.occ_rows : v;
+    for (uint32_t u0 = 0; u0 < w; u0 += kPiece) {
+      const uint32_t n = w - u0 < kPiece ? w - u0 : kPiece, at = v * w + u0;
+      if (rows_above) {
+        Bounds(p, range + at, height + at, n, reach, top);
+        for (uint32_t k = 1; k <= rows_above; ++k) {
+          const uint32_t above = at - k * w;
+          Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);
+        }
+      } else {
+        for (uint32_t u = 0; u < n; ++u) occluded[u] = 0;
       }
-      if (occluded) {
-        f.pixel_fused[pix] = kPixNonGround;
-        continue;
-      }
-    }
-    const uint32_t i = f.pixel_point[pix];
-    if (i == kNone) {
-      f.pixel_fused[pix] = kPixUnknown;
-      continue;
-    }
-    const uint32_t coarse = f.coarse[i] ? kPixGround : kPixNonGround;
-    if (c == kPixUnknown) {
-      f.pixel_fused[pix] = coarse == kPixGround ? kPixGround : kPixUnknown;
-    } else {
-      f.pixel_fused[pix] = c == coarse ? c : kPixUnknown;
+      Opinions(point + at, coarse, n, opinion);
+      Decide(cls + at, occluded, opinion, n, fused + at);
     }
   }
 }
