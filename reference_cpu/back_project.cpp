@@ -23,31 +23,39 @@ namespace lpir {
 
 void BackProject(const Params& p, Frame& f) {
   const uint32_t n = f.n;
-  f.label.assign(n, 0);
-  f.why.assign(n, kWhyNonGround);
+  f.label.resize(n);
+  f.why.resize(n);
+  const uint32_t* __restrict flags = f.flags.data();
+  const uint32_t* __restrict point_pixel = f.point_pixel.data();
+  const uint32_t* __restrict pixel_point = f.pixel_point.data();
+  const uint32_t* __restrict pixel_label = f.pixel_label.data();
+  const float* __restrict f_range = f.f_range.data();
+  const float* __restrict f_height = f.f_height.data();
+  const float* __restrict r2 = f.r2.data();
+  const float* __restrict zt = f.zt.data();
+  const uint32_t* __restrict coarse = f.coarse.data();
+  uint8_t* __restrict label = f.label.data();
+  uint8_t* __restrict why = f.why.data();
+  const float range_gate = p.bp_range_gate, height_gate = p.bp_height_gate;
   for (uint32_t i = 0; i < n; ++i) {
-    if (!(f.flags[i] & kPointValid)) {
-      f.why[i] = kWhyInvalid;
+    const uint32_t flag = flags[i];
+    if ((flag & (kPointValid | kPointNoise)) != kPointValid) {  // invalid, or noise
+      label[i] = 0;
+      why[i] = (flag & kPointValid) ? kWhyNoise : kWhyInvalid;
       continue;
     }
-    if (f.flags[i] & kPointNoise) {
-      f.why[i] = kWhyNoise;
-      continue;
+    const uint32_t pix = point_pixel[i];
+    // Winner: the pixel's label. Lost: the pixel's label when within the gates, else the pixel's
+    // and its own coarse label together; both ways ground needs a ground pixel, so the gates
+    // (and their Sqrt) are only evaluated for a lost non-coarse-ground point on a ground pixel.
+    bool ground = pixel_label[pix] == kPixGround;
+    if (ground && pixel_point[pix] != i && coarse[i] == 0) {
+      const float dr = std::fabs(exact::Sqrt(r2[i]) - f_range[pix]);
+      const float dz = std::fabs(zt[i] - f_height[pix]);
+      ground = dr <= range_gate && dz <= height_gate;
     }
-    const uint32_t pix = f.point_pixel[i];
-    const uint32_t winner = f.pixel_point[pix];
-    bool ground;
-    if (winner == i) {
-      ground = f.pixel_label[pix] == kPixGround;
-    } else {
-      const float dr = std::fabs(exact::Sqrt(f.r2[i]) - f.f_range[pix]);
-      const float dz = std::fabs(f.zt[i] - f.f_height[pix]);
-      ground = (dr <= p.bp_range_gate && dz <= p.bp_height_gate)
-                   ? f.pixel_label[pix] == kPixGround
-                   : (f.coarse[i] != 0 && f.pixel_label[pix] == kPixGround);
-    }
-    f.label[i] = ground ? 1 : 0;
-    f.why[i] = ground ? kWhyGround : kWhyNonGround;
+    label[i] = ground ? 1 : 0;
+    why[i] = ground ? kWhyGround : kWhyNonGround;
   }
 }
 

@@ -24,8 +24,13 @@
 // plane_dist_scale * mean seed |distance|) with integer arithmetic. A normal steeper than allowed
 // (n_z^2 < normal_min_z2) means no ground in the cell (thr = -1).
 // Coarse label: 1 when the point's cell has seeds and |distance| <= thr, else 0.
+// CPU layout (same integers, fewer passes): coordinates go to mm four at a time in int32 (the
+// contract's int64 path when one exceeds 2^30 mm); the centred moments come from raw sums modulo
+// 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept over runs of one cell.
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
+#include <vector>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
@@ -86,6 +91,21 @@ uint32_t NeighbourMin(const Params& p, const Frame& f, uint32_t cell) {
   return best;
 }
 
+// exact::Isqrt (floor(sqrt(v)), bit by bit) with conditional moves for its data-dependent branch.
+uint64_t Isqrt(uint64_t v) {
+  uint64_t result = 0;
+  uint64_t bit = uint64_t(1) << 62;
+  while (bit > v) bit >>= 2;
+  while (bit != 0) {
+    const uint64_t trial = result + bit;
+    const bool take = v >= trial;
+    v = take ? v - trial : v;
+    result = take ? (result >> 1) + bit : result >> 1;
+    bit >>= 2;
+  }
+  return result;
+}
+
 // Sets n to the Q14 unit normal of the seeds' plane from centred int64 second moments
 // (xx, xy, xz, yy, yz, zz); false when degenerate.
 bool PlaneNormal(const int64_t m[6], int64_t n[3]) {
@@ -94,7 +114,11 @@ bool PlaneNormal(const int64_t m[6], int64_t n[3]) {
   int shift = 0;
   while ((maxabs >> shift) >= (int64_t(1) << 24)) ++shift;
   float c[6];
-  for (int k = 0; k < 6; ++k) c[k] = float(exact::DivToZero(m[k], int64_t(1) << shift));
+  // exact::DivToZero(m[k], 2^shift), as a shift of the magnitude.
+  for (int k = 0; k < 6; ++k) {
+    const uint64_t mag = (m[k] < 0 ? uint64_t(0) - uint64_t(m[k]) : uint64_t(m[k])) >> shift;
+    c[k] = float(m[k] < 0 ? -int64_t(mag) : int64_t(mag));
+  }
   const float c00 = c[0], c01 = c[1], c02 = c[2], c11 = c[3], c12 = c[4], c22 = c[5];
   // Adjugate (symmetric): a_ij, each two products and one difference.
   float t0, t1;
@@ -141,20 +165,76 @@ bool PlaneNormal(const int64_t m[6], int64_t n[3]) {
     q[k] = exact::ToFixed(v[k], 1048576.0f);  // 2^20
     len2 += uint64_t(q[k] * q[k]);
   }
-  const int64_t len = int64_t(exact::Isqrt(len2));
+  const int64_t len = int64_t(Isqrt(len2));
   if (len == 0) return false;
   for (int k = 0; k < 3; ++k) n[k] = exact::DivToZero(q[k] * kQ, len);
   return true;
 }
 
+// Per cell, what a point needs to decide whether it is a seed, as one test: seed iff
+// z_t - h <= lambda. Mode 1: h = h_min and the cell's lambda; mode 2 (every point): h = +inf, so
+// z_t - h = -inf <= 0; mode 0 (none): h = -inf, so z_t - h = +inf > 0 (z_t is finite: stage 1
+// keeps only finite points, and its conversion to mm needs it anyway). `slot` is the compact
+// index of the cell's seed sums and plane; 0 for mode 0 cells (no seeds, no plane).
+struct SeedTest {
+  float h;
+  float lambda;
+  uint32_t slot;
+};
 
-// Buffers reused from frame to frame (the reference is single-threaded).
+// Seed sums of a slot: count, coordinates, and the raw second moments. The sums of products are
+// kept modulo 2^64 (uint64): the centred moments derived from them are then exactly the int64
+// sums of products of (q - mean), whatever the intermediate magnitudes.
+struct SeedSums {
+  int64_t n, x, y, z;
+  uint64_t xx, xy, xz, yy, yz, zz;
+};
+
+// The plane of a slot as the per-point passes read it: distance = |n . q - offset|. All zero
+// (distance 0, never compared) for a cell that cannot hold ground.
+struct Fit {
+  int64_t nx, ny, nz, offset;
+};
+
+// Buffers reused from frame to frame (the reference is single-threaded). Per-cell tables are
+// indexed by cell + 1 (uint32): a point without a cell (kNone) wraps to entry 0, which says "no
+// seed, no ground".
 struct Scratch {
-  std::vector<int64_t> sum, mom, dist_sum;
-  std::vector<int32_t> fixed;  // per point with a cell: x, y, z_t in mm
-  std::vector<uint8_t> seed;
+  std::vector<SeedTest> test;       // per cell + 1
+  std::vector<int64_t> thr;         // per cell + 1: the threshold, -1 when no ground
+  std::vector<uint32_t> cell_of;    // per slot
+  std::vector<SeedSums> sums;       // per slot
+  std::vector<Fit> fit;             // per cell + 1
+  std::vector<int64_t> dist_sum;    // per cell + 1
+  std::vector<int32_t> qx, qy, qz;  // per point with a cell: x, y, z_t in mm (else 0)
+  std::vector<uint8_t> ground;      // per slot: 1 when the cell may hold ground
+  std::vector<uint8_t> seed;        // per point: 1 for a seed
+  std::vector<int64_t> dist;        // per point: |n . (q - mean)|, 0 in cells without ground
 };
 thread_local Scratch scratch;
+
+// m = sum (a - ma)(b - mb) from the raw sums: sab - ma sb - mb sa + n ma mb, modulo 2^64.
+int64_t Centred(uint64_t sab, int64_t sa, int64_t sb, int64_t ma, int64_t mb, int64_t n) {
+  const uint64_t r = sab - uint64_t(ma) * uint64_t(sb) - uint64_t(mb) * uint64_t(sa) +
+                     uint64_t(n) * uint64_t(ma) * uint64_t(mb);
+  return int64_t(r);
+}
+
+// v with its bits cleared where keep is 0 (a select the vectoriser can use).
+inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v) & keep); }
+
+// int32_t(exact::ToFixed(v, kMm)) when |v * kMm + 0.5| <= 2^30, with int32 conversions (four
+// per SSE instruction): the truncation is the same integer, and it converts back to the same
+// float. Larger (or non-finite) values give 0 and set `bad`.
+inline int32_t ToMm(float v, uint32_t& bad) {
+  float y = v * kMm;
+  y = y + 0.5f;
+  const uint32_t ok = uint32_t(y >= -1073741824.0f) & uint32_t(y <= 1073741824.0f);
+  bad |= ok ^ 1u;
+  y = Keep(y, 0u - ok);
+  const int32_t t = int32_t(y);
+  return t - int32_t(float(t) > y);
+}
 
 }  // namespace
 
@@ -164,12 +244,15 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   f.cell_plane.assign(size_t(cells) * 8, 0);
   f.coarse.resize(n);
   Scratch& s = scratch;
+  constexpr float kInf = std::numeric_limits<float>::infinity();
 
-  // Seed mode per cell (eq. 5).
+  // Seed mode per cell (eq. 5); cells that may have seeds get a slot (slot 0: none).
   const float lambda_near = p.ring_res_near * p.slope_max + p.seed_margin;
   const float lambda_far = p.ring_res_far * p.slope_max + p.seed_margin;
   const uint32_t near_cells = p.rings_near * p.sectors_near;
   const float base = -p.sensor_height + p.ground_max_above;
+  s.test.assign(size_t(cells) + 1, SeedTest{-kInf, 0.0f, 0u});
+  s.cell_of.assign(1, kNone);
   for (uint32_t c = 0; c < cells; ++c) {
     if (f.cell_count[c] == 0) continue;
     const CellGeometry g = Geometry(p, c);
@@ -181,99 +264,166 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
     const float prior = base + p.slope_max * t.ring_inner[g.ring];
     if (rise > lam + p.rise_margin || hmin > prior) continue;
     const float spread = hmax - hnmin;
-    f.cell_seed_mode[c] = spread <= p.h_athr ? 2u : 1u;
+    const uint32_t mode = spread <= p.h_athr ? 2u : 1u;
+    f.cell_seed_mode[c] = mode;
+    const uint32_t slot = uint32_t(s.cell_of.size());
+    s.test[size_t(c) + 1] = mode == 2 ? SeedTest{kInf, 0.0f, slot} : SeedTest{hmin, lam, slot};
+    s.cell_of.push_back(c);
+  }
+  const uint32_t slots = uint32_t(s.cell_of.size());
+
+  // Every point with a cell in mm (0 without one), SSE-wide; the scalar path of the contract if
+  // any coordinate lies beyond 2^30 mm.
+  s.qx.resize(n), s.qy.resize(n), s.qz.resize(n);
+  {
+    const float* __restrict xyzi = cloud.xyzi.data();
+    const float* __restrict zt = f.zt.data();
+    const uint32_t* __restrict point_cell = f.point_cell.data();
+    int32_t* __restrict qx = s.qx.data();
+    int32_t* __restrict qy = s.qy.data();
+    int32_t* __restrict qz = s.qz.data();
+    uint32_t bad = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t keep = 0u - uint32_t(point_cell[i] != kNone);
+      qx[i] = ToMm(Keep(xyzi[4 * size_t(i)], keep), bad);
+      qy[i] = ToMm(Keep(xyzi[4 * size_t(i) + 1], keep), bad);
+      qz[i] = ToMm(Keep(zt[i], keep), bad);
+    }
+    for (uint32_t i = 0; bad && i < n; ++i) {
+      if (point_cell[i] == kNone) continue;
+      qx[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i)], kMm));
+      qy[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i) + 1], kMm));
+      qz[i] = int32_t(exact::ToFixed(zt[i], kMm));
+    }
   }
 
-  // Seeds, and every celled point in mm once: sums for the mean, then centred second moments
-  // (int64, order-independent).
-  s.sum.assign(size_t(cells) * 4, 0);
-  s.mom.assign(size_t(cells) * 6, 0);
-  s.dist_sum.assign(cells, 0);
-  s.fixed.resize(size_t(n) * 3);
+  // Seeds, and their sums per cell (int64, order-independent). Points come in runs of one cell
+  // (scan order): a run's sums stay in registers and go to the cell's when the run ends.
+  s.sums.assign(slots, SeedSums{});
   s.seed.resize(n);
-  for (uint32_t i = 0; i < n; ++i) {
-    s.seed[i] = 0;
-    const uint32_t c = f.point_cell[i];
-    if (c == kNone) continue;
-    int32_t* q = &s.fixed[size_t(i) * 3];
-    q[0] = int32_t(exact::ToFixed(cloud.xyzi[4 * i], kMm));
-    q[1] = int32_t(exact::ToFixed(cloud.xyzi[4 * i + 1], kMm));
-    q[2] = int32_t(exact::ToFixed(f.zt[i], kMm));
-    const uint32_t mode = f.cell_seed_mode[c];
-    if (mode == 0) continue;
-    const float dz = f.zt[i] - exact::FromKey(f.cell_zmin[c]);
-    const float lam = c < near_cells ? lambda_near : lambda_far;
-    if (mode == 1 && !(dz <= lam)) continue;
-    s.seed[i] = 1;
-    int64_t* sc = &s.sum[size_t(c) * 4];
-    sc[0] += 1, sc[1] += q[0], sc[2] += q[1], sc[3] += q[2];
-  }
-  for (uint32_t c = 0; c < cells; ++c) {
-    const int64_t* sc = &s.sum[size_t(c) * 4];
-    int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    if (sc[0] == 0) continue;
-    plane[3] = int32_t(exact::DivToZero(sc[1], sc[0]));
-    plane[4] = int32_t(exact::DivToZero(sc[2], sc[0]));
-    plane[5] = int32_t(exact::DivToZero(sc[3], sc[0]));
-    plane[7] = int32_t(sc[0]);
-  }
-  for (uint32_t i = 0; i < n; ++i) {
-    if (!s.seed[i]) continue;
-    const uint32_t c = f.point_cell[i];
-    const int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    const int32_t* q = &s.fixed[size_t(i) * 3];
-    const int64_t dx = q[0] - plane[3], dy = q[1] - plane[4], dz = q[2] - plane[5];
-    int64_t* m = &s.mom[size_t(c) * 6];
-    m[0] += dx * dx, m[1] += dx * dy, m[2] += dx * dz, m[3] += dy * dy, m[4] += dy * dz,
-        m[5] += dz * dz;
+  {
+    const float* __restrict zt = f.zt.data();
+    const uint32_t* __restrict point_cell = f.point_cell.data();
+    const int32_t* __restrict qx = s.qx.data();
+    const int32_t* __restrict qy = s.qy.data();
+    const int32_t* __restrict qz = s.qz.data();
+    const SeedTest* __restrict test = s.test.data();
+    SeedSums* __restrict sums = s.sums.data();
+    uint8_t* __restrict seed = s.seed.data();
+    SeedTest st = test[0];
+    uint32_t run_cell = kNone;
+    int64_t rn = 0, rx = 0, ry = 0, rz = 0;
+    uint64_t rxx = 0, rxy = 0, rxz = 0, ryy = 0, ryz = 0, rzz = 0;
+    auto flush = [&] {
+      SeedSums& a = sums[st.slot];
+      a.n += rn, a.x += rx, a.y += ry, a.z += rz;
+      a.xx += rxx, a.xy += rxy, a.xz += rxz, a.yy += ryy, a.yz += ryz, a.zz += rzz;
+      rn = rx = ry = rz = 0;
+      rxx = rxy = rxz = ryy = ryz = rzz = 0;
+    };
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t c = point_cell[i];
+      if (c != run_cell) {
+        flush();
+        run_cell = c;
+        st = test[c + 1u];
+      }
+      const float dz = zt[i] - st.h;
+      const bool is_seed = dz <= st.lambda;
+      seed[i] = is_seed;
+      if (!is_seed) continue;
+      const int64_t x = qx[i], y = qy[i], z = qz[i];
+      rn += 1, rx += x, ry += y, rz += z;
+      rxx += uint64_t(x * x), rxy += uint64_t(x * y), rxz += uint64_t(x * z);
+      ryy += uint64_t(y * y), ryz += uint64_t(y * z), rzz += uint64_t(z * z);
+    }
+    flush();
   }
 
-  // Normal per cell (eq. 6-7).
+  // Mean, centred moments and normal per cell (eqs. 6-7).
   const int64_t min_z2 = exact::ToFixed(p.normal_min_z2, float(kQ * kQ));
-  for (uint32_t c = 0; c < cells; ++c) {
-    int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    if (plane[7] == 0) continue;
+  s.fit.assign(size_t(cells) + 1, Fit{0, 0, 0, 0});
+  s.ground.assign(slots, 0);
+  for (uint32_t k = 1; k < slots; ++k) {
+    const SeedSums& a = s.sums[k];
+    if (a.n == 0) continue;
+    int32_t* plane = &f.cell_plane[size_t(s.cell_of[k]) * 8];
+    const int64_t mx = exact::DivToZero(a.x, a.n), my = exact::DivToZero(a.y, a.n),
+                  mz = exact::DivToZero(a.z, a.n);
+    plane[3] = int32_t(mx), plane[4] = int32_t(my), plane[5] = int32_t(mz);
+    plane[7] = int32_t(a.n);
+    const int64_t mom[6] = {
+        Centred(a.xx, a.x, a.x, mx, mx, a.n), Centred(a.xy, a.x, a.y, mx, my, a.n),
+        Centred(a.xz, a.x, a.z, mx, mz, a.n), Centred(a.yy, a.y, a.y, my, my, a.n),
+        Centred(a.yz, a.y, a.z, my, mz, a.n), Centred(a.zz, a.z, a.z, mz, mz, a.n)};
     int64_t nq[3] = {0, 0, kQ};
-    if (plane[7] < kMinPlaneSeeds || !PlaneNormal(&s.mom[size_t(c) * 6], nq))
-      nq[0] = 0, nq[1] = 0, nq[2] = kQ;
+    if (plane[7] < kMinPlaneSeeds || !PlaneNormal(mom, nq)) nq[0] = 0, nq[1] = 0, nq[2] = kQ;
     plane[0] = int32_t(nq[0]), plane[1] = int32_t(nq[1]), plane[2] = int32_t(nq[2]);
-  }
-
-  // Threshold: mean |distance| of the seeds.
-  auto distance = [&](uint32_t i, const int32_t* plane) {
-    const int32_t* q = &s.fixed[size_t(i) * 3];
-    const int64_t dx = q[0] - plane[3], dy = q[1] - plane[4], dz = q[2] - plane[5];
-    const int64_t d = plane[0] * dx + plane[1] * dy + plane[2] * dz;
-    return d < 0 ? -d : d;
-  };
-  for (uint32_t i = 0; i < n; ++i) {
-    if (!s.seed[i]) continue;
-    const uint32_t c = f.point_cell[i];
-    s.dist_sum[c] += distance(i, &f.cell_plane[size_t(c) * 8]);
-  }
-  const int64_t floor_q = exact::ToFixed(p.plane_dist_floor, kDistUnit);
-  const int64_t scale_q = exact::ToFixed(p.plane_dist_scale, 256.0f);
-  for (uint32_t c = 0; c < cells; ++c) {
-    int32_t* plane = &f.cell_plane[size_t(c) * 8];
-    if (plane[7] == 0) continue;
+    // A normal steeper than allowed: no ground in the cell.
     if (int64_t(plane[2]) * plane[2] < min_z2) {
       plane[6] = -1;
       continue;
     }
-    const int64_t mean_scaled =
-        exact::DivToZero(scale_q * s.dist_sum[c], 256 * int64_t(plane[7]));
-    plane[6] = int32_t(std::min<int64_t>(std::max(floor_q, mean_scaled), 0x7FFFFFFF));
+    // n . (q - mean) = n . q - n . mean exactly (int64, far from overflow).
+    s.fit[size_t(s.cell_of[k]) + 1] = Fit{plane[0], plane[1], plane[2],
+                   plane[0] * int64_t(plane[3]) + plane[1] * int64_t(plane[4]) +
+                       plane[2] * int64_t(plane[5])};
+    s.ground[k] = 1;
   }
 
-  // Coarse label per point.
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t c = f.point_cell[i];
-    uint32_t ground = 0;
-    if (c != kNone) {
-      const int32_t* plane = &f.cell_plane[size_t(c) * 8];
-      ground = plane[7] != 0 && plane[6] >= 0 && distance(i, plane) <= plane[6];
+  // Distances in mm * 2^14 of every point (0 in cells without ground); the seeds' sum per cell,
+  // again kept in a register over a run of one cell.
+  s.dist_sum.assign(size_t(cells) + 1, 0);
+  s.dist.resize(n);
+  {
+    const int32_t* __restrict qx = s.qx.data();
+    const int32_t* __restrict qy = s.qy.data();
+    const int32_t* __restrict qz = s.qz.data();
+    const uint32_t* __restrict point_cell = f.point_cell.data();
+    const uint8_t* __restrict seed = s.seed.data();
+    const Fit* __restrict fit = s.fit.data();
+    int64_t* __restrict dist_sum = s.dist_sum.data();
+    int64_t* __restrict dist = s.dist.data();
+    uint32_t run_cell = kNone;
+    Fit g = fit[0];
+    int64_t run_sum = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t c = point_cell[i];
+      if (c != run_cell) {
+        dist_sum[run_cell + 1u] += run_sum;
+        run_sum = 0;
+        run_cell = c;
+        g = fit[c + 1u];
+      }
+      int64_t d = g.nx * qx[i] + g.ny * qy[i] + g.nz * qz[i] - g.offset;
+      d = d < 0 ? -d : d;
+      dist[i] = d;
+      run_sum += d & -int64_t(seed[i]);
     }
-    f.coarse[i] = ground;
+    dist_sum[run_cell + 1u] += run_sum;
+  }
+
+  // Threshold: mean |distance| of the seeds.
+  const int64_t floor_q = exact::ToFixed(p.plane_dist_floor, kDistUnit);
+  const int64_t scale_q = exact::ToFixed(p.plane_dist_scale, 256.0f);
+  s.thr.assign(size_t(cells) + 1, -1);
+  for (uint32_t k = 1; k < slots; ++k) {
+    if (!s.ground[k]) continue;
+    int32_t* plane = &f.cell_plane[size_t(s.cell_of[k]) * 8];
+    const int64_t mean_scaled =
+        exact::DivToZero(scale_q * s.dist_sum[size_t(s.cell_of[k]) + 1], 256 * int64_t(plane[7]));
+    plane[6] = int32_t(std::min<int64_t>(std::max(floor_q, mean_scaled), 0x7FFFFFFF));
+    s.thr[size_t(s.cell_of[k]) + 1] = plane[6];
+  }
+
+  // Coarse label per point: distances are >= 0, so a threshold of -1 (no seeds, no ground) or
+  // any negative one says 0.
+  {
+    const uint32_t* __restrict point_cell = f.point_cell.data();
+    const int64_t* __restrict dist = s.dist.data();
+    const int64_t* __restrict thr = s.thr.data();
+    uint32_t* __restrict coarse = f.coarse.data();
+    for (uint32_t i = 0; i < n; ++i) coarse[i] = dist[i] <= thr[point_cell[i] + 1u];
   }
 }
 
