@@ -5,12 +5,24 @@
 // Subnormal inputs (x, y, z, intensity) and outputs (zt, r2, inten) are flushed to zero.
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
 // sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
+#include <algorithm>
 #include <cmath>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 
 namespace lpir {
+namespace {
+
+// |bits| - 1 is below 0x7FFFFF exactly for subnormals (zero wraps to the largest value), so the
+// minimum over several values tells whether any is subnormal, with one branch that real scans
+// never take.
+inline uint32_t SubKey(float f) { return (exact::Bits(f) & 0x7FFFFFFFu) - 1u; }
+inline bool AnySubnormal(uint32_t a, uint32_t b, uint32_t c, uint32_t d = ~0u) {
+  return std::min(std::min(a, b), std::min(c, d)) < 0x007FFFFFu;
+}
+
+}  // namespace
 
 void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   const uint32_t n = uint32_t(cloud.size());
@@ -19,38 +31,37 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   f.zt.resize(n);
   f.r2.resize(n);
   f.inten.resize(n);
-  const float* __restrict xyzi = cloud.xyzi.data();
-  const int32_t* __restrict ring = cloud.ring.empty() ? nullptr : cloud.ring.data();
-  uint32_t* __restrict flags_out = f.flags.data();
-  float* __restrict zt_out = f.zt.data();
-  float* __restrict r2_out = f.r2.data();
-  float* __restrict inten_out = f.inten.data();
-  const Params q = p;  // parameters in registers
+  const bool has_ring = !cloud.ring.empty();
   for (uint32_t i = 0; i < n; ++i) {
-    flags_out[i] = 0u, zt_out[i] = 0.0f, r2_out[i] = 0.0f, inten_out[i] = 0.0f;  // until valid
+    f.flags[i] = 0u, f.zt[i] = 0.0f, f.r2[i] = 0.0f, f.inten[i] = 0.0f;  // until proven valid
+    float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
+    float in = cloud.xyzi[4 * i + 3];
     // Subnormal inputs and outputs are flushed to zero, so a device that flushes them agrees
     // (Vulkan leaves denormal handling to the device). A valid point has r2 >= min_range2, so no
     // intermediate underflow can reach an output otherwise.
-    const float x = exact::Ftz(xyzi[4 * i]), y = exact::Ftz(xyzi[4 * i + 1]);
-    const float z = exact::Ftz(xyzi[4 * i + 2]), in = exact::Ftz(xyzi[4 * i + 3]);
+    if (AnySubnormal(SubKey(x), SubKey(y), SubKey(z), SubKey(in)))
+      x = exact::Ftz(x), y = exact::Ftz(y), z = exact::Ftz(z), in = exact::Ftz(in);
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) continue;
     if (x == 0.0f && y == 0.0f && z == 0.0f) continue;
-    if (ring && (ring[i] < 0 || uint32_t(ring[i]) >= q.beams)) continue;
+    if (has_ring && (cloud.ring[i] < 0 || uint32_t(cloud.ring[i]) >= p.beams)) continue;
     const float xx = x * x, yy = y * y;
     const float r2 = xx + yy;
-    if (!(r2 >= q.min_range2) || !(r2 <= q.max_range2)) continue;
+    if (!(r2 >= p.min_range2) || !(r2 <= p.max_range2)) continue;
     const float zz = z * z;
-    if (!(zz <= q.max_range2)) continue;  // |z| beyond the sensor's range: garbage
-    const float tx = q.k_xz * x, ty = q.k_yz * y;
+    if (!(zz <= p.max_range2)) continue;  // |z| beyond the sensor's range: garbage
+    const float tx = p.k_xz * x, ty = p.k_yz * y;
     const float tilt = tx + ty;
-    const float zt = z - tilt;  // eq. 3
-    const float inten = in * q.intensity_scale;
+    float zt = z - tilt;  // eq. 3
+    float inten = in * p.intensity_scale;
+    float r2_out = r2;
+    if (AnySubnormal(SubKey(zt), SubKey(r2), SubKey(inten)))
+      zt = exact::Ftz(zt), r2_out = exact::Ftz(r2), inten = exact::Ftz(inten);
     uint32_t flags = kPointValid;
-    if (exact::Ftz(zt) < q.h_noise && exact::Ftz(inten) < q.i_noise) flags |= kPointNoise;
-    flags_out[i] = flags;
-    zt_out[i] = exact::Ftz(zt);
-    r2_out[i] = exact::Ftz(r2);
-    inten_out[i] = exact::Ftz(inten);
+    if (zt < p.h_noise && inten < p.i_noise) flags |= kPointNoise;
+    f.flags[i] = flags;
+    f.zt[i] = zt;
+    f.r2[i] = r2_out;
+    f.inten[i] = inten;
   }
 }
 
