@@ -89,21 +89,13 @@ inline int64_t DivToZero(int64_t num, int64_t den) {
   return num < 0 ? -int64_t(q) : int64_t(q);
 }
 
-// int64 -> float, rounded to nearest even by integer operations. Vulkan leaves the rounding of a
-// conversion that is not exact to the device, so only this helper converts integers that may
-// exceed 2^24 in magnitude.
-inline float I64ToFloat(int64_t v) {
-  const uint64_t sign = v < 0 ? 0x80000000u : 0u;
-  uint64_t m = v < 0 ? uint64_t(0) - uint64_t(v) : uint64_t(v);
-  if (m < (uint64_t(1) << 24)) return static_cast<float>(v);  // exact
-  int shift = (63 - __builtin_clzll(m)) - 23;  // the top bit to bit 23 (GLSL: findMSB)
-  uint64_t q = m >> shift;
-  const uint64_t rem = m & ((uint64_t(1) << shift) - 1), half = uint64_t(1) << (shift - 1);
-  if (rem > half || (rem == half && (q & 1))) ++q;
-  if (q == (uint64_t(1) << 24)) q >>= 1, ++shift;
-  // value = q * 2^shift with q in [2^23, 2^24): exponent 23 + shift
-  return FromBits(uint32_t(sign | (uint64_t(23 + shift + 127) << 23) | (q & 0x7FFFFFu)));
-}
+// int64 -> float, rounded to nearest even. Vulkan leaves the rounding of an inexact conversion to
+// the device, so the shader mirror (shaders/common/exact.glsl) does it in integer steps; on the CPU
+// the IEEE conversion in the default rounding mode is that same function (tests/exact_test.cpp
+// checks it against an integer implementation), and much cheaper than branching on the data.
+static_assert(std::numeric_limits<float>::round_style == std::round_to_nearest,
+              "int64 -> float must round to nearest");
+inline float I64ToFloat(int64_t v) { return static_cast<float>(v); }
 
 // 2^e as a float, exactly, for -126 <= e <= 127.
 inline float Pow2(int e) { return FromBits(uint32_t(e + 127) << 23); }
