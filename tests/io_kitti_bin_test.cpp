@@ -124,6 +124,18 @@ TEST(IoKittiBin, ReadCloudDispatchesOnExtension) {
   EXPECT_TRUE(ThrowsIoError([&] { ReadCloud(txt); }, txt, {"unknown cloud file extension"}));
 }
 
+TEST(IoKittiBin, NuScenesFilesAreRecognisedByTheirName) {
+  const std::string dir = test::TempDir();
+  const Cloud cloud = test::SampleCloud(8, true);  // 8 x 20 bytes also divides into 16-byte points
+  WriteKittiBin(dir + "/sweep.pcd.bin", cloud, BinLayout::kNuScenes5);
+  EXPECT_EQ(BinLayoutFor(dir + "/sweep.pcd.bin", {}), BinLayout::kNuScenes5);
+  EXPECT_EQ(BinLayoutFor(dir + "/000001.bin", {}), BinLayout::kKitti4);
+  EXPECT_TRUE(SameBits(cloud, ReadCloud(dir + "/sweep.pcd.bin")));
+  ReadOptions kitti;
+  kitti.bin_layout = BinLayout::kKitti4;  // an explicit layout wins over the name
+  EXPECT_EQ(ReadCloud(dir + "/sweep.pcd.bin", kitti).size(), 10u);
+}
+
 TEST(IoKittiBin, RealKittiScan) {
   LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
   const Cloud cloud = ReadKittiBin(test::DataFile("kitti/07/velodyne/000964.bin"));

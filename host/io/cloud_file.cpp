@@ -31,10 +31,18 @@ Extension ExtensionOf(const std::string& path) {
 
 }  // namespace
 
+BinLayout BinLayoutFor(const std::string& path, const ReadOptions& options) {
+  if (options.bin_layout) return *options.bin_layout;
+  const std::string suffix = ".pcd.bin";
+  const bool nuscenes = path.size() >= suffix.size() &&
+                        path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return nuscenes ? BinLayout::kNuScenes5 : BinLayout::kKitti4;
+}
+
 Cloud ReadCloud(const std::string& path, const ReadOptions& options) {
   switch (ExtensionOf(path)) {
     case Extension::kBin:
-      return ReadKittiBin(path, options.bin_layout);
+      return ReadKittiBin(path, BinLayoutFor(path, options));
     case Extension::kPcd:
       return ReadPcd(path);
     case Extension::kPly:

@@ -1,6 +1,7 @@
 // Any supported cloud file by its extension: .bin (KITTI, or nuScenes 5-float by option), .pcd
 // (ASCII or binary), .ply (ASCII or binary little-endian).
 #pragma once
+#include <optional>
 #include <string>
 
 #include "host/io/kitti_bin.h"
@@ -9,8 +10,13 @@
 namespace lpir {
 
 struct ReadOptions {
-  BinLayout bin_layout = BinLayout::kKitti4;
+  // The .bin layout; unset: nuScenes' 5 floats for files named *.pcd.bin (their naming), else
+  // KITTI's 4. Both layouts can divide a file's size, so the name is the only evidence.
+  std::optional<BinLayout> bin_layout;
 };
+
+// The layout ReadCloud uses for a .bin file at `path` under `options`.
+BinLayout BinLayoutFor(const std::string& path, const ReadOptions& options);
 
 // IoError naming the file for an unknown extension or a malformed file.
 Cloud ReadCloud(const std::string& path, const ReadOptions& options = {});
