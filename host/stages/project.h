@@ -1,0 +1,63 @@
+// Stage 2, project, on Vulkan: shaders/project.comp behind the generic dispatcher. ProjectStage
+// is the per-frame piece (bound once to the frame's buffers, recorded every frame); RunProject is
+// the one-shot twin of lpir::Project for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/cloud.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/project.comp.
+struct ProjectBuffers {
+  const Buffer* params = nullptr;       // one Params (uniform); has_ring says whether ring is read
+  const Buffer* points = nullptr;       // vec4 x, y, z, raw intensity per point (the raw cloud)
+  const Buffer* ring = nullptr;         // int32 per point; any buffer when has_ring is 0
+  const Buffer* flags = nullptr;        // uint32 per point, stage 1
+  const Buffer* r2 = nullptr;           // float per point, stage 1
+  const Buffer* column_dir = nullptr;   // Tables::column_dir, 2 * width floats
+  const Buffer* beam_bound = nullptr;   // Tables::beam_bound, beams - 1 floats
+  const Buffer* beam_origin = nullptr;  // Tables::beam_origin, beams - 1 floats
+  const Buffer* point_pixel = nullptr;  // out: uint32 per point
+  const Buffer* pixel_key = nullptr;    // out: uint32 per pixel (exactly width * beams of them:
+  const Buffer* pixel_point = nullptr;  // out: uint32 per pixel  Record fills the whole buffers)
+};
+
+class ProjectStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<ProjectStage> Create(const Device& device, const ProjectBuffers& buffers);
+
+  // Records the clear of pixel_key and pixel_point to kNone, the pixel pass, a barrier and the
+  // winner pass over n points. No barrier before the clear or after the last dispatch: the caller
+  // orders them with the stages around (stage 1's writes must be visible to compute and the
+  // clear must not overtake earlier reads of the pixel buffers).
+  Status Record(CommandBuffer& cmd, uint32_t n) const;
+
+ private:
+  ProjectStage(Kernel kernel, const Buffer* pixel_key, const Buffer* pixel_point)
+      : kernel_(std::move(kernel)), pixel_key_(pixel_key), pixel_point_(pixel_point) {}
+
+  Kernel kernel_;
+  const Buffer* pixel_key_;
+  const Buffer* pixel_point_;
+};
+
+// Stage 2 on the GPU, the twin of lpir::Project(cloud, p, t, f): reads f.n, f.flags and f.r2
+// (stage 1's outputs, uploaded as they are), allocates device-local buffers, runs, and fills
+// f.point_pixel, f.pixel_key and f.pixel_point (nothing else of f is touched). has_ring is taken
+// from the cloud, as reference_cpu/pipeline.cpp does. `gpu_ns`, when given, gets the GPU time of
+// the clear and both dispatches in nanoseconds (-1 without timestamps on the queue).
+Status RunProject(const Context& context, const Cloud& cloud, const Params& p, const Tables& t,
+                  Frame& f, double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk
