@@ -1,0 +1,56 @@
+// Stage 6, classify pixels, on Vulkan: shaders/classify_pixels.comp behind the generic
+// dispatcher. ClassifyPixelsStage is the per-frame piece (bound once to the frame's buffers,
+// recorded every frame); RunClassifyPixels is the one-shot twin of lpir::ClassifyPixels for tests
+// and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/classify_pixels.comp, each per-pixel buffer holding at least
+// width * beams elements.
+struct ClassifyPixelsBuffers {
+  const Buffer* params = nullptr;        // one Params (uniform): t_edge, t_slope_*, t_std*_*
+  const Buffer* pixel_filled = nullptr;  // uint32 (stage 5): 0 empty
+  const Buffer* f_edge_l = nullptr;      // floats (stage 5)
+  const Buffer* f_edge_r = nullptr;
+  const Buffer* f_slope = nullptr;
+  const Buffer* f_varz = nullptr;
+  const Buffer* f_vari = nullptr;
+  const Buffer* pixel_class = nullptr;  // out: uint32 kPix*
+};
+
+class ClassifyPixelsStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<ClassifyPixelsStage> Create(const Device& device,
+                                            const ClassifyPixelsBuffers& buffers);
+
+  // Records the dispatch over `pixels` pixels (no barrier: the caller orders it with the stages
+  // around).
+  Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+
+ private:
+  explicit ClassifyPixelsStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// Stage 6 on the GPU, the twin of lpir::ClassifyPixels(p, f): reads f.pixel_filled, f.f_edge_l,
+// f.f_edge_r, f.f_slope, f.f_varz and f.f_vari (width * beams each), allocates device-local
+// buffers, uploads, runs, and fills f.pixel_class (nothing else of f is touched). `gpu_ns`, when
+// given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps on the queue).
+Status RunClassifyPixels(const Context& context, const Params& p, Frame& f,
+                         double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

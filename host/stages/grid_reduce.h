@@ -1,0 +1,57 @@
+// Stage 3, grid reduce, on Vulkan: shaders/grid_reduce.comp behind the generic dispatcher.
+// GridReduceStage is the per-frame piece (bound once to the frame's buffers, recorded every
+// frame: the cell clear, a barrier, the per-point reduction); RunGridReduce is the one-shot twin
+// of lpir::GridReduce for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/grid_reduce.comp: per-point buffers of at least n elements, per-cell
+// buffers of at least CellCount(p) elements.
+struct GridReduceBuffers {
+  const Buffer* params = nullptr;       // one Params (uniform)
+  const Buffer* flags = nullptr;        // uint32 kPoint* bits (stage 1)
+  const Buffer* r2 = nullptr;           // float squared planar range (stage 1)
+  const Buffer* zt = nullptr;           // float corrected height (stage 1)
+  const Buffer* point_pixel = nullptr;  // uint32 pixel per point (stage 2)
+  const Buffer* ring_bound2 = nullptr;  // Tables::ring_bound2, rings_near + rings_far floats
+  const Buffer* point_cell = nullptr;   // out: uint32 cell per point, kNone without one
+  const Buffer* cell_zmin = nullptr;    // out: uint32 ordered key of min z_t, kNone when empty
+  const Buffer* cell_zmax = nullptr;    // out: uint32 ordered key of max z_t, 0 when empty
+  const Buffer* cell_count = nullptr;   // out: uint32 points per cell
+};
+
+class GridReduceStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<GridReduceStage> Create(const Device& device, const GridReduceBuffers& buffers);
+
+  // Records the clear of `cells` cells, a compute -> compute barrier and the reduction over n
+  // points (no barrier before or after: the caller orders it with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+
+ private:
+  explicit GridReduceStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// Stage 3 on the GPU, the twin of lpir::GridReduce(p, t, f): reads f.n, f.flags, f.r2, f.zt,
+// f.point_pixel and t.ring_bound2, allocates device-local buffers, uploads, runs, and fills
+// f.point_cell, f.cell_zmin, f.cell_zmax and f.cell_count (nothing else of f is touched).
+// `gpu_ns`, when given, gets the GPU time of both passes in nanoseconds (-1 without timestamps).
+Status RunGridReduce(const Context& context, const Params& p, const Tables& t, Frame& f,
+                     double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

@@ -1,0 +1,91 @@
+// Stage 3, grid reduce (paper eq. 4, V-C.1): the GPU twin of reference_cpu/grid_reduce.cpp, same
+// bytes. Two passes of this one shader, chosen by the push constant `pass`, with a compute ->
+// compute barrier between them (GridReduceStage::Record records both):
+//   pass 0, one invocation per cell c < count: cell_zmin = kNone, cell_zmax = 0, cell_count = 0.
+//   pass 1, one invocation per point i < count: point_cell and the per-cell reductions.
+// In: binding 0 Params (uniform), 1 flags, 2 r2, 3 zt, 4 point_pixel (per point), 5 ring_bound2
+//     (rings_near + rings_far floats, ascending: the host's table, the reference's bytes).
+// Out: 6 point_cell (per point), 7 cell_zmin, 8 cell_zmax (ordered keys of z_t), 9 cell_count.
+// Only flags == kPointValid (valid, not noise) gets a cell. Ring: the first index whose
+// ring_bound2 exceeds r2 (binary search; the CPU's hint is a shortcut to the same unique answer),
+// none when r2 is beyond the last ring. Sector: u = point_pixel % width, u / (width / sectors) of
+// the ring's zone (integer % and / are exact on unsigned operands). Cell: near rings x near
+// sectors, then far rings x far sectors. Reductions: atomicMin / atomicMax of exact_Key(zt) and
+// atomicAdd of 1, order-independent. No float arithmetic: the ring comparison is done on ordered
+// keys, so it does not depend on how the device treats subnormals.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "common/params.h"
+#include "common/exact.glsl"
+
+layout(local_size_x_id = 0) in;
+
+layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
+layout(std430, set = 0, binding = 1) readonly buffer Flags { uint flags[]; };
+layout(std430, set = 0, binding = 2) readonly buffer R2 { float r2[]; };
+layout(std430, set = 0, binding = 3) readonly buffer Zt { float zt[]; };
+layout(std430, set = 0, binding = 4) readonly buffer PointPixel { uint point_pixel[]; };
+layout(std430, set = 0, binding = 5) readonly buffer RingBound2 { float ring_bound2[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer PointCell { uint point_cell[]; };
+layout(std430, set = 0, binding = 7) buffer CellZmin { uint cell_zmin[]; };
+layout(std430, set = 0, binding = 8) buffer CellZmax { uint cell_zmax[]; };
+layout(std430, set = 0, binding = 9) buffer CellCount { uint cell_count[]; };
+
+layout(push_constant) uniform Push {
+  uint count;  // cells (pass 0) or points (pass 1)
+  uint pass;
+} pc;
+
+const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
+const uint kPointValid = 1u;
+
+// a < b as IEEE compares them, on bits: -0 == +0, false when either is NaN, subnormals exact.
+bool IsNan(float f) { return (floatBitsToUint(f) & 0x7FFFFFFFu) > 0x7F800000u; }
+uint OrderKey(float f) {
+  uint u = floatBitsToUint(f);
+  return exact_Key(uintBitsToFloat((u & 0x7FFFFFFFu) == 0u ? 0u : u));
+}
+bool Less(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) < OrderKey(b); }
+
+// reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
+uint RingOf(float r, uint rings) {
+  uint lo = 0u, hi = rings;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1;
+    if (Less(r, ring_bound2[mid])) hi = mid;
+    else lo = mid + 1u;
+  }
+  return lo;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  if (pc.pass == 0u) {
+    cell_zmin[i] = kNone;
+    cell_zmax[i] = 0u;
+    cell_count[i] = 0u;
+    return;
+  }
+  if (flags[i] != kPointValid) {  // invalid or noise
+    point_cell[i] = kNone;
+    return;
+  }
+  uint rings = p.rings_near + p.rings_far;
+  uint ring = RingOf(r2[i], rings);
+  if (ring >= rings) {
+    point_cell[i] = kNone;
+    return;
+  }
+  uint u = point_pixel[i] % p.width;
+  uint cell = ring < p.rings_near
+                  ? ring * p.sectors_near + u / (p.width / p.sectors_near)
+                  : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
+                        u / (p.width / p.sectors_far);
+  point_cell[i] = cell;
+  uint key = exact_Key(zt[i]);
+  atomicMin(cell_zmin[cell], key);
+  atomicMax(cell_zmax[cell], key);
+  atomicAdd(cell_count[cell], 1u);
+}
