@@ -1,0 +1,68 @@
+// Stage 9, back-project, on Vulkan: shaders/back_project.comp behind the generic dispatcher.
+// BackProjectStage is the per-frame piece (bound once to the frame's buffers, recorded every
+// frame); RunBackProject is the one-shot twin of lpir::BackProject for tests and tools.
+// The outputs are one uint32 per point on the GPU (the reference's uint8 widened; the device is
+// created without the 8-bit storage feature): the frame narrows them after download.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/back_project.comp; per-point buffers hold at least n elements,
+// per-pixel ones width * beams.
+struct BackProjectBuffers {
+  const Buffer* params = nullptr;       // one Params (uniform)
+  const Buffer* flags = nullptr;        // uint32 kPoint* bits per point
+  const Buffer* point_pixel = nullptr;  // uint32 pixel per point, kNone when invalid
+  const Buffer* pixel_point = nullptr;  // uint32 winning point per pixel
+  const Buffer* pixel_label = nullptr;  // uint32 kPix* per pixel (stage 8)
+  const Buffer* f_range = nullptr;      // float per pixel
+  const Buffer* f_height = nullptr;     // float per pixel
+  const Buffer* r2 = nullptr;           // float per point
+  const Buffer* zt = nullptr;           // float per point
+  const Buffer* coarse = nullptr;       // uint32 per point
+  const Buffer* label = nullptr;        // out: uint32 per point, 1 ground, 0 non-ground
+  const Buffer* why = nullptr;          // out: uint32 per point, kWhy*
+};
+
+class BackProjectStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<BackProjectStage> Create(const Device& device, const BackProjectBuffers& buffers);
+
+  // Records the dispatch over n points (no barrier: the caller orders it with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t n) const;
+
+ private:
+  explicit BackProjectStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// The GPU's outputs as it wrote them, one uint32 per point.
+struct BackProjectWords {
+  std::vector<uint32_t> label;
+  std::vector<uint32_t> why;
+};
+
+// Stage 9 on the GPU, the twin of lpir::BackProject(p, f): allocates device-local buffers,
+// uploads f.flags, f.point_pixel, f.r2, f.zt, f.coarse (per point, f.n each) and f.pixel_point,
+// f.pixel_label, f.f_range, f.f_height (per pixel), runs, and fills f.label and f.why (nothing
+// else of f is touched); `words`, when given, gets the uint32 outputs before narrowing. An error
+// when an input has the wrong size or an output word does not fit in a byte. `gpu_ns`, when
+// given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps). Waits for the GPU.
+Status RunBackProject(const Context& context, const Params& p, Frame& f,
+                      BackProjectWords* words = nullptr, double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

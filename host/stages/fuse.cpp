@@ -1,0 +1,130 @@
+// Stage 7, fuse, on Vulkan: the kernel's bindings and the one-shot runner.
+#include "host/stages/fuse.h"
+
+#include <cstdint>
+#include <string>
+
+#include "host/vk/fence.h"
+#include "host/vk/timestamp_queries.h"
+#include "host/vk/transfer.h"
+
+namespace lpir::vk {
+namespace {
+#include "shaders/fuse.spv.h"  // kFuseSpv, compiled from shaders/fuse.comp at build time
+
+Error SizeError(const std::string& message) {
+  Error e;
+  e.result = VK_ERROR_UNKNOWN;
+  e.message = "fuse: " + message;
+  return e;
+}
+}  // namespace
+
+Result<FuseStage> FuseStage::Create(const Device& device, const FuseBuffers& b) {
+  PipelineDesc desc;
+  desc.name = "fuse";
+  desc.code = SpirvOf(kFuseSpv);
+  desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  desc.push_constant_bytes = sizeof(uint32_t);
+  desc.local_size_x = kLocalSize;
+  LPIR_VK_ASSIGN_OR_RETURN(
+      Kernel kernel,
+      Kernel::Create(device, desc,
+                     {b.params, b.pixel_class, b.pixel_point, b.coarse, b.pixel_filled, b.f_range,
+                      b.f_height, b.pixel_fused}));
+  return FuseStage(std::move(kernel));
+}
+
+Status FuseStage::Record(CommandBuffer& cmd, uint32_t pixels) const {
+  return kernel_.Record(cmd, pixels, &pixels);
+}
+
+Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns) {
+  const Device& device = context.device();
+  const uint64_t pixels = uint64_t(p.width) * p.beams;
+  if (pixels > UINT32_MAX / 4) return SizeError(std::to_string(pixels) + " pixels");
+  const struct {
+    const char* name;
+    size_t size;
+  } inputs[] = {{"pixel_class", f.pixel_class.size()}, {"pixel_point", f.pixel_point.size()},
+                {"pixel_filled", f.pixel_filled.size()}, {"f_range", f.f_range.size()},
+                {"f_height", f.f_height.size()}};
+  for (const auto& in : inputs)
+    if (in.size != pixels)
+      return SizeError(std::string(in.name) + " holds " + std::to_string(in.size) +
+                       " elements for " + std::to_string(pixels) + " pixels");
+
+  const VkDeviceSize per_pixel = 4 * pixels;
+  const VkDeviceSize coarse_bytes = 4 * VkDeviceSize(f.coarse.size());
+  const MemoryKind kind = MemoryKind::kDeviceLocal;
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer params_buffer, Buffer::Create(device, sizeof(Params), kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_class, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_point, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer coarse, Buffer::Create(device, coarse_bytes, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_filled, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer f_range, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer f_height, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_fused, Buffer::Create(device, per_pixel, kind));
+
+  LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
+  LPIR_VK_RETURN_IF_ERROR(transfer.Upload(params_buffer, &p, sizeof(Params)));
+  if (pixels) {
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(pixel_class, f.pixel_class.data(), per_pixel));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(pixel_point, f.pixel_point.data(), per_pixel));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(pixel_filled, f.pixel_filled.data(), per_pixel));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(f_range, f.f_range.data(), per_pixel));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(f_height, f.f_height.data(), per_pixel));
+  }
+  if (coarse_bytes) {
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(coarse, f.coarse.data(), coarse_bytes));
+  } else {  // the reference reads 0 in place of coarse[0] when there are no points
+    const uint32_t zeros[4] = {0, 0, 0, 0};
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(coarse, zeros, sizeof(zeros)));
+  }
+
+  FuseBuffers bindings;
+  bindings.params = &params_buffer;
+  bindings.pixel_class = &pixel_class;
+  bindings.pixel_point = &pixel_point;
+  bindings.coarse = &coarse;
+  bindings.pixel_filled = &pixel_filled;
+  bindings.f_range = &f_range;
+  bindings.f_height = &f_height;
+  bindings.pixel_fused = &pixel_fused;
+  LPIR_VK_ASSIGN_OR_RETURN(FuseStage stage, FuseStage::Create(device, bindings));
+  LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
+  LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
+  const bool timed = gpu_ns && device.timestamp_valid_bits() != 0;
+  Result<TimestampQueries> queries =
+      timed ? TimestampQueries::Create(device, 2) : Result<TimestampQueries>(Error{});
+  if (timed && !queries.ok()) return queries.error();
+
+  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
+  if (timed) {
+    cmd.ResetQueries(queries.value());
+    cmd.WriteTimestamp(queries.value(), 0);
+  }
+  LPIR_VK_RETURN_IF_ERROR(stage.Record(cmd, uint32_t(pixels)));
+  if (timed) cmd.WriteTimestamp(queries.value(), 1);
+  LPIR_VK_RETURN_IF_ERROR(cmd.End());
+  LPIR_VK_RETURN_IF_ERROR(cmd.SubmitAndWait(fence));
+  if (gpu_ns) {
+    *gpu_ns = -1.0;
+    if (timed) {
+      double ns[2];
+      LPIR_VK_RETURN_IF_ERROR(queries->Read(ns));
+      *gpu_ns = ns[1] - ns[0];
+    }
+  }
+
+  f.pixel_fused.resize(pixels);
+  if (pixels) {
+    LPIR_VK_RETURN_IF_ERROR(transfer.Download(pixel_fused, f.pixel_fused.data(), per_pixel));
+  }
+  return Status();
+}
+
+}  // namespace lpir::vk

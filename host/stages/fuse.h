@@ -1,0 +1,53 @@
+// Stage 7, fuse, on Vulkan: shaders/fuse.comp behind the generic dispatcher. FuseStage is the
+// per-frame piece (bound once to the frame's buffers, recorded every frame); RunFuse is the
+// one-shot twin of lpir::Fuse for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/fuse.comp; per-pixel buffers hold at least width * beams elements.
+struct FuseBuffers {
+  const Buffer* params = nullptr;        // one Params (uniform)
+  const Buffer* pixel_class = nullptr;   // uint32 kPix* per pixel (stage 6)
+  const Buffer* pixel_point = nullptr;   // uint32 winning point per pixel, kNone when none
+  const Buffer* coarse = nullptr;        // uint32 per point (any buffer when there are no points)
+  const Buffer* pixel_filled = nullptr;  // uint32 0 empty, 1 measured, 2 hole filled
+  const Buffer* f_range = nullptr;       // float per pixel
+  const Buffer* f_height = nullptr;      // float per pixel
+  const Buffer* pixel_fused = nullptr;   // out: uint32 kPix* per pixel
+};
+
+class FuseStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<FuseStage> Create(const Device& device, const FuseBuffers& buffers);
+
+  // Records the dispatch over `pixels` pixels (width * beams; no barrier: the caller orders it
+  // with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+
+ private:
+  explicit FuseStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// Stage 7 on the GPU, the twin of lpir::Fuse(p, f): allocates device-local buffers, uploads
+// f.pixel_class, f.pixel_point, f.coarse, f.pixel_filled, f.f_range and f.f_height, runs, and
+// fills f.pixel_fused (nothing else of f is touched). An error when a per-pixel input does not
+// hold width * beams elements. `gpu_ns`, when given, gets the dispatch's GPU time in nanoseconds
+// (-1 without timestamps on the queue). Waits for the GPU.
+Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

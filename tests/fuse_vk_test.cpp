@@ -1,0 +1,409 @@
+// Stage 7, fuse, on Vulkan (shaders/fuse.comp) against the CPU reference
+// (reference_cpu/fuse.cpp): pixel_fused byte for byte. Inputs from the whole CPU pipeline
+// (RunReference) on random clouds, the simulated HDL-64E scenes and the real scans when
+// ../shared/data is present, each also under other veto parameters; and hand-made images that
+// put occluders exactly on the veto's thresholds (range == reach, height == top, one ulp either
+// side), in the top rows and with occ_rows beyond the image.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "host/io/kitti_bin.h"
+#include "host/io/sensor_profile.h"
+#include "host/stages/fuse.h"
+#include "reference_cpu/exact.h"
+#include "reference_cpu/pipeline.h"
+#include "reference_cpu/stages.h"
+#include "tests/stage_test_util.h"
+#include "tests/test_util.h"
+#include "tests/vk_test_util.h"
+
+namespace lpir {
+namespace {
+
+std::string FloatText(float f) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.9g (0x%08x)", double(f), exact::Bits(f));
+  return text;
+}
+std::string ValueText(uint32_t u) {
+  char text[48];
+  std::snprintf(text, sizeof(text), "%u (0x%08x)", u, u);
+  return text;
+}
+
+// The inputs of pixel `pix` and of the occ_rows pixels above it, for a mismatch report.
+std::string PixelText(const Params& p, const Frame& f, uint32_t pix) {
+  const uint32_t v = pix / p.width, u = pix % p.width;
+  std::string s = "pixel " + std::to_string(pix) + " (row " + std::to_string(v) + ", column " +
+                  std::to_string(u) + "): class " + std::to_string(f.pixel_class[pix]) +
+                  ", point " + ValueText(f.pixel_point[pix]);
+  if (f.pixel_point[pix] != kNone && f.pixel_point[pix] < f.coarse.size())
+    s += ", coarse " + std::to_string(f.coarse[f.pixel_point[pix]]);
+  s += ", filled " + std::to_string(f.pixel_filled[pix]) + ", range " +
+       FloatText(f.f_range[pix]) + ", height " + FloatText(f.f_height[pix]);
+  for (uint32_t k = 1; k <= p.occ_rows && k <= v; ++k) {
+    const uint32_t a = pix - k * p.width;
+    s += "; above " + std::to_string(k) + ": filled " + std::to_string(f.pixel_filled[a]) +
+         ", range " + FloatText(f.f_range[a]) + ", height " + FloatText(f.f_height[a]);
+  }
+  return s;
+}
+
+struct Counts {
+  uint64_t compared = 0, mismatches = 0;
+};
+Counts g_total;
+
+// Runs lpir::Fuse and vk::RunFuse on the same inputs (`in`'s stage 1-6 buffers and coarse) and
+// compares pixel_fused byte for byte. Returns the number of values compared.
+uint64_t ExpectSameFuse(const vk::Context& context, const Params& p, const Frame& in,
+                        const std::string& what) {
+  Frame cpu = in, gpu = in;
+  cpu.pixel_fused.clear();
+  gpu.pixel_fused.assign(in.pixel_class.size(), 0xDEADBEEFu);  // must be overwritten
+  Fuse(p, cpu);
+  double gpu_ns = 0;
+  const vk::Status status = vk::RunFuse(context, p, gpu, &gpu_ns);
+  EXPECT_TRUE(status.ok()) << what << ": " << status.message();
+  if (!status.ok()) return 0;
+  EXPECT_EQ(gpu.pixel_fused.size(), cpu.pixel_fused.size()) << what;
+  if (gpu.pixel_fused.size() != cpu.pixel_fused.size()) return 0;
+  const size_t n = cpu.pixel_fused.size();
+  size_t first = n, count = 0;
+  uint32_t hist[4] = {0, 0, 0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    if (cpu.pixel_fused[i] < 4) ++hist[cpu.pixel_fused[i]];
+    if (std::memcmp(&cpu.pixel_fused[i], &gpu.pixel_fused[i], 4) != 0) {
+      if (first == n) first = i;
+      ++count;
+    }
+  }
+  g_total.compared += n;
+  g_total.mismatches += count;
+  EXPECT_EQ(count, 0u) << "fuse (" << what << "): buffer pixel_fused differs at element " << first
+                       << " (" << count << " of " << n << " differ): CPU "
+                       << (first < n ? ValueText(cpu.pixel_fused[first]) : "") << ", GPU "
+                       << (first < n ? ValueText(gpu.pixel_fused[first]) : "") << "; "
+                       << (first < n ? PixelText(p, in, uint32_t(first)) : "");
+  std::printf(
+      "[fuse] %s: %ux%u pixels (non-ground %u, ground %u, unknown %u, empty %u), occ_rows %u: "
+      "%zu values compared, %zu differ, GPU %.3f ms\n",
+      what.c_str(), p.beams, p.width, hist[0], hist[1], hist[2], hist[3], p.occ_rows, n, count,
+      gpu_ns / 1e6);
+  return n;
+}
+
+// The pipeline's own stage 7 output must be what lpir::Fuse gives (the test re-runs it), and the
+// GPU must match it under the frame's parameters and under other veto settings.
+void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const Frame& f,
+                            const std::string& what) {
+  {
+    Frame again = f;
+    Fuse(p, again);
+    EXPECT_EQ(again.pixel_fused, f.pixel_fused) << what << ": RunReference's pixel_fused";
+  }
+  EXPECT_EQ(ExpectSameFuse(context, p, f, what), size_t(p.width) * p.beams);
+  struct Variant {
+    uint32_t rows;
+    float margin, rise, grade;
+  };
+  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f}, {1, 0.1f, 0.1f, 0.0f},
+                              {3, 0.0f, 0.0f, 0.001f},    {8, -0.5f, -0.05f, 0.01f},
+                              {200, 1.0f, 0.5f, 0.0f}};
+  for (const Variant& var : variants) {
+    Params q = p;
+    q.occ_rows = var.rows;
+    q.occ_margin = var.margin;
+    q.occ_rise = var.rise;
+    q.occ_grade = var.grade;
+    char text[128];
+    std::snprintf(text, sizeof(text), "%s, occ_rows %u margin %g rise %g grade %g", what.c_str(),
+                  var.rows, double(var.margin), double(var.rise), double(var.grade));
+    EXPECT_EQ(ExpectSameFuse(context, q, f, text), size_t(p.width) * p.beams);
+  }
+}
+
+// A random street-like cloud: ground points around -sensor_height with noise, boxes of object
+// points, points sharing pixels, and a few invalid points.
+Cloud RandomCloud(size_t n, float sensor_height, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  Cloud cloud;
+  for (size_t i = 0; i < n; ++i) {
+    const float az = unit(rng) * 6.2831853f, r = 3.0f + 50.0f * unit(rng) * unit(rng);
+    float x = r * std::cos(az), y = r * std::sin(az), z = -sensor_height + 0.05f * unit(rng);
+    switch (rng() % 10) {
+      case 0:
+      case 1:
+      case 2:  // an object: a wall / car / pole standing on the ground
+        z = -sensor_height + 3.0f * unit(rng);
+        break;
+      case 3:  // a slope
+        z += 0.1f * r * unit(rng);
+        break;
+      case 4:
+        if (rng() % 8 == 0) x = 0.0f, y = 0.0f, z = 0.0f;  // invalid
+        break;
+      default:
+        break;
+    }
+    cloud.Push(x, y, z, unit(rng) * 0.9f);
+  }
+  return cloud;
+}
+
+class FuseVk : public test::VkTest {};
+
+TEST_F(FuseVk, RandomCloudsSmallSensor) {
+  const SensorProfile s = test::SmallSensor();
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    const Cloud cloud = RandomCloud(500 + 3000 * seed, s.sensor_height, seed);
+    Frame f;
+    RunReference(cloud, p, t, f);
+    ExpectSameFuseVariants(context(), p, f, "small sensor, random cloud " + std::to_string(seed));
+  }
+}
+
+TEST_F(FuseVk, RandomCloudsHdl64) {
+  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  for (uint32_t seed : {7u, 8u}) {
+    const Cloud cloud = RandomCloud(120000, s.sensor_height, seed);
+    Frame f;
+    RunReference(cloud, p, t, f);
+    ExpectSameFuseVariants(context(), p, f, "hdl64e, random cloud " + std::to_string(seed));
+  }
+}
+
+TEST_F(FuseVk, EmptyCloud) {
+  const SensorProfile s = test::SmallSensor();
+  const Params p = ParamsForSensor(s);
+  Frame f;
+  RunReference(Cloud(), p, MakeTables(s, p), f);
+  EXPECT_EQ(ExpectSameFuse(context(), p, f, "empty cloud"), size_t(p.width) * p.beams);
+}
+
+TEST_F(FuseVk, SimulatedScenesHdl64) {
+  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  const struct {
+    SceneKind kind;
+    uint32_t seed;
+    const char* name;
+  } scenes[] = {{kUrban, 1, "urban 1"},
+                {kUrban, 4, "urban 4"},
+                {kFlatWithObjects, 0, "flat with objects"},
+                {kFlat, 0, "flat"}};
+  for (const auto& sc : scenes) {
+    SimOptions o;
+    o.seed = sc.seed;
+    o.kind = sc.kind;
+    const SimScan scan = Simulate(s, o);
+    Frame f;
+    RunReference(scan.cloud, p, t, f);
+    ExpectSameFuseVariants(context(), p, f, std::string("simulated ") + sc.name);
+  }
+}
+
+void RealScan(const vk::Context& context, const char* file) {
+  const Cloud cloud = ReadKittiBin(test::DataFile(file));
+  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
+  const Params p = ParamsForSensor(s);
+  Frame f;
+  RunReference(cloud, p, MakeTables(s, p), f);
+  ExpectSameFuseVariants(context, p, f, file);
+}
+
+TEST_F(FuseVk, Kitti07Frame964) {
+  LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
+  RealScan(context(), "kitti/07/velodyne/000964.bin");
+}
+
+TEST_F(FuseVk, KittiUnknownFrame56) {
+  LPIR_REQUIRE_DATA("kitti/unknown/velodyne/000056.bin");
+  RealScan(context(), "kitti/unknown/velodyne/000056.bin");
+}
+
+// --- hand-made images ---
+
+// An image of beams x width pixels, every pixel empty; Measure() gives a pixel a point.
+struct Image {
+  Params p = DefaultParams();
+  Frame f;
+  Image(uint32_t width, uint32_t beams) {
+    p.width = width;
+    p.beams = beams;
+    const size_t pixels = size_t(width) * beams;
+    f.pixel_class.assign(pixels, kPixEmpty);
+    f.pixel_point.assign(pixels, kNone);
+    f.pixel_filled.assign(pixels, 0u);
+    f.f_range.assign(pixels, 0.0f);
+    f.f_height.assign(pixels, 0.0f);
+  }
+  uint32_t Pix(uint32_t v, uint32_t u) const { return v * p.width + u; }
+  void Measure(uint32_t v, uint32_t u, uint32_t cls, bool coarse_ground, float range,
+               float height) {
+    const uint32_t pix = Pix(v, u);
+    f.pixel_class[pix] = cls;
+    f.pixel_point[pix] = f.n++;
+    f.coarse.push_back(coarse_ground ? 1u : 0u);
+    f.pixel_filled[pix] = 1u;
+    f.f_range[pix] = range;
+    f.f_height[pix] = height;
+  }
+  void Fill(uint32_t v, uint32_t u, uint32_t cls, float range, float height) {
+    const uint32_t pix = Pix(v, u);
+    f.pixel_class[pix] = cls;
+    f.pixel_filled[pix] = 2u;
+    f.f_range[pix] = range;
+    f.f_height[pix] = height;
+  }
+};
+
+// The reference's bounds of a pixel, each operation rounded (tests build with -ffp-contract=off).
+float Reach(const Params& p, float r) {
+  const float rr = r * r;
+  const float grade = p.occ_grade * rr;
+  const float near = r + p.occ_margin;
+  return near + grade;
+}
+float Top(const Params& p, float z) { return z + p.occ_rise; }
+
+TEST_F(FuseVk, VetoAtItsExactThresholds) {
+  // Every column: a ground pixel at row v (class and coarse ground), one occluder candidate k rows
+  // above; the candidate's range and height sit on the thresholds or one ulp either side.
+  for (uint32_t occ_rows : {1u, 2u, 3u}) {
+    const uint32_t beams = 8, v = 5;
+    Image im(64, beams);
+    im.p.occ_rows = occ_rows;
+    const float ranges[] = {2.5f, 10.0f, 15.0f, 37.3f, 80.0f};
+    uint32_t u = 0;
+    size_t vetoes = 0, spared = 0;
+    std::vector<std::pair<uint32_t, bool>> expect;
+    for (float r : ranges) {
+      const float z = -1.7f + 0.01f * float(u);
+      const float reach = Reach(im.p, r), top = Top(im.p, z);
+      const float below_reach = std::nextafter(reach, 0.0f);
+      const float above_top = std::nextafter(top, 1e9f);
+      const struct {
+        float range, height;
+        bool veto;
+      } cands[] = {{below_reach, above_top, true},
+                   {reach, above_top, false},  // range == reach: not nearer
+                   {below_reach, top, false},  // height == top: not higher
+                   {std::nextafter(reach, 1e9f), above_top, false},
+                   {below_reach, std::nextafter(top, -1e9f), false},
+                   {reach, top, false}};
+      for (const auto& c : cands) {
+        for (uint32_t k = 1; k <= occ_rows + 1 && u < im.p.width; ++k) {
+          im.Measure(v, u, kPixGround, true, r, z);
+          if (k % 2)
+            im.Measure(v - k, u, kPixNonGround, false, c.range, c.height);
+          else
+            im.Fill(v - k, u, kPixUnknown, c.range, c.height);  // hole-filled occluders count too
+          expect.push_back({u, c.veto && k <= occ_rows});
+          ++u;
+        }
+      }
+      // The same values on an empty pixel above (filled 0) never veto.
+      if (u < im.p.width) {
+        im.Measure(v, u, kPixGround, true, r, z);
+        const uint32_t a = im.Pix(v - 1, u);
+        im.f.f_range[a] = below_reach;
+        im.f.f_height[a] = above_top;
+        expect.push_back({u, false});
+        ++u;
+      }
+    }
+    ASSERT_LE(u, im.p.width);
+    Frame cpu = im.f;
+    Fuse(im.p, cpu);
+    for (const auto& [col, veto] : expect) {
+      const uint32_t got = cpu.pixel_fused[im.Pix(v, col)];
+      EXPECT_EQ(got, veto ? kPixNonGround : kPixGround)
+          << "reference, occ_rows " << occ_rows << ", column " << col;
+      vetoes += veto, spared += !veto;
+    }
+    EXPECT_GT(vetoes, 0u);
+    EXPECT_GT(spared, 0u);
+    EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f, "thresholds, occ_rows " +
+                                                        std::to_string(occ_rows)),
+              size_t(im.p.width) * beams);
+  }
+}
+
+TEST_F(FuseVk, TopRowsAndReachBeyondTheImage) {
+  // Ground pixels on every row of a 5-row image under occluders on every row above: rows 0 ..
+  // occ_rows - 1 see fewer rows than occ_rows (row 0 none); occ_rows beyond the image.
+  for (uint32_t occ_rows : {0u, 1u, 2u, 4u, 5u, 9u, 0xFFFFFFFFu}) {
+    Image im(16, 5);
+    im.p.occ_rows = occ_rows;
+    for (uint32_t u = 0; u < 16; ++u)
+      for (uint32_t v = 0; v < 5; ++v) {
+        // Column u: the occluder row (higher, nearer) is row u % 5; every other pixel is ground.
+        if (v == u % 5)
+          im.Measure(v, u, kPixNonGround, false, 5.0f, 1.0f);
+        else
+          im.Measure(v, u, (u & 8) ? kPixUnknown : kPixGround, true, 20.0f, -1.7f);
+      }
+    EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f, "top rows, occ_rows " +
+                                                        std::to_string(occ_rows)),
+              16u * 5u);
+  }
+}
+
+TEST_F(FuseVk, RandomImagesEveryClassAndOpinion) {
+  // Classes 0-3, points with either coarse bit, hole-filled and empty pixels, ranges and heights
+  // from a few values so that equality with reach and top happens, and unusual class values.
+  std::mt19937 rng(42);
+  for (uint32_t trial = 0; trial < 12; ++trial) {
+    const uint32_t width = 1 + rng() % 700, beams = 1 + rng() % 70;
+    Image im(width, beams);
+    im.p.occ_rows = rng() % 6;
+    im.p.occ_margin = (rng() % 2) ? 0.0f : 0.3f;
+    im.p.occ_rise = (rng() % 2) ? 0.0f : 0.075f;
+    im.p.occ_grade = (rng() % 2) ? 0.0f : 0.0002f;
+    const float values[] = {0.0f, 2.5f, 2.8f, 2.575f, 10.0f, 10.3f, 10.32f, -1.7f, -1.625f, 1.0f};
+    for (uint32_t v = 0; v < beams; ++v)
+      for (uint32_t u = 0; u < width; ++u) {
+        const uint32_t kind = rng() % 8;
+        const float r = values[rng() % 10], z = values[rng() % 10];
+        if (kind < 5) {
+          im.Measure(v, u, rng() % 4, rng() % 2, r, z);
+        } else if (kind < 7) {
+          im.Fill(v, u, rng() % 4, r, z);
+        } else {  // empty, with leftover features
+          im.f.f_range[im.Pix(v, u)] = r;
+          im.f.f_height[im.Pix(v, u)] = z;
+          if (rng() % 4 == 0) im.f.pixel_class[im.Pix(v, u)] = 7;  // a class the rule never sees
+        }
+      }
+    EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f, "random image " + std::to_string(trial)),
+              size_t(width) * beams);
+  }
+}
+
+class TotalPrinter : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::printf("[fuse] total: %llu values compared, %llu mismatches\n",
+                static_cast<unsigned long long>(g_total.compared),
+                static_cast<unsigned long long>(g_total.mismatches));
+  }
+};
+::testing::Environment* const kTotal = ::testing::AddGlobalTestEnvironment(new TotalPrinter);
+
+}  // namespace
+}  // namespace lpir
