@@ -1,0 +1,62 @@
+// Stage 5, feature maps, on Vulkan: shaders/feature_maps.comp behind the generic dispatcher.
+// FeatureMapsStage is the per-frame piece (bound once to the frame's buffers, recorded every
+// frame: measure and fill, a barrier, slope, edges and variances); RunFeatureMaps is the one-shot
+// twin of lpir::FeatureMaps for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/feature_maps.comp: per-point buffers of at least n elements, per-pixel
+// buffers of at least width * beams elements.
+struct FeatureMapsBuffers {
+  const Buffer* params = nullptr;       // one Params (uniform): width, beams, hole_gap
+  const Buffer* pixel_point = nullptr;  // uint32 winning point per pixel, kNone empty (stage 4)
+  const Buffer* r2 = nullptr;           // float squared planar range per point (stage 1)
+  const Buffer* zt = nullptr;           // float corrected height per point (stage 1)
+  const Buffer* inten = nullptr;        // float intensity per point (stage 1)
+  const Buffer* pixel_filled = nullptr;  // out: uint32 0 empty, 1 measured, 2 filled
+  const Buffer* f_range = nullptr;       // out: floats per pixel
+  const Buffer* f_inten = nullptr;
+  const Buffer* f_height = nullptr;
+  const Buffer* f_slope = nullptr;
+  const Buffer* f_edge_l = nullptr;
+  const Buffer* f_edge_r = nullptr;
+  const Buffer* f_varz = nullptr;
+  const Buffer* f_vari = nullptr;
+};
+
+class FeatureMapsStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+
+  static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
+
+  // Records the measure-and-fill pass over `pixels` pixels, a compute -> compute barrier and the
+  // features pass (no barrier before or after: the caller orders it with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+
+ private:
+  explicit FeatureMapsStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// Stage 5 on the GPU, the twin of lpir::FeatureMaps(p, f): reads f.n, f.r2, f.zt, f.inten and
+// f.pixel_point (width * beams), allocates device-local buffers, uploads, runs, and fills
+// f.pixel_filled, f.f_range, f.f_inten, f.f_height, f.f_slope, f.f_edge_l, f.f_edge_r, f.f_varz
+// and f.f_vari (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of both
+// passes in nanoseconds (-1 without timestamps on the queue).
+Status RunFeatureMaps(const Context& context, const Params& p, Frame& f,
+                      double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

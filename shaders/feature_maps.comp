@@ -1,0 +1,167 @@
+// Stage 5, feature maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
+// reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the push
+// constant `pass`, with a compute -> compute barrier between them; one invocation per pixel
+// < pixels (push constant), pixel = v * width + u.
+// In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
+//     2 r2, 3 zt, 4 inten (floats per point).
+// Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (written
+//     by pass 0, read by pass 1), 9 f_slope, 10 f_edge_l, 11 f_edge_r, 12 f_varz, 13 f_vari.
+// Pass 0, measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height z_t of
+//   its winning point; an empty pixel whose left and right neighbours (columns wrap) are measured
+//   and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The neighbours'
+//   values are recomputed from pixel_point and the per-point buffers (read-only), so no
+//   invocation reads what another one writes in this pass.
+// Pass 1, on measured and filled pixels (0 everywhere else): slope = Div(|z(v+1) - z|,
+//   |r(v+1) - r|), -1 when the pixel below is empty (or absent) or the ranges are equal; edge_l =
+//   |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when that neighbour is empty); var_z, var_i over the
+//   3x3 window (rows clipped, columns wrapping) from the int64 moments n, sum q, sum q^2 of the
+//   quantised values q = ToFixed(value, 1e4) (the nine neighbours' integers summed directly: the
+//   CPU's shared row sums give the same integers), var = Div(I64ToFloat(n * sum q^2 - (sum q)^2),
+//   float(n * n)) * 1e-8.
+// Comparisons on the bits (as IEEE does them: -0 == +0, false with a NaN), every float operation
+// precise (no contraction), division, square root and int64 -> float by exact.glsl.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "common/params.h"
+#include "common/exact.glsl"
+
+layout(local_size_x_id = 0) in;
+
+layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
+layout(std430, set = 0, binding = 1) readonly buffer PixelPoint { uint pixel_point[]; };
+layout(std430, set = 0, binding = 2) readonly buffer R2 { float r2[]; };
+layout(std430, set = 0, binding = 3) readonly buffer Zt { float zt[]; };
+layout(std430, set = 0, binding = 4) readonly buffer Inten { float inten[]; };
+layout(std430, set = 0, binding = 5) buffer Filled { uint pixel_filled[]; };
+layout(std430, set = 0, binding = 6) buffer Range { float f_range[]; };
+layout(std430, set = 0, binding = 7) buffer InMap { float f_inten[]; };
+layout(std430, set = 0, binding = 8) buffer Height { float f_height[]; };
+layout(std430, set = 0, binding = 9) writeonly buffer Slope { float f_slope[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer EdgeL { float f_edge_l[]; };
+layout(std430, set = 0, binding = 11) writeonly buffer EdgeR { float f_edge_r[]; };
+layout(std430, set = 0, binding = 12) writeonly buffer VarZ { float f_varz[]; };
+layout(std430, set = 0, binding = 13) writeonly buffer VarI { float f_vari[]; };
+
+layout(push_constant) uniform Push {
+  uint pixels;
+  uint pass;  // 0 measure and fill, 1 slope, edges and variances
+} pc;
+
+const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
+
+// reference_cpu/feature_maps.cpp: kHeightScale, kIntensityScale (10000), kHeightQuantum2,
+// kIntensityQuantum2 (1e-8f), by their bits so that no literal parsing can differ.
+#define kScale uintBitsToFloat(0x461C4000u)     // 10000.0f
+#define kQuantum2 uintBitsToFloat(0x322BCC77u)  // 1e-8f
+
+// a <= b as IEEE compares them, on bits (-0 == +0, false when either is NaN).
+bool IsNan(float f) { return (floatBitsToUint(f) & 0x7FFFFFFFu) > 0x7F800000u; }
+uint OrderKey(float f) {
+  uint u = floatBitsToUint(f);
+  return exact_Key(uintBitsToFloat((u & 0x7FFFFFFFu) == 0u ? 0u : u));
+}
+bool LessEq(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) <= OrderKey(b); }
+// |x| > 0 as IEEE compares it: non-zero magnitude (subnormals included) and not NaN.
+bool AbsPositive(float x) {
+  uint m = floatBitsToUint(x) & 0x7FFFFFFFu;
+  return m != 0u && m <= 0x7F800000u;
+}
+
+void MeasureAndFill(uint pix) {
+  uint w = p.width;
+  uint v = pix / w, u = pix - v * w;
+  uint i = pixel_point[pix];
+  if (i != kNone) {
+    pixel_filled[pix] = 1u;
+    f_range[pix] = exact_Sqrt(r2[i]);
+    f_inten[pix] = inten[i];
+    f_height[pix] = zt[i];
+    return;
+  }
+  uint row = v * w;
+  uint il = pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
+  uint ir = pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
+  uint filled = 0u;
+  precise float range = 0.0, in_map = 0.0, height = 0.0;
+  if (il != kNone && ir != kNone) {
+    float rl = exact_Sqrt(r2[il]), rr = exact_Sqrt(r2[ir]);
+    precise float gap = abs(rl - rr);
+    if (LessEq(gap, p.hole_gap)) {
+      filled = 2u;
+      range = (rl + rr) * 0.5;
+      in_map = (inten[il] + inten[ir]) * 0.5;
+      height = (zt[il] + zt[ir]) * 0.5;
+    }
+  }
+  pixel_filled[pix] = filled;
+  f_range[pix] = range;
+  f_inten[pix] = in_map;
+  f_height[pix] = height;
+}
+
+void Features(uint pix) {
+  uint w = p.width, h = p.beams;
+  uint v = pix / w, u = pix - v * w;
+  if (pixel_filled[pix] == 0u) {
+    f_slope[pix] = 0.0;
+    f_edge_l[pix] = 0.0;
+    f_edge_r[pix] = 0.0;
+    f_varz[pix] = 0.0;
+    f_vari[pix] = 0.0;
+    return;
+  }
+  uint ul = u == 0u ? w - 1u : u - 1u, ur = u + 1u == w ? 0u : u + 1u;
+  uint row = v * w;
+  float z = f_height[pix], r = f_range[pix];
+
+  // Slope toward the next row down.
+  float slope = -1.0;
+  if (v + 1u < h) {
+    uint below = pix + w;
+    if (pixel_filled[below] != 0u) {
+      precise float dz = abs(f_height[below] - z);
+      precise float dr = abs(f_range[below] - r);
+      if (AbsPositive(dr)) slope = exact_Div(dz, dr);
+    }
+  }
+  f_slope[pix] = slope;
+
+  // Edges, columns wrapping.
+  precise float el = 0.0, er = 0.0;
+  if (pixel_filled[row + ul] != 0u) el = abs(z - f_height[row + ul]);
+  if (pixel_filled[row + ur] != 0u) er = abs(f_height[row + ur] - z);
+  f_edge_l[pix] = el;
+  f_edge_r[pix] = er;
+
+  // 3x3 moments of the quantised values (empty pixels hold 0, which quantises to 0).
+  int64_t n = 0, sz = 0, szz = 0, si = 0, sii = 0;
+  uint cols[3] = uint[3](ul, u, ur);
+  for (int dv = -1; dv <= 1; ++dv) {
+    int vv = int(v) + dv;
+    if (vv < 0 || vv >= int(h)) continue;
+    uint o = uint(vv) * w;
+    for (int k = 0; k < 3; ++k) {
+      uint q = o + cols[k];
+      if (pixel_filled[q] != 0u) n += int64_t(1);
+      int64_t qz = exact_ToFixed(f_height[q], kScale);
+      int64_t qi = exact_ToFixed(f_inten[q], kScale);
+      sz += qz;
+      szz += qz * qz;
+      si += qi;
+      sii += qi * qi;
+    }
+  }
+  float den = float(int(n * n));  // <= 81: exact
+  precise float varz = exact_Div(exact_I64ToFloat(n * szz - sz * sz), den) * kQuantum2;
+  precise float vari = exact_Div(exact_I64ToFloat(n * sii - si * si), den) * kQuantum2;
+  f_varz[pix] = varz;
+  f_vari[pix] = vari;
+}
+
+void main() {
+  uint pix = gl_GlobalInvocationID.x;
+  if (pix >= pc.pixels) return;
+  if (pc.pass == 0u) MeasureAndFill(pix);
+  else Features(pix);
+}
