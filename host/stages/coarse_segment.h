@@ -1,0 +1,67 @@
+// Stage 4, coarse segment, on Vulkan: shaders/coarse_segment.comp behind the generic dispatcher.
+// CoarseSegmentStage is the per-frame piece (bound once to the frame's buffers, recorded every
+// frame: six passes with a compute -> compute barrier between each two); RunCoarseSegment is the
+// one-shot twin of lpir::CoarseSegment for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/cloud.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/coarse_segment.comp: per-point buffers of at least n elements, per-cell
+// buffers of at least CellCount(p) elements (any buffer when there are no points).
+struct CoarseSegmentBuffers {
+  const Buffer* params = nullptr;          // one Params (uniform)
+  const Buffer* xyzi = nullptr;            // float x, y, z, intensity per point (the cloud)
+  const Buffer* zt = nullptr;              // float corrected height (stage 1)
+  const Buffer* point_cell = nullptr;      // uint32 cell per point, kNone without one (stage 3)
+  const Buffer* cell_zmin = nullptr;       // uint32 ordered key of min z_t (stage 3)
+  const Buffer* cell_zmax = nullptr;       // uint32 ordered key of max z_t (stage 3)
+  const Buffer* cell_count = nullptr;      // uint32 points per cell (stage 3)
+  const Buffer* ring_inner = nullptr;      // Tables::ring_inner, rings_near + rings_far floats
+  const Buffer* cell_seed_mode = nullptr;  // out: uint32 per cell, 0 / 1 / 2
+  const Buffer* cell_plane = nullptr;      // out: int32, 8 per cell
+  const Buffer* coarse = nullptr;          // out: uint32 per point, 1 ground
+  const Buffer* scratch = nullptr;         // ScratchBytes(cells): per-cell sums, the stage's own
+};
+
+class CoarseSegmentStage {
+ public:
+  static constexpr uint32_t kLocalSize = 64;
+  static constexpr uint32_t kScratchWords = 24;  // per cell, shaders/coarse_segment.comp
+
+  static VkDeviceSize ScratchBytes(uint32_t cells) {
+    return 4 * VkDeviceSize(kScratchWords) * cells;
+  }
+
+  static Result<CoarseSegmentStage> Create(const Device& device,
+                                           const CoarseSegmentBuffers& buffers);
+
+  // Records the six passes over `cells` cells and n points with a compute -> compute barrier
+  // between each two (none before or after: the caller orders it with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+
+ private:
+  explicit CoarseSegmentStage(Kernel kernel) : kernel_(std::move(kernel)) {}
+
+  Kernel kernel_;
+};
+
+// Stage 4 on the GPU, the twin of lpir::CoarseSegment(cloud, p, t, f): reads cloud.xyzi, f.n,
+// f.zt, f.point_cell, f.cell_zmin, f.cell_zmax, f.cell_count and t.ring_inner, allocates
+// device-local buffers, uploads, runs, and fills f.cell_seed_mode, f.cell_plane and f.coarse
+// (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of the six passes in
+// nanoseconds (-1 without timestamps). Waits for the GPU.
+Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params& p,
+                        const Tables& t, Frame& f, double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk

@@ -1,0 +1,350 @@
+// Stage 4, coarse segment (paper eqs. 5-7): the GPU twin of reference_cpu/coarse_segment.cpp,
+// same bytes (cell_seed_mode, cell_plane, coarse). Six passes of this one shader, chosen by the
+// push constant `pass`, with a compute -> compute barrier between each two
+// (CoarseSegmentStage::Record records them all):
+//   pass 0, one invocation per cell: seed mode (eq. 5: lambda, the 3x3 neighbour minimum, the
+//     rise and slope-prior rules, the whole-cell rule), cell_seed_mode, cell_plane zeroed, the
+//     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
+//     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds).
+//   pass 1, one invocation per point: seed iff z_t - h <= lambda (one rounded float op, the CPU's
+//     test; mode 2 decided on z_t's bits with the same outcome, no infinity arithmetic); a seed adds n, x, y, z and the six products to its cell's sums.
+//   pass 2, one invocation per cell: mean (DivToZero), centred moments, PlaneNormal, the plane
+//     (cell_plane[0..5, 7]), cell_plane[6] = -1 when the normal is too steep.
+//   pass 3, one invocation per point: |n . q - n . mean| of the seeds of ground cells, summed per
+//     cell.
+//   pass 4, one invocation per cell: threshold max(floor, scale * mean seed distance) into
+//     cell_plane[6] of the ground cells.
+//   pass 5, one invocation per point: coarse = the point's cell is a ground cell and its
+//     |distance| <= threshold.
+// In: binding 0 Params (uniform), 1 xyzi (4 floats per point), 2 zt, 3 point_cell (per point),
+//     4 cell_zmin, 5 cell_zmax (ordered keys), 6 cell_count (per cell), 7 ring_inner (per ring).
+// Out: 8 cell_seed_mode, 9 cell_plane (8 ints per cell), 10 coarse (per point).
+// Scratch: 11 cell_scratch, kScratch uints per cell (written by pass 0 before any read).
+//
+// Exactness. Coordinates: int(exact_ToFixed(v, 1000)) (the CPU's int32 of ToFixed). Sums: every
+// per-cell sum is an integer modulo 2^64 (the CPU keeps the products' sums in uint64, the others
+// in int64 far from overflow), so addition order cannot matter. Without 64-bit atomics each sum is
+// two uint words (lo, hi): atomicAdd of the low 32 bits returns the old low word, the carry out of
+// that addition is (old + lo < old), and hi + carry goes to the high word by a second atomicAdd.
+// Every carry is counted exactly once, so (hi, lo) is the sum modulo 2^64 whatever the order.
+// Centred moments from the raw sums as the CPU computes them (s_ab - m_a s_b - m_b s_a +
+// n m_a m_b modulo 2^64), which is the exact int64 sum of (a - m_a)(b - m_b). The normal: the
+// CPU's PlaneNormal op for op, every float `precise` (no contraction), int64 -> float only for
+// magnitudes below 2^24 (exact), power-of-two rescaling by exponent bits, exact_Isqrt.
+// Nothing here divides floats or takes a float square root.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "common/params.h"
+#include "common/exact.glsl"
+
+layout(local_size_x_id = 0) in;
+
+layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
+layout(std430, set = 0, binding = 1) readonly buffer Xyzi { float xyzi[]; };
+layout(std430, set = 0, binding = 2) readonly buffer Zt { float zt[]; };
+layout(std430, set = 0, binding = 3) readonly buffer PointCell { uint point_cell[]; };
+layout(std430, set = 0, binding = 4) readonly buffer CellZmin { uint cell_zmin[]; };
+layout(std430, set = 0, binding = 5) readonly buffer CellZmax { uint cell_zmax[]; };
+layout(std430, set = 0, binding = 6) readonly buffer CellCount { uint cell_count[]; };
+layout(std430, set = 0, binding = 7) readonly buffer RingInner { float ring_inner[]; };
+layout(std430, set = 0, binding = 8) buffer CellSeedMode { uint cell_seed_mode[]; };
+layout(std430, set = 0, binding = 9) buffer CellPlane { int cell_plane[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer Coarse { uint coarse[]; };
+layout(std430, set = 0, binding = 11) buffer CellScratch { uint scratch[]; };
+
+layout(push_constant) uniform Push {
+  uint count;  // cells (passes 0, 2, 4) or points (passes 1, 3, 5)
+  uint pass;
+} pc;
+
+const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
+const int64_t kQ = int64_t(16384);  // Q14 unit normal
+const int kMinPlaneSeeds = 16;
+const float kMm = 1000.0;
+const float kMinPlanarity = 1e-3;
+
+// Scratch layout per cell (uints): 10 sums of two words (lo, hi): n, x, y, z, xx, xy, xz, yy,
+// yz, zz; then the seed distance sum (two words); then the seed test h and lambda (float bits).
+const uint kScratch = 24u;
+const uint kSumDist = 10u;
+const uint kTestH = 22u;
+const uint kTestLambda = 23u;
+
+uint Base(uint cell) { return cell * kScratch; }
+
+void AtomicAdd64(uint word, uint64_t v) {
+  uint lo = uint(v), hi = uint(v >> 32);
+  uint old = atomicAdd(scratch[word], lo);
+  uint carry = (old + lo < old) ? 1u : 0u;
+  hi += carry;
+  if (hi != 0u) atomicAdd(scratch[word + 1u], hi);
+}
+uint64_t Sum(uint cell, uint k) {
+  uint w = Base(cell) + 2u * k;
+  return (uint64_t(scratch[w + 1u]) << 32) | uint64_t(scratch[w]);
+}
+
+// ---- pass 0: seed mode -----------------------------------------------------------------------
+
+uint CellIndex(uint ring, uint sector) {
+  return ring < p.rings_near ? ring * p.sectors_near + sector
+                             : p.rings_near * p.sectors_near +
+                                   (ring - p.rings_near) * p.sectors_far + sector;
+}
+
+void SeedMode(uint c) {
+  for (uint k = 0u; k < 8u; ++k) cell_plane[8u * c + k] = 0;
+  for (uint k = 0u; k < 22u; ++k) scratch[Base(c) + k] = 0u;
+  float inf = uintBitsToFloat(0x7F800000u);
+  uint mode = 0u;
+  float h = -inf, lam_out = 0.0;
+  if (cell_count[c] != 0u) {
+    uint near_cells = p.rings_near * p.sectors_near;
+    uint ring, sector, sectors;
+    if (c < near_cells) {
+      ring = c / p.sectors_near;
+      sector = c % p.sectors_near;
+      sectors = p.sectors_near;
+    } else {
+      uint d = c - near_cells;
+      ring = p.rings_near + d / p.sectors_far;
+      sector = d % p.sectors_far;
+      sectors = p.sectors_far;
+    }
+    // NeighbourMin: the lowest h_min key of the non-empty 3x3 neighbours (not the cell itself).
+    uint rings = p.rings_near + p.rings_far;
+    uint best = kNone;
+    for (int dr = -1; dr <= 1; ++dr) {
+      int r = int(ring) + dr;
+      if (r < 0 || r >= int(rings)) continue;
+      uint rs = uint(r) < p.rings_near ? p.sectors_near : p.sectors_far;
+      uint centre = uint(uint64_t(sector) * uint64_t(rs) / uint64_t(sectors));
+      for (int ds = -1; ds <= 1; ++ds) {
+        uint s = uint((int64_t(centre) + int64_t(ds) + int64_t(rs)) % int64_t(rs));
+        uint other = CellIndex(uint(r), s);
+        if (other == c || cell_count[other] == 0u) continue;
+        best = min(best, cell_zmin[other]);
+      }
+    }
+    precise float lam = (c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max;
+    lam = lam + p.seed_margin;
+    float hmin = exact_FromKey(cell_zmin[c]), hmax = exact_FromKey(cell_zmax[c]);
+    float hnmin = best == kNone ? hmin : exact_FromKey(best);
+    precise float rise = hmin - hnmin;
+    precise float base = -p.sensor_height + p.ground_max_above;
+    precise float slope_r = p.slope_max * ring_inner[ring];
+    precise float prior = base + slope_r;
+    precise float rise_lim = lam + p.rise_margin;
+    if (!(rise > rise_lim || hmin > prior)) {
+      precise float spread = hmax - hnmin;
+      mode = spread <= p.h_athr ? 2u : 1u;
+      if (mode == 2u) {
+        h = inf;
+        lam_out = 0.0;
+      } else {
+        h = hmin;
+        lam_out = lam;
+      }
+    }
+  }
+  cell_seed_mode[c] = mode;
+  scratch[Base(c) + kTestH] = floatBitsToUint(h);
+  scratch[Base(c) + kTestLambda] = floatBitsToUint(lam_out);
+}
+
+// ---- per-point helpers -----------------------------------------------------------------------
+
+// The CPU's seed test for point i of cell c (mode 0: never).
+// Mode 2 (CPU: z_t - +inf <= 0) by bits, so nothing depends on the device's infinities: a seed
+// unless z_t is +inf or NaN.
+bool IsSeed(uint i, uint c) {
+  uint mode = cell_seed_mode[c];
+  if (mode == 0u) return false;
+  if (mode == 2u) {
+    uint u = floatBitsToUint(zt[i]);
+    return u != 0x7F800000u && (u & 0x7FFFFFFFu) <= 0x7F800000u;
+  }
+  float h = uintBitsToFloat(scratch[Base(c) + kTestH]);
+  float lam = uintBitsToFloat(scratch[Base(c) + kTestLambda]);
+  precise float dz = zt[i] - h;
+  return dz <= lam;
+}
+
+ivec3 Mm(uint i) {
+  return ivec3(int(exact_ToFixed(xyzi[4u * i], kMm)), int(exact_ToFixed(xyzi[4u * i + 1u], kMm)),
+               int(exact_ToFixed(zt[i], kMm)));
+}
+
+// ---- pass 2: the plane -----------------------------------------------------------------------
+
+int64_t Centred(uint64_t sab, int64_t sa, int64_t sb, int64_t ma, int64_t mb, int64_t n) {
+  uint64_t r = sab - uint64_t(ma) * uint64_t(sb) - uint64_t(mb) * uint64_t(sa) +
+               uint64_t(n) * uint64_t(ma) * uint64_t(mb);
+  return int64_t(r);
+}
+
+// reference_cpu PlaneNormal, op for op.
+bool PlaneNormal(int64_t m[6], out int64_t n[3]) {
+  n[0] = int64_t(0);
+  n[1] = int64_t(0);
+  n[2] = kQ;
+  int64_t maxabs = int64_t(0);
+  for (int k = 0; k < 6; ++k) maxabs = max(maxabs, m[k] < int64_t(0) ? -m[k] : m[k]);
+  int shift = 0;
+  while ((maxabs >> shift) >= (int64_t(1) << 24)) ++shift;
+  float c[6];
+  for (int k = 0; k < 6; ++k) {
+    uint64_t mag =
+        (m[k] < int64_t(0) ? uint64_t(0) - uint64_t(m[k]) : uint64_t(m[k])) >> uint64_t(shift);
+    c[k] = exact_I64ToFloat(m[k] < int64_t(0) ? -int64_t(mag) : int64_t(mag));
+  }
+  float c00 = c[0], c01 = c[1], c02 = c[2], c11 = c[3], c12 = c[4], c22 = c[5];
+  precise float t0, t1;
+  t0 = c11 * c22; t1 = c12 * c12; precise float a00 = t0 - t1;
+  t0 = c02 * c12; t1 = c01 * c22; precise float a01 = t0 - t1;
+  t0 = c01 * c12; t1 = c02 * c11; precise float a02 = t0 - t1;
+  t0 = c00 * c22; t1 = c02 * c02; precise float a11 = t0 - t1;
+  t0 = c01 * c02; t1 = c00 * c12; precise float a12 = t0 - t1;
+  t0 = c00 * c11; t1 = c01 * c01; precise float a22 = t0 - t1;
+  float a[3][3] = float[3][3](float[3](a00, a01, a02), float[3](a01, a11, a12),
+                              float[3](a02, a12, a22));
+  precise float trace = c00 + c11;
+  trace = trace + c22;
+  precise float trace2 = trace * trace;
+  precise float adj_trace = a00 + a11;
+  adj_trace = adj_trace + a22;
+  precise float min_adj = trace2 * kMinPlanarity;
+  if (!(adj_trace >= min_adj)) return false;
+  int col = 0;
+  if (a11 > a[col][col]) col = 1;
+  if (a22 > a[col][col]) col = 2;
+  precise float v[3] = float[3](a[0][col], a[1][col], a[2][col]);
+  for (int step = 0; step < 3; ++step) {
+    float ax = abs(v[0]), ay = abs(v[1]), az = abs(v[2]);
+    float mxy = ax < ay ? ay : ax;  // std::max(a, b): a < b ? b : a
+    float mx = mxy < az ? az : mxy;
+    if (!(mx > 0.0)) return false;
+    float scale = exact_Pow2(-exact_Exponent(mx));
+    for (int k = 0; k < 3; ++k) v[k] = v[k] * scale;
+    if (step == 2) break;
+    precise float w[3];
+    for (int r = 0; r < 3; ++r) {
+      precise float s = a[r][0] * v[0];
+      s = s + a[r][1] * v[1];
+      s = s + a[r][2] * v[2];
+      w[r] = s;
+    }
+    v[0] = w[0];
+    v[1] = w[1];
+    v[2] = w[2];
+  }
+  if (v[2] < 0.0) {
+    v[0] = -v[0];
+    v[1] = -v[1];
+    v[2] = -v[2];
+  }
+  int64_t q[3];
+  uint64_t len2 = uint64_t(0);
+  for (int k = 0; k < 3; ++k) {
+    q[k] = exact_ToFixed(v[k], 1048576.0);  // 2^20
+    len2 += uint64_t(q[k] * q[k]);
+  }
+  int64_t len = int64_t(exact_Isqrt(len2));
+  if (len == int64_t(0)) return false;
+  for (int k = 0; k < 3; ++k) n[k] = exact_DivToZero(q[k] * kQ, len);
+  return true;
+}
+
+int64_t MinZ2() { return exact_ToFixed(p.normal_min_z2, 268435456.0); }  // kQ * kQ
+
+void FitPlane(uint c) {
+  if (cell_seed_mode[c] == 0u) return;
+  int64_t n = int64_t(Sum(c, 0u));
+  if (n == int64_t(0)) return;
+  int64_t sx = int64_t(Sum(c, 1u)), sy = int64_t(Sum(c, 2u)), sz = int64_t(Sum(c, 3u));
+  int64_t mx = exact_DivToZero(sx, n), my = exact_DivToZero(sy, n), mz = exact_DivToZero(sz, n);
+  int64_t mom[6] = int64_t[6](
+      Centred(Sum(c, 4u), sx, sx, mx, mx, n), Centred(Sum(c, 5u), sx, sy, mx, my, n),
+      Centred(Sum(c, 6u), sx, sz, mx, mz, n), Centred(Sum(c, 7u), sy, sy, my, my, n),
+      Centred(Sum(c, 8u), sy, sz, my, mz, n), Centred(Sum(c, 9u), sz, sz, mz, mz, n));
+  int count = int(n);
+  int64_t nq[3];
+  if (count < kMinPlaneSeeds || !PlaneNormal(mom, nq)) {
+    nq[0] = int64_t(0);
+    nq[1] = int64_t(0);
+    nq[2] = kQ;
+  }
+  uint b = 8u * c;
+  cell_plane[b + 0u] = int(nq[0]);
+  cell_plane[b + 1u] = int(nq[1]);
+  cell_plane[b + 2u] = int(nq[2]);
+  cell_plane[b + 3u] = int(mx);
+  cell_plane[b + 4u] = int(my);
+  cell_plane[b + 5u] = int(mz);
+  cell_plane[b + 7u] = count;
+  int64_t z = int64_t(int(nq[2]));
+  if (z * z < MinZ2()) cell_plane[b + 6u] = -1;
+}
+
+// A cell whose plane may hold ground (after pass 2): seeds, and a normal not too steep.
+bool Ground(uint c) {
+  if (cell_seed_mode[c] == 0u || cell_plane[8u * c + 7u] == 0) return false;
+  int64_t z = int64_t(cell_plane[8u * c + 2u]);
+  return z * z >= MinZ2();
+}
+
+// |n . q - n . mean| in mm * 2^14 (int64).
+int64_t Distance(uint i, uint c) {
+  uint b = 8u * c;
+  int64_t nx = int64_t(cell_plane[b]), ny = int64_t(cell_plane[b + 1u]),
+          nz = int64_t(cell_plane[b + 2u]);
+  int64_t offset = nx * int64_t(cell_plane[b + 3u]) + ny * int64_t(cell_plane[b + 4u]) +
+                   nz * int64_t(cell_plane[b + 5u]);
+  ivec3 q = Mm(i);
+  int64_t d = nx * int64_t(q.x) + ny * int64_t(q.y) + nz * int64_t(q.z) - offset;
+  return d < int64_t(0) ? -d : d;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  if (pc.pass == 0u) {
+    SeedMode(i);
+  } else if (pc.pass == 1u) {
+    uint c = point_cell[i];
+    if (c == kNone || !IsSeed(i, c)) return;
+    ivec3 q = Mm(i);
+    int64_t x = int64_t(q.x), y = int64_t(q.y), z = int64_t(q.z);
+    uint b = Base(c);
+    atomicAdd(scratch[b], 1u);  // n < 2^32: its high word stays 0
+    AtomicAdd64(b + 2u, uint64_t(x));
+    AtomicAdd64(b + 4u, uint64_t(y));
+    AtomicAdd64(b + 6u, uint64_t(z));
+    AtomicAdd64(b + 8u, uint64_t(x * x));
+    AtomicAdd64(b + 10u, uint64_t(x * y));
+    AtomicAdd64(b + 12u, uint64_t(x * z));
+    AtomicAdd64(b + 14u, uint64_t(y * y));
+    AtomicAdd64(b + 16u, uint64_t(y * z));
+    AtomicAdd64(b + 18u, uint64_t(z * z));
+  } else if (pc.pass == 2u) {
+    FitPlane(i);
+  } else if (pc.pass == 3u) {
+    uint c = point_cell[i];
+    if (c == kNone || !Ground(c) || !IsSeed(i, c)) return;
+    AtomicAdd64(Base(c) + 2u * kSumDist, uint64_t(Distance(i, c)));
+  } else if (pc.pass == 4u) {
+    if (!Ground(i)) return;
+    int64_t floor_q = exact_ToFixed(p.plane_dist_floor, 16384000.0);  // metres -> mm * 2^14
+    int64_t scale_q = exact_ToFixed(p.plane_dist_scale, 256.0);
+    int64_t mean_scaled = exact_DivToZero(scale_q * int64_t(Sum(i, kSumDist)),
+                                          int64_t(256) * int64_t(cell_plane[8u * i + 7u]));
+    cell_plane[8u * i + 6u] = int(min(max(floor_q, mean_scaled), int64_t(0x7FFFFFFF)));
+  } else {
+    uint c = point_cell[i];
+    uint label = 0u;
+    if (c != kNone && Ground(c))
+      label = Distance(i, c) <= int64_t(cell_plane[8u * c + 6u]) ? 1u : 0u;
+    coarse[i] = label;
+  }
+}

@@ -1,0 +1,394 @@
+// Stage 4, coarse segment, on Vulkan (shaders/coarse_segment.comp) against the CPU reference
+// (reference_cpu/coarse_segment.cpp): cell_seed_mode, cell_plane and coarse byte for byte.
+// Inputs: the reference's stages 1-3 (RunReference) on random clouds (flat and sloped ground with
+// noise, objects, walls, dense clusters), the simulated street with an HDL-64E profile, both real
+// KITTI scans when ../shared/data is present, and hand-made stage 1-3 buffers for the degenerate
+// cases of tests/coarse_segment_test.cpp (collinear seeds, fewer than 16 seeds, walls, raised
+// cells, cells above the slope prior, a sloped line of seeds).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "host/io/kitti_bin.h"
+#include "host/io/sensor_profile.h"
+#include "host/stages/coarse_segment.h"
+#include "reference_cpu/exact.h"
+#include "reference_cpu/pipeline.h"
+#include "reference_cpu/stages.h"
+#include "tests/stage_test_util.h"
+#include "tests/test_util.h"
+#include "tests/vk_test_util.h"
+
+namespace lpir {
+namespace {
+
+std::string FloatText(float f) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.9g (0x%08x)", double(f), exact::Bits(f));
+  return text;
+}
+std::string ValueText(uint32_t u) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%u = %d (0x%08x)", u, int32_t(u), u);
+  return text;
+}
+
+std::string CellText(const Params& p, const Frame& f, size_t c) {
+  const size_t near = size_t(p.rings_near) * p.sectors_near;
+  std::string s = c < near ? "cell " + std::to_string(c) + " (ring " +
+                                 std::to_string(c / p.sectors_near) + ", sector " +
+                                 std::to_string(c % p.sectors_near) + ")"
+                           : "cell " + std::to_string(c) + " (ring " +
+                                 std::to_string(p.rings_near + (c - near) / p.sectors_far) +
+                                 ", sector " + std::to_string((c - near) % p.sectors_far) + ")";
+  if (c < f.cell_count.size())
+    s += ": count " + std::to_string(f.cell_count[c]) + ", zmin " +
+         FloatText(exact::FromKey(f.cell_zmin[c])) + ", zmax " +
+         FloatText(exact::FromKey(f.cell_zmax[c]));
+  return s;
+}
+
+std::string PointText(const Params& p, const Frame& f, const Cloud& cloud, size_t i) {
+  std::string s = "point " + std::to_string(i) + ": x " + FloatText(cloud.x(i)) + ", y " +
+                  FloatText(cloud.y(i)) + ", zt " + FloatText(f.zt[i]);
+  if (f.point_cell[i] != kNone) s += ", " + CellText(p, f, f.point_cell[i]);
+  return s;
+}
+
+// Byte equality of one 32-bit buffer; on a mismatch the first differing element, both values in
+// decimal and hex, and what the element is (`describe`).
+template <class T, class Describe>
+::testing::AssertionResult SameBytes(const char* buffer, const std::vector<T>& cpu,
+                                     const std::vector<T>& gpu, Describe describe) {
+  static_assert(sizeof(T) == 4, "32-bit elements");
+  if (cpu.size() != gpu.size())
+    return ::testing::AssertionFailure()
+           << "coarse_segment: buffer " << buffer << " has " << gpu.size()
+           << " elements on the GPU, " << cpu.size() << " on the CPU";
+  if (cpu.empty() || std::memcmp(cpu.data(), gpu.data(), cpu.size() * 4) == 0)
+    return ::testing::AssertionSuccess();
+  size_t first = cpu.size(), count = 0;
+  for (size_t i = 0; i < cpu.size(); ++i)
+    if (cpu[i] != gpu[i]) {
+      if (first == cpu.size()) first = i;
+      ++count;
+    }
+  return ::testing::AssertionFailure()
+         << "coarse_segment: buffer " << buffer << " differs at element " << first << " (" << count
+         << " of " << cpu.size() << " differ): CPU " << ValueText(uint32_t(cpu[first])) << ", GPU "
+         << ValueText(uint32_t(gpu[first])) << "; " << describe(first);
+}
+
+struct Summary {
+  uint32_t modes[3] = {0, 0, 0};
+  uint32_t ground = 0, fallback = 0, steep = 0;
+};
+
+// `in` holds stages 1-3 (anything of stage 4 in it is ignored); runs stage 4 on both sides.
+Summary ExpectSameCoarse(const vk::Context& context, const Cloud& cloud, const Params& p,
+                         const Tables& t, const Frame& in, const char* what) {
+  Frame cpu = in, gpu = in;
+  cpu.cell_seed_mode.clear(), cpu.cell_plane.clear(), cpu.coarse.clear();
+  gpu.cell_seed_mode.clear(), gpu.cell_plane.clear(), gpu.coarse.clear();
+  CoarseSegment(cloud, p, t, cpu);
+  double gpu_ns = 0;
+  const vk::Status status = vk::RunCoarseSegment(context, cloud, p, t, gpu, &gpu_ns);
+  EXPECT_TRUE(status.ok()) << status.message();
+  Summary s;
+  if (!status.ok()) return s;
+  auto cell = [&](size_t c) { return CellText(p, in, c); };
+  auto plane = [&](size_t k) {
+    return "cell_plane[" + std::to_string(k % 8) + "] of " + CellText(p, in, k / 8);
+  };
+  auto point = [&](size_t i) { return PointText(p, in, cloud, i); };
+  EXPECT_TRUE(SameBytes("cell_seed_mode", cpu.cell_seed_mode, gpu.cell_seed_mode, cell)) << what;
+  EXPECT_TRUE(SameBytes("cell_plane", cpu.cell_plane, gpu.cell_plane, plane)) << what;
+  EXPECT_TRUE(SameBytes("coarse", cpu.coarse, gpu.coarse, point)) << what;
+  for (size_t c = 0; c < cpu.cell_seed_mode.size(); ++c) {
+    if (!in.cell_count[c]) continue;
+    ++s.modes[cpu.cell_seed_mode[c] % 3];
+    const int32_t* pl = &cpu.cell_plane[8 * c];
+    if (cpu.cell_seed_mode[c] && pl[7] > 0 && pl[0] == 0 && pl[1] == 0 && pl[2] == 16384)
+      ++s.fallback;
+    if (cpu.cell_seed_mode[c] && pl[6] == -1) ++s.steep;
+  }
+  for (uint32_t l : cpu.coarse) s.ground += l;
+  std::printf(
+      "[coarse_segment] %s: %u points, %u ground; cells: %u no seeds, %u lowest, %u whole; %u "
+      "horizontal planes, %u too steep; GPU %.3f ms\n",
+      what, in.n, s.ground, s.modes[0], s.modes[1], s.modes[2], s.fallback, s.steep, gpu_ns / 1e6);
+  return s;
+}
+
+Summary ExpectSameOnCloud(const vk::Context& context, const Cloud& cloud, const SensorProfile& s,
+                          const char* what) {
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  Frame f;
+  RunReference(cloud, p, t, f);
+  return ExpectSameCoarse(context, cloud, p, t, f, what);
+}
+
+// ---- hand-made stage 1-3 inputs (as tests/coarse_segment_test.cpp builds them) ----------------
+
+uint32_t CellOf(const Params& p, const Tables& t, float x, float y) {
+  const uint32_t rings = p.rings_near + p.rings_far;
+  const uint32_t ring = RingOf(x * x + y * y, t.ring_bound2.data(), rings);
+  if (ring >= rings) return kNone;
+  const uint32_t u = ColumnOf(x, y, t.column_dir.data(), p.width);
+  return ring < p.rings_near
+             ? ring * p.sectors_near + u / (p.width / p.sectors_near)
+             : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
+                   u / (p.width / p.sectors_far);
+}
+
+Frame Inputs(const Cloud& c, const Params& p, const Tables& t) {
+  Frame f;
+  f.n = uint32_t(c.size());
+  f.flags.assign(f.n, kPointValid);
+  f.zt.resize(f.n);
+  f.r2.resize(f.n);
+  f.inten.resize(f.n);
+  f.point_cell.resize(f.n);
+  const uint32_t cells = CellCount(p);
+  f.cell_zmin.assign(cells, kNone);
+  f.cell_zmax.assign(cells, 0u);
+  f.cell_count.assign(cells, 0u);
+  for (uint32_t i = 0; i < f.n; ++i) {
+    f.zt[i] = c.z(i);
+    f.r2[i] = c.x(i) * c.x(i) + c.y(i) * c.y(i);
+    f.inten[i] = c.intensity(i);
+    const uint32_t cell = CellOf(p, t, c.x(i), c.y(i));
+    f.point_cell[i] = cell;
+    if (cell == kNone) continue;
+    f.cell_zmin[cell] = std::min(f.cell_zmin[cell], exact::Key(f.zt[i]));
+    f.cell_zmax[cell] = std::max(f.cell_zmax[cell], exact::Key(f.zt[i]));
+    f.cell_count[cell] += 1;
+  }
+  return f;
+}
+
+void AddPlane(Cloud* c, float x0, float x1, float y0, float y1, float step, float z0, float gx,
+              float gy, float amp, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> noise(-amp, amp);
+  for (float x = x0; x <= x1; x += step)
+    for (float y = y0; y <= y1; y += step)
+      c->Push(x, y, z0 + gx * x + gy * y + (amp > 0 ? noise(rng) : 0.0f), 0.3f);
+}
+
+// A random scene: ground with a random grade and noise over the whole grid, boxes and walls on
+// it, scattered clutter, dense clusters, a few invalid points.
+Cloud RandomScene(size_t n, float height, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), angle(0.0f, 6.2831853f);
+  const float gx = 0.06f * (unit(rng) - 0.5f), gy = 0.06f * (unit(rng) - 0.5f);
+  const float amp = 0.02f + 0.1f * unit(rng);
+  float bx[6], by[6], bh[6];
+  for (int k = 0; k < 6; ++k) {
+    const float r = 3.0f + unit(rng) * 60.0f, a = angle(rng);
+    bx[k] = r * std::cos(a), by[k] = r * std::sin(a), bh[k] = 0.3f + 3.0f * unit(rng);
+  }
+  Cloud cloud;
+  for (size_t i = 0; i < n; ++i) {
+    const float r = 2.0f + 118.0f * unit(rng) * unit(rng), a = angle(rng);
+    float x = r * std::cos(a), y = r * std::sin(a);
+    float z = -height + gx * x + gy * y + amp * (unit(rng) - 0.5f);
+    const uint32_t kind = rng() % 20;
+    if (kind < 4) {  // a box or wall
+      const int k = int(rng() % 6);
+      x = bx[k] + 2.0f * (unit(rng) - 0.5f), y = by[k] + (k < 3 ? 0.1f : 2.0f) * (unit(rng) - 0.5f);
+      z = -height + gx * x + gy * y + bh[k] * unit(rng);
+    } else if (kind == 4) {  // clutter
+      z = -height + 4.0f * unit(rng);
+    } else if (kind == 5) {  // dense cluster, repeated points
+      const int k = int(rng() % 6);
+      x = bx[k] + 0.02f * unit(rng), y = by[k] + 0.02f * unit(rng);
+      z = -height + gx * x + gy * y + 0.01f * float(rng() % 3);
+    } else if (kind == 6) {  // low noise, below the road
+      z -= 0.5f * unit(rng);
+    }
+    cloud.Push(x, y, z, unit(rng));
+  }
+  return cloud;
+}
+
+class CoarseSegmentVk : public test::VkTest {};
+
+TEST_F(CoarseSegmentVk, RandomScenesMatchTheReference) {
+  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    const size_t n = seed == 1 ? 1 : seed == 2 ? 100 : seed == 3 ? 5000 : 60000 * (seed - 3);
+    const Cloud cloud = RandomScene(n, s.sensor_height, seed);
+    ExpectSameOnCloud(context(), cloud, s, ("random " + std::to_string(n)).c_str());
+  }
+}
+
+TEST_F(CoarseSegmentVk, RandomHandMadeInputsMatchTheReference) {
+  // The small sensor and stage 3 by hand: z_t = z, no noise filtering, every point in a cell.
+  const SensorProfile s = test::SmallSensor();
+  const Params p = ParamsForSensor(s);
+  const Tables t = MakeTables(s, p);
+  for (uint32_t seed = 11; seed <= 14; ++seed) {
+    const Cloud cloud = RandomScene(40000, p.sensor_height, seed);
+    ExpectSameCoarse(context(), cloud, p, t, Inputs(cloud, p, t), "random hand-made");
+  }
+}
+
+SimOptions Scene(uint32_t seed, float pitch, bool rings) {
+  SimOptions o;
+  o.seed = seed;
+  o.pitch_deg = pitch;
+  o.emit_rings = rings;
+  return o;
+}
+
+TEST_F(CoarseSegmentVk, SimulatedStreetHdl64e) {
+  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
+  for (const SimOptions& o : {Scene(1, 0.0f, false), Scene(2, 1.5f, true), Scene(13, 0.0f, true)}) {
+    const SimScan scan = Simulate(s, o);
+    const Summary sum = ExpectSameOnCloud(context(), scan.cloud, s, "simulated street");
+    EXPECT_GT(sum.modes[1], 0u);
+    EXPECT_GT(sum.ground, 0u);
+  }
+}
+
+TEST_F(CoarseSegmentVk, Kitti07Frame964) {
+  LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
+  const Cloud cloud = ReadKittiBin(test::DataFile("kitti/07/velodyne/000964.bin"));
+  ExpectSameOnCloud(context(), cloud, LoadSensorProfile("hdl64e", test::SensorsDir()),
+                    "kitti 07/000964");
+}
+
+TEST_F(CoarseSegmentVk, KittiUnknownFrame56) {
+  LPIR_REQUIRE_DATA("kitti/unknown/velodyne/000056.bin");
+  const Cloud cloud = ReadKittiBin(test::DataFile("kitti/unknown/velodyne/000056.bin"));
+  ExpectSameOnCloud(context(), cloud, LoadSensorProfile("hdl64e", test::SensorsDir()),
+                    "kitti unknown/000056");
+}
+
+// The degenerate cases of tests/coarse_segment_test.cpp, in one frame each.
+class CoarseSegmentVkDegenerate : public test::VkTest {
+ protected:
+  SensorProfile s = test::SmallSensor();
+  Params p = ParamsForSensor(s);
+  Tables t = MakeTables(s, p);
+  void Check(const Cloud& c, const char* what) {
+    ExpectSameCoarse(context(), c, p, t, Inputs(c, p, t), what);
+  }
+};
+
+// A height near `base` from which `delta` above is exactly `delta` in float: (h + delta) - h ==
+// delta, so a point there lies exactly on a threshold of eq. 5.
+float ExactBase(float base, float delta) {
+  float h = base;
+  for (int k = 0; k < 100000; ++k, h = std::nextafter(h, -1e9f)) {
+    const float top = h + delta;
+    if (top - h == delta) return h;
+  }
+  return base;
+}
+
+// Points exactly on the thresholds of eq. 5, in cells far enough apart not to be neighbours:
+// h_max - h_nmin == h_athr (whole cell), z_t - h_min == lambda (seed), and h_min - h_nmin ==
+// lambda + rise_margin (a cell raised exactly to the limit above its neighbour).
+TEST_F(CoarseSegmentVkDegenerate, PointsExactlyOnTheSeedThresholds) {
+  // Thresholds on a coarse binary grid, so that heights near the road reach them exactly.
+  p.h_athr = 0.125f;
+  p.seed_margin = 0.25f;
+  p.slope_max = 0.0625f;
+  p.rise_margin = 0.25f;
+  const float road = -p.sensor_height;
+  const float lambda = p.ring_res_near * p.slope_max + p.seed_margin;
+  const float rise = lambda + p.rise_margin;
+  Cloud c;
+  const float a = ExactBase(road, p.h_athr);  // whole cell by <=, lowest points by <
+  ASSERT_EQ((a + p.h_athr) - a, p.h_athr);
+  for (int k = 0; k < 20; ++k) {
+    c.Push(5.0f + 0.05f * k, 0.1f + 0.01f * (k % 5), a, 0.3f);
+    c.Push(5.02f + 0.05f * k, 0.12f + 0.01f * (k % 3), a + p.h_athr, 0.3f);
+    c.Push(5.03f + 0.05f * k, 0.14f, a + 0.5f * p.h_athr, 0.3f);
+  }
+  const float b = ExactBase(road, lambda);  // seeds exactly at lambda
+  ASSERT_EQ((b + lambda) - b, lambda);
+  for (int k = 0; k < 20; ++k) {
+    c.Push(-5.0f - 0.05f * k, 0.1f + 0.01f * (k % 5), b, 0.3f);
+    c.Push(-5.02f - 0.05f * k, 0.12f + 0.01f * (k % 3), b + lambda, 0.3f);
+    c.Push(-5.03f - 0.05f * k, 0.14f, b + lambda + p.h_athr + 0.2f, 0.3f);
+  }
+  const float d = ExactBase(road, rise);  // ring 3 raised exactly by lambda + rise_margin
+  ASSERT_EQ((d + rise) - d, rise);
+  for (float x = 4.1f; x <= 9.9f; x += 0.1f)
+    for (float y = 5.0f; y <= 5.6f; y += 0.1f) {
+      const float r = std::hypot(x, y);
+      c.Push(x, y, r >= 8.0f && r < 10.0f ? d + rise : d, 0.3f);
+    }
+  Check(c, "points on the seed thresholds");
+}
+
+TEST_F(CoarseSegmentVkDegenerate, EmptyCloud) { Check(Cloud(), "empty"); }
+
+TEST_F(CoarseSegmentVkDegenerate, CollinearAndFewSeeds) {
+  const float road = -p.sensor_height;
+  Cloud c;
+  for (float y = 0.02f; y <= 0.45f; y += 0.02f) c.Push(5.0f, y, road, 0.3f);
+  for (float r = 6.1f; r <= 7.9f; r += 0.1f) c.Push(r, 0.1f, road + 0.01f, 0.3f);
+  c.Push(-5.0f, 0.1f, road, 0.3f);  // two seeds
+  c.Push(-5.5f, 0.1f, road + 0.02f, 0.3f);
+  for (int k = 0; k < 15; ++k)
+    c.Push(-3.0f + 0.03f * k, 2.0f + 0.07f * (k % 4), road + 0.2f * (k % 2), 0.3f);  // 15
+  for (int k = 0; k < 16; ++k)
+    c.Push(3.0f + 0.03f * k, -2.0f - 0.07f * (k % 4), road + 0.03f * (k % 3), 0.3f);  // 16
+  c.Push(-8.0f, -8.0f, road, 0.3f);  // a lone point
+  Check(c, "collinear and few seeds");
+}
+
+TEST_F(CoarseSegmentVkDegenerate, CollinearSlopedSeeds) {
+  const float road = -p.sensor_height;
+  for (float grade : {0.01f, 0.04f, 0.07f}) {
+    Cloud c;
+    for (float x = 4.05f; x <= 5.95f; x += 0.01f) c.Push(x, 0.1f, road + grade * (x - 4.0f), 0.3f);
+    for (float x = 6.05f; x <= 7.95f; x += 0.013f)
+      c.Push(x, 0.1f + 0.3f * (x - 6.0f), road + grade * (x - 6.0f), 0.3f);
+    Check(c, "collinear sloped seeds");
+  }
+}
+
+TEST_F(CoarseSegmentVkDegenerate, WallsBoxesAndRaisedCells) {
+  const float road = -p.sensor_height;
+  const float lambda = p.ring_res_near * p.slope_max + p.seed_margin;
+  Cloud c;
+  for (float y = -1.2f; y <= 1.2f; y += 0.05f)  // a wall across the view
+    for (float z = road; z <= 1.0f; z += 0.05f) c.Push(5.0f, y, z, 0.3f);
+  for (float x = 4.2f; x <= 15.8f; x += 0.05f)  // road with a box on it, behind on the left
+    for (float y = 2.0f; y <= 6.5f; y += 0.1f)
+      if (!(x >= 8.0f && x <= 12.0f && y <= 3.8f)) c.Push(x, y, road, 0.2f);
+  for (float y = 2.0f; y <= 3.8f; y += 0.05f)
+    for (float z = road + std::max(0.3f, lambda + 0.05f); z <= road + 1.5f; z += 0.05f)
+      c.Push(8.0f, y, z, 0.5f);
+  for (float x = 8.05f; x <= 12.0f; x += 0.05f)
+    for (float y = 2.0f; y <= 3.8f; y += 0.05f) c.Push(x, y, road + 1.5f, 0.5f);
+  const float raised = road + lambda + p.rise_margin + 0.1f;  // a platform filling a ring
+  for (float x = -9.9f; x <= -4.1f; x += 0.1f)
+    for (float y = -0.5f; y <= 0.5f; y += 0.1f) {
+      const float r = std::hypot(x, y);
+      c.Push(x, y, r >= 6.0f && r < 8.0f ? raised : road, 0.3f);
+    }
+  const float inner = t.ring_inner[2];  // just above and below the slope prior
+  const float prior = -p.sensor_height + p.ground_max_above + p.slope_max * inner;
+  AddPlane(&c, 4.2f, 5.8f, -4.2f, -3.8f, 0.1f, prior + 0.1f, 0, 0, 0, 3);
+  AddPlane(&c, 4.2f, 5.8f, -6.0f, -5.6f, 0.1f, prior - 0.1f, 0, 0, 0, 3);
+  AddPlane(&c, -17.8f, -4.2f, -9.0f, -3.0f, 0.1f, road, 0.02f, -0.01f, 0.02f, 4);  // sloped noisy
+  Check(c, "walls, boxes, raised cells");
+}
+
+}  // namespace
+}  // namespace lpir
