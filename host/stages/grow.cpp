@@ -1,0 +1,181 @@
+// Stage 8, grow, on Vulkan: the passes of shaders/grow.comp and the one-shot runner.
+#include "host/stages/grow.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/vk/fence.h"
+#include "host/vk/timestamp_queries.h"
+#include "host/vk/transfer.h"
+
+namespace lpir::vk {
+namespace {
+#include "shaders/grow.spv.h"  // kGrowSpv, compiled from shaders/grow.comp at build time
+
+Error GrowError(const std::string& message) {
+  Error e;
+  e.result = VK_ERROR_UNKNOWN;
+  e.message = "grow: " + message;
+  return e;
+}
+
+// The push constants of shaders/grow.comp.
+struct Push {
+  uint32_t mode, sweep, count, budget;
+};
+enum Mode : uint32_t { kInit = 0, kGrow = 1, kSettle = 2, kLabel = 3, kCount = 4, kFinish = 5 };
+}  // namespace
+
+Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b,
+                                    uint32_t max_iters) {
+  if (max_iters == 0) return GrowError("grow_max_iters is 0");
+  if (b.flags && b.flags->size() < 4 * VkDeviceSize(FlagWords(max_iters)))
+    return GrowError("the flags buffer holds fewer than " + std::to_string(FlagWords(max_iters)) +
+                     " words");
+  PipelineDesc desc;
+  desc.name = "grow";
+  desc.code = SpirvOf(kGrowSpv);
+  desc.bindings.assign(11, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  desc.push_constant_bytes = sizeof(Push);
+  desc.local_size_x = kLocalSize;
+  LPIR_VK_ASSIGN_OR_RETURN(
+      Kernel kernel,
+      Kernel::Create(device, desc,
+                     {b.params, b.pixel_fused, b.f_inten, b.f_height, b.f_range, b.pixel_grown,
+                      b.pixel_comp, b.pixel_label, b.scratch, b.sizes, b.flags}));
+  return GrowStage(std::move(kernel), max_iters);
+}
+
+Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
+  const uint32_t pixels = width * beams;
+  const uint32_t tiles = ((width + kTileW - 1) / kTileW) * ((beams + kTileH - 1) / kTileH);
+  const uint32_t budget = max_iters_;
+  auto pass = [&](uint32_t mode, uint32_t sweep, uint32_t invocations, uint32_t count) {
+    const Push push{mode, sweep, count, budget};
+    return kernel_.Record(cmd, invocations, &push);
+  };
+  LPIR_VK_RETURN_IF_ERROR(pass(kInit, 0, std::max(pixels, FlagWords(budget)), pixels));
+  for (uint32_t loop : {kGrow, kLabel}) {
+    if (loop == kLabel) {
+      cmd.ComputeToCompute();
+      LPIR_VK_RETURN_IF_ERROR(pass(kSettle, 0, pixels, pixels));
+    }
+    for (uint32_t k = 0; k < budget; ++k) {
+      cmd.ComputeToCompute();
+      LPIR_VK_RETURN_IF_ERROR(pass(loop, k, tiles * kLocalSize, tiles * kLocalSize));
+    }
+  }
+  cmd.ComputeToCompute();
+  LPIR_VK_RETURN_IF_ERROR(pass(kCount, 0, pixels, pixels));
+  cmd.ComputeToCompute();
+  // At least one invocation: pixel 0's writes the summary words.
+  return pass(kFinish, 0, std::max(pixels, 1u), pixels);
+}
+
+Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* report,
+               double* gpu_ns) {
+  const Device& device = context.device();
+  const uint64_t pixels = uint64_t(p.width) * p.beams;
+  if (pixels > UINT32_MAX / 4) return GrowError(std::to_string(pixels) + " pixels");
+  const struct {
+    const char* name;
+    size_t size;
+  } inputs[] = {{"pixel_fused", f.pixel_fused.size()},
+                {"f_inten", f.f_inten.size()},
+                {"f_height", f.f_height.size()},
+                {"f_range", f.f_range.size()}};
+  for (const auto& in : inputs)
+    if (in.size != pixels)
+      return GrowError(std::string(in.name) + " holds " + std::to_string(in.size) +
+                       " elements for " + std::to_string(pixels) + " pixels");
+  const uint32_t budget = p.grow_max_iters;
+  if (budget == 0) return GrowError("grow_max_iters is 0");
+
+  // At least one element per buffer (an empty image still binds them).
+  const VkDeviceSize per_pixel = 4 * std::max<uint64_t>(pixels, 1);
+  const VkDeviceSize flag_bytes = 4 * VkDeviceSize(GrowStage::FlagWords(budget));
+  const MemoryKind kind = MemoryKind::kDeviceLocal;
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer params_buffer, Buffer::Create(device, sizeof(Params), kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_fused, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer f_inten, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer f_height, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer f_range, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_grown, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_comp, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_label, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer scratch, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer sizes, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer flags, Buffer::Create(device, flag_bytes, kind));
+
+  LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
+  LPIR_VK_RETURN_IF_ERROR(transfer.Upload(params_buffer, &p, sizeof(Params)));
+  if (pixels) {
+    const VkDeviceSize bytes = 4 * pixels;
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(pixel_fused, f.pixel_fused.data(), bytes));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(f_inten, f.f_inten.data(), bytes));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(f_height, f.f_height.data(), bytes));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(f_range, f.f_range.data(), bytes));
+  }
+
+  GrowBuffers bindings;
+  bindings.params = &params_buffer;
+  bindings.pixel_fused = &pixel_fused;
+  bindings.f_inten = &f_inten;
+  bindings.f_height = &f_height;
+  bindings.f_range = &f_range;
+  bindings.pixel_grown = &pixel_grown;
+  bindings.pixel_comp = &pixel_comp;
+  bindings.pixel_label = &pixel_label;
+  bindings.scratch = &scratch;
+  bindings.sizes = &sizes;
+  bindings.flags = &flags;
+  LPIR_VK_ASSIGN_OR_RETURN(GrowStage stage, GrowStage::Create(device, bindings, budget));
+  LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
+  LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
+  const bool timed = gpu_ns && device.timestamp_valid_bits() != 0;
+  Result<TimestampQueries> queries =
+      timed ? TimestampQueries::Create(device, 2) : Result<TimestampQueries>(Error{});
+  if (timed && !queries.ok()) return queries.error();
+
+  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
+  if (timed) {
+    cmd.ResetQueries(queries.value());
+    cmd.WriteTimestamp(queries.value(), 0);
+  }
+  LPIR_VK_RETURN_IF_ERROR(stage.Record(cmd, p.width, p.beams));
+  if (timed) cmd.WriteTimestamp(queries.value(), 1);
+  LPIR_VK_RETURN_IF_ERROR(cmd.End());
+  LPIR_VK_RETURN_IF_ERROR(cmd.SubmitAndWait(fence));
+  if (gpu_ns) {
+    *gpu_ns = -1.0;
+    if (timed) {
+      double ns[2];
+      LPIR_VK_RETURN_IF_ERROR(queries->Read(ns));
+      *gpu_ns = ns[1] - ns[0];
+    }
+  }
+
+  std::vector<uint32_t> flag_words(GrowStage::FlagWords(budget));
+  LPIR_VK_RETURN_IF_ERROR(transfer.Download(flags, flag_words.data(), flag_bytes));
+  const GrowReport r = GrowStage::ReadReport(flag_words.data(), budget);
+  if (report) *report = r;
+  f.pixel_grown.resize(pixels);
+  f.pixel_comp.resize(pixels);
+  f.pixel_label.resize(pixels);
+  if (pixels) {
+    const VkDeviceSize bytes = 4 * pixels;
+    LPIR_VK_RETURN_IF_ERROR(transfer.Download(pixel_grown, f.pixel_grown.data(), bytes));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Download(pixel_comp, f.pixel_comp.data(), bytes));
+    LPIR_VK_RETURN_IF_ERROR(transfer.Download(pixel_label, f.pixel_label.data(), bytes));
+  }
+  if (!r.converged())
+    return GrowError("no fixed point within grow_max_iters = " + std::to_string(budget) +
+                     " sweeps (grow sweeps " + std::to_string(r.grow_sweeps) + ", label sweeps " +
+                     std::to_string(r.label_sweeps) + ", 0 = not converged)");
+  return Status();
+}
+
+}  // namespace lpir::vk

@@ -1,0 +1,83 @@
+// Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is the
+// per-frame piece (bound once to the frame's buffers, recorded every frame: two fixed-point loops
+// of `max_iters` gated sweeps each, no CPU round trip); RunGrow is the one-shot twin of lpir::Grow
+// for tests and tools.
+#pragma once
+#include <cstdint>
+
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/kernel.h"
+#include "host/vk/result.h"
+#include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
+
+namespace lpir::vk {
+
+// The bindings of shaders/grow.comp; per-pixel buffers hold at least width * beams elements.
+struct GrowBuffers {
+  const Buffer* params = nullptr;       // one Params (uniform)
+  const Buffer* pixel_fused = nullptr;  // uint32 kPix* per pixel (stage 7)
+  const Buffer* f_inten = nullptr;      // float per pixel
+  const Buffer* f_height = nullptr;     // float per pixel
+  const Buffer* f_range = nullptr;      // float per pixel
+  const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel (also a ping-pong state)
+  const Buffer* pixel_comp = nullptr;   // out: uint32 component label per pixel, kNone off ground
+  const Buffer* pixel_label = nullptr;  // out: uint32 kPix* per pixel
+  const Buffer* scratch = nullptr;      // uint32 per pixel: the other ping-pong state
+  const Buffer* sizes = nullptr;        // uint32 per pixel: component sizes
+  const Buffer* flags = nullptr;        // GrowStage::FlagWords(max_iters) uint32 (see below)
+};
+
+// What the flags buffer says after a frame (GrowStage::ReadReport).
+struct GrowReport {
+  uint32_t grow_sweeps = 0;   // sweeps run, the last one proving the fixed point; 0: not reached
+  uint32_t label_sweeps = 0;  // the same for the component labels
+  bool converged() const { return grow_sweeps != 0 && label_sweeps != 0; }
+};
+
+class GrowStage {
+ public:
+  static constexpr uint32_t kLocalSize = 256;  // one 8 x 32 tile per workgroup
+  static constexpr uint32_t kTileW = 32, kTileH = 8;
+
+  // The flags buffer: per sweep changed flags for both loops, then the two summary words
+  // flags[2 max_iters] (grow sweeps, 0 = not converged) and flags[2 max_iters + 1] (labels).
+  static uint32_t FlagWords(uint32_t max_iters) { return 2 * max_iters + 2; }
+  static GrowReport ReadReport(const uint32_t* flags, uint32_t max_iters) {
+    return {flags[2 * max_iters], flags[2 * max_iters + 1]};
+  }
+
+  // `max_iters` (Params::grow_max_iters, at least 1): the sweeps recorded for each of the two
+  // fixed points; sweeps after the first one that changes nothing exit at once.
+  static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers,
+                                  uint32_t max_iters);
+
+  // Records the whole stage over a width x beams image (the Params uploaded to buffers.params
+  // must say the same), with compute-to-compute barriers between its passes but none before the
+  // first or after the last (the caller orders it with the stages around). The production
+  // pipeline must check the summary words (ReadReport) and reject a frame whose grow or label
+  // loop did not converge.
+  Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+
+  uint32_t max_iters() const { return max_iters_; }
+
+ private:
+  GrowStage(Kernel kernel, uint32_t max_iters) : kernel_(std::move(kernel)), max_iters_(max_iters) {}
+
+  Kernel kernel_;
+  uint32_t max_iters_ = 0;
+};
+
+// Stage 8 on the GPU, the twin of lpir::Grow(p, f): allocates device-local buffers, uploads
+// f.pixel_fused, f.f_inten, f.f_height and f.f_range, runs, and fills f.pixel_grown,
+// f.pixel_comp and f.pixel_label (nothing else of f is touched). An error when a per-pixel input
+// does not hold width * beams elements, or when either fixed point was not reached within
+// p.grow_max_iters sweeps (outputs then still downloaded). `report`, when given, gets the sweep
+// counts; `gpu_ns` the stage's GPU time in nanoseconds (-1 without timestamps). Waits for the GPU.
+Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* report = nullptr,
+               double* gpu_ns = nullptr);
+
+}  // namespace lpir::vk
