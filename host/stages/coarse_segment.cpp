@@ -1,11 +1,11 @@
 // Stage 4, coarse segment, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/coarse_segment.h"
 
+#include "host/vk/run_once.h"
+
 #include <cstdint>
 #include <string>
 
-#include "host/vk/fence.h"
-#include "host/vk/timestamp_queries.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -110,30 +110,8 @@ Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params
   bindings.coarse = &coarse;
   bindings.scratch = &scratch;
   LPIR_VK_ASSIGN_OR_RETURN(CoarseSegmentStage stage, CoarseSegmentStage::Create(device, bindings));
-  LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
-  LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
-  const bool timed = gpu_ns && device.timestamp_valid_bits() != 0;
-  Result<TimestampQueries> queries =
-      timed ? TimestampQueries::Create(device, 2) : Result<TimestampQueries>(Error{});
-  if (timed && !queries.ok()) return queries.error();
-
-  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
-  if (timed) {
-    cmd.ResetQueries(queries.value());
-    cmd.WriteTimestamp(queries.value(), 0);
-  }
-  LPIR_VK_RETURN_IF_ERROR(stage.Record(cmd, uint32_t(n), cells));
-  if (timed) cmd.WriteTimestamp(queries.value(), 1);
-  LPIR_VK_RETURN_IF_ERROR(cmd.End());
-  LPIR_VK_RETURN_IF_ERROR(cmd.SubmitAndWait(fence));
-  if (gpu_ns) {
-    *gpu_ns = -1.0;
-    if (timed) {
-      double ns[2];
-      LPIR_VK_RETURN_IF_ERROR(queries->Read(ns));
-      *gpu_ns = ns[1] - ns[0];
-    }
-  }
+  LPIR_VK_RETURN_IF_ERROR(
+      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n), cells); }, gpu_ns));
 
   f.cell_seed_mode.resize(cells);
   f.cell_plane.resize(size_t(cells) * 8);

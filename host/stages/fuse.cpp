@@ -1,11 +1,11 @@
 // Stage 7, fuse, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/fuse.h"
 
+#include "host/vk/run_once.h"
+
 #include <cstdint>
 #include <string>
 
-#include "host/vk/fence.h"
-#include "host/vk/timestamp_queries.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -95,30 +95,8 @@ Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns
   bindings.f_height = &f_height;
   bindings.pixel_fused = &pixel_fused;
   LPIR_VK_ASSIGN_OR_RETURN(FuseStage stage, FuseStage::Create(device, bindings));
-  LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
-  LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
-  const bool timed = gpu_ns && device.timestamp_valid_bits() != 0;
-  Result<TimestampQueries> queries =
-      timed ? TimestampQueries::Create(device, 2) : Result<TimestampQueries>(Error{});
-  if (timed && !queries.ok()) return queries.error();
-
-  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
-  if (timed) {
-    cmd.ResetQueries(queries.value());
-    cmd.WriteTimestamp(queries.value(), 0);
-  }
-  LPIR_VK_RETURN_IF_ERROR(stage.Record(cmd, uint32_t(pixels)));
-  if (timed) cmd.WriteTimestamp(queries.value(), 1);
-  LPIR_VK_RETURN_IF_ERROR(cmd.End());
-  LPIR_VK_RETURN_IF_ERROR(cmd.SubmitAndWait(fence));
-  if (gpu_ns) {
-    *gpu_ns = -1.0;
-    if (timed) {
-      double ns[2];
-      LPIR_VK_RETURN_IF_ERROR(queries->Read(ns));
-      *gpu_ns = ns[1] - ns[0];
-    }
-  }
+  LPIR_VK_RETURN_IF_ERROR(
+      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(pixels)); }, gpu_ns));
 
   f.pixel_fused.resize(pixels);
   if (pixels) {

@@ -1,13 +1,13 @@
 // Stage 8, grow, on Vulkan: the passes of shaders/grow.comp and the one-shot runner.
 #include "host/stages/grow.h"
 
+#include "host/vk/run_once.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "host/vk/fence.h"
-#include "host/vk/timestamp_queries.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -133,30 +133,8 @@ Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* re
   bindings.sizes = &sizes;
   bindings.flags = &flags;
   LPIR_VK_ASSIGN_OR_RETURN(GrowStage stage, GrowStage::Create(device, bindings, budget));
-  LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
-  LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
-  const bool timed = gpu_ns && device.timestamp_valid_bits() != 0;
-  Result<TimestampQueries> queries =
-      timed ? TimestampQueries::Create(device, 2) : Result<TimestampQueries>(Error{});
-  if (timed && !queries.ok()) return queries.error();
-
-  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
-  if (timed) {
-    cmd.ResetQueries(queries.value());
-    cmd.WriteTimestamp(queries.value(), 0);
-  }
-  LPIR_VK_RETURN_IF_ERROR(stage.Record(cmd, p.width, p.beams));
-  if (timed) cmd.WriteTimestamp(queries.value(), 1);
-  LPIR_VK_RETURN_IF_ERROR(cmd.End());
-  LPIR_VK_RETURN_IF_ERROR(cmd.SubmitAndWait(fence));
-  if (gpu_ns) {
-    *gpu_ns = -1.0;
-    if (timed) {
-      double ns[2];
-      LPIR_VK_RETURN_IF_ERROR(queries->Read(ns));
-      *gpu_ns = ns[1] - ns[0];
-    }
-  }
+  LPIR_VK_RETURN_IF_ERROR(
+      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));
 
   std::vector<uint32_t> flag_words(GrowStage::FlagWords(budget));
   LPIR_VK_RETURN_IF_ERROR(transfer.Download(flags, flag_words.data(), flag_bytes));
