@@ -1,10 +1,10 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
 // One shader, six passes chosen by the push constant `mode` (host/stages/grow.cpp records them
 // in this order, a compute-to-compute barrier after each dispatch):
-//   0 init     per pixel: pixel_grown = pixel_fused; flags[i] = 0 for i < 2 * budget + 2.
-//   1 grow     per tile, sweep k = 0 .. budget - 1: reads state k % 2 (0: pixel_grown, 1: scratch),
-//              writes the other. Skipped (every invocation returns) when sweep k - 1 changed
-//              nothing: both buffers then hold the fixed point already.
+//   0 init     per pixel: pixel_grown = pixel_fused; the flags buffer to its starting state.
+//   1 grow     per tile, sweep k = 0 .. budget - 1, dispatched indirectly from the flags buffer:
+//              reads state k % 2 (0: pixel_grown, 1: scratch), writes the other. Runs no
+//              workgroup when sweep k - 1 changed nothing: both buffers then hold the fixed point.
 //   2 settle   per pixel: unknown -> non-ground in pixel_grown; pixel_comp = pix where ground,
 //              kNone elsewhere; sizes[pix] = 0.
 //   3 label    per tile, sweep k: min-label propagation, reads k % 2 (0: pixel_comp, 1: scratch),
@@ -20,10 +20,13 @@
 // global fixed point. Growing is monotone (the least fixed point is unique, SPEC 2), labels only
 // decrease and always name a pixel of their own component (pointer jumping, label = min(label,
 // label[label]), keeps that), so any schedule gives the reference's bytes.
-// Flags (binding 10): flags[k] = 1 when grow sweep k changed something, flags[budget + k] the same
-// for label sweep k; flags[2 budget] / [2 budget + 1]: the grow / label sweeps run up to and
-// including the first one that changed nothing (the fixed point proved), 0 when the budget ran out
-// before that (non-convergence: the outputs are not valid).
+// Flags (binding 10): for each loop (grow at word 0, label at word 3 (budget + 1)) budget + 1
+// indirect dispatch arguments (x, y, z): entry 0 holds the tile count, entry k + 1 is set to it
+// by every workgroup of sweep k that changed something and stays 0 otherwise, so the sweeps after
+// the first one that changes nothing launch no workgroup and the loop ends on the GPU. Words
+// 6 (budget + 1) and 6 (budget + 1) + 1: the grow / label sweeps run up to and including the
+// first one that changed nothing (the fixed point proved), 0 when the budget ran out before that
+// (non-convergence: the outputs are not valid).
 // Step test (reference StepAllowed), each op rounded (`precise`): di = |ir - iq|, dz = |zr - zq|,
 // step = |rr - rq|, when the column changes step = step + rq * column_arc; allowed = grow_dz +
 // grow_grade * step; di <= grow_di && dz <= allowed.
@@ -69,9 +72,9 @@ shared float s_range[kSlots];
 shared uint s_flag[3];        // per local step, rotating (see TileLoop)
 shared uint s_any;            // the tile changed something this sweep
 
-bool Active() {
-  return pc.sweep == 0u || flags[pc.sweep - 1u + (pc.mode == 3u ? pc.budget : 0u)] != 0u;
-}
+// The x word of loop `grow`'s dispatch arguments for sweep k, and the first summary word.
+uint ArgsWord(bool grow, uint k) { return (grow ? 0u : 3u * (pc.budget + 1u)) + 3u * k; }
+uint SummaryWord() { return 6u * (pc.budget + 1u); }
 
 // The step test from ground slot q to unknown slot r.
 bool StepAllowed(uint q, uint r) {
@@ -180,32 +183,36 @@ void TileSweep(bool grow) {
     if (last != first) s_any = 1u;
   }
   barrier();
-  if (lid == 0u && s_any != 0u) flags[pc.sweep + (grow ? 0u : pc.budget)] = 1u;
+  if (lid == 0u && s_any != 0u) flags[ArgsWord(grow, pc.sweep + 1u)] = gl_NumWorkGroups.x;
 }
 
 // The sweeps up to and including the first that changed nothing; 0 when there is none.
-uint SweepsRun(uint base) {
+uint SweepsRun(bool grow) {
   for (uint k = 0u; k < pc.budget; ++k)
-    if (flags[base + k] == 0u) return k + 1u;
+    if (flags[ArgsWord(grow, k + 1u)] == 0u) return k + 1u;
   return 0u;
 }
 
 void main() {
   uint mode = pc.mode;
   if (mode == 1u || mode == 3u) {
-    if (!Active()) return;  // uniform over the dispatch
     TileSweep(mode == 1u);
     return;
   }
   uint pix = gl_GlobalInvocationID.x;
   if (mode == 0u) {
-    if (pix < 2u * pc.budget + 2u) flags[pix] = 0u;
+    if (pix < SummaryWord()) {  // dispatch arguments: (tiles, 1, 1) for sweep 0, else (0, 1, 1)
+      uint tiles = ((p.width + kTileW - 1u) / kTileW) * ((p.beams + kTileH - 1u) / kTileH);
+      flags[pix] = pix % 3u != 0u ? 1u : (pix / 3u) % (pc.budget + 1u) == 0u ? tiles : 0u;
+    } else if (pix < SummaryWord() + 2u) {
+      flags[pix] = 0u;
+    }
     if (pix < pc.count) pixel_grown[pix] = pixel_fused[pix];
     return;
   }
   if (mode == 5u && pix == 0u) {
-    flags[2u * pc.budget] = SweepsRun(0u);
-    flags[2u * pc.budget + 1u] = SweepsRun(pc.budget);
+    flags[SummaryWord()] = SweepsRun(true);
+    flags[SummaryWord() + 1u] = SweepsRun(false);
   }
   if (pix >= pc.count) return;
   if (mode == 2u) {

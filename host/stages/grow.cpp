@@ -31,7 +31,8 @@ enum Mode : uint32_t { kInit = 0, kGrow = 1, kSettle = 2, kLabel = 3, kCount = 4
 Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b,
                                     uint32_t max_iters) {
   if (max_iters == 0) return GrowError("grow_max_iters is 0");
-  if (b.flags && b.flags->size() < 4 * VkDeviceSize(FlagWords(max_iters)))
+  if (!b.flags) return GrowError("no flags buffer");
+  if (b.flags->size() < 4 * VkDeviceSize(FlagWords(max_iters)))
     return GrowError("the flags buffer holds fewer than " + std::to_string(FlagWords(max_iters)) +
                      " words");
   PipelineDesc desc;
@@ -46,7 +47,7 @@ Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b,
       Kernel::Create(device, desc,
                      {b.params, b.pixel_fused, b.f_inten, b.f_height, b.f_range, b.pixel_grown,
                       b.pixel_comp, b.pixel_label, b.scratch, b.sizes, b.flags}));
-  return GrowStage(std::move(kernel), max_iters);
+  return GrowStage(std::move(kernel), b.flags, max_iters);
 }
 
 Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
@@ -57,15 +58,20 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
     const Push push{mode, sweep, count, budget};
     return kernel_.Record(cmd, invocations, &push);
   };
+  // The sweeps' workgroup counts come from the flags buffer: checked against the device's limit
+  // here, where the tile count is known.
   LPIR_VK_RETURN_IF_ERROR(pass(kInit, 0, std::max(pixels, FlagWords(budget)), pixels));
+  LPIR_VK_RETURN_IF_ERROR(kernel_.CheckGroups(tiles * uint64_t(kLocalSize)));
   for (uint32_t loop : {kGrow, kLabel}) {
     if (loop == kLabel) {
       cmd.ComputeToCompute();
       LPIR_VK_RETURN_IF_ERROR(pass(kSettle, 0, pixels, pixels));
     }
+    const VkDeviceSize base = loop == kGrow ? 0 : 3 * VkDeviceSize(budget + 1);
     for (uint32_t k = 0; k < budget; ++k) {
-      cmd.ComputeToCompute();
-      LPIR_VK_RETURN_IF_ERROR(pass(loop, k, tiles * kLocalSize, tiles * kLocalSize));
+      cmd.ComputeToIndirect();
+      const Push push{loop, k, tiles * kLocalSize, budget};
+      kernel_.RecordIndirect(cmd, *flags_, 4 * (base + 3 * VkDeviceSize(k)), &push);
     }
   }
   cmd.ComputeToCompute();

@@ -43,15 +43,16 @@ class GrowStage {
   static constexpr uint32_t kLocalSize = 256;  // one 8 x 32 tile per workgroup
   static constexpr uint32_t kTileW = 32, kTileH = 8;
 
-  // The flags buffer: per sweep changed flags for both loops, then the two summary words
-  // flags[2 max_iters] (grow sweeps, 0 = not converged) and flags[2 max_iters + 1] (labels).
-  static uint32_t FlagWords(uint32_t max_iters) { return 2 * max_iters + 2; }
+  // The flags buffer: for each loop, max_iters + 1 indirect dispatch arguments (shaders/grow.comp
+  // says how the sweeps set them), then the two summary words flags[6 (max_iters + 1)] (grow
+  // sweeps, 0 = not converged) and the next (label sweeps).
+  static uint32_t FlagWords(uint32_t max_iters) { return 6 * (max_iters + 1) + 2; }
   static GrowReport ReadReport(const uint32_t* flags, uint32_t max_iters) {
-    return {flags[2 * max_iters], flags[2 * max_iters + 1]};
+    return {flags[6 * (max_iters + 1)], flags[6 * (max_iters + 1) + 1]};
   }
 
   // `max_iters` (Params::grow_max_iters, at least 1): the sweeps recorded for each of the two
-  // fixed points; sweeps after the first one that changes nothing exit at once.
+  // fixed points; the sweeps after the first one that changes nothing launch no workgroup.
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers,
                                   uint32_t max_iters);
 
@@ -65,9 +66,11 @@ class GrowStage {
   uint32_t max_iters() const { return max_iters_; }
 
  private:
-  GrowStage(Kernel kernel, uint32_t max_iters) : kernel_(std::move(kernel)), max_iters_(max_iters) {}
+  GrowStage(Kernel kernel, const Buffer* flags, uint32_t max_iters)
+      : kernel_(std::move(kernel)), flags_(flags), max_iters_(max_iters) {}
 
   Kernel kernel_;
+  const Buffer* flags_;  // also the sweeps' indirect dispatch arguments
   uint32_t max_iters_ = 0;
 };
 

@@ -73,6 +73,10 @@ void CommandBuffer::Dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t grou
   vkCmdDispatch(cmd_.get(), groups_x, groups_y, groups_z);
 }
 
+void CommandBuffer::DispatchIndirect(const Buffer& args, VkDeviceSize offset) {
+  vkCmdDispatchIndirect(cmd_.get(), args.handle(), offset);
+}
+
 void CommandBuffer::Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                             VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
   VkMemoryBarrier barrier{};
@@ -86,6 +90,13 @@ void CommandBuffer::ComputeToCompute() {
   Barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+void CommandBuffer::ComputeToIndirect() {
+  Barrier(VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+              VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }
 
 void CommandBuffer::ComputeToTransfer() {
@@ -118,6 +129,10 @@ void CommandBuffer::CopyBuffer(const Buffer& src, const Buffer& dst, VkDeviceSiz
 
 void CommandBuffer::FillBuffer(const Buffer& dst, uint32_t value) {
   vkCmdFillBuffer(cmd_.get(), dst.handle(), 0, VK_WHOLE_SIZE, value);
+}
+
+void CommandBuffer::UpdateBuffer(const Buffer& dst, const void* data, VkDeviceSize bytes) {
+  vkCmdUpdateBuffer(cmd_.get(), dst.handle(), 0, bytes, data);
 }
 
 void CommandBuffer::ResetQueries(const TimestampQueries& queries) {

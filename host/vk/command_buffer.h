@@ -35,12 +35,15 @@ class CommandBuffer {
   void BindDescriptorSet(const ComputePipeline& pipeline, const DescriptorSet& set);
   void PushConstants(const ComputePipeline& pipeline, const void* data, uint32_t bytes);
   void Dispatch(uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1);
+  // Workgroup counts read on the GPU from three uint32 at `offset` in `args` (x = 0: nothing runs).
+  void DispatchIndirect(const Buffer& args, VkDeviceSize offset);
 
   // A global memory barrier (every buffer: the stages share big buffers, so there is nothing to
   // gain from per-buffer ranges).
   void Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
   void ComputeToCompute();   // a dispatch's writes -> the next dispatch's reads and writes
+  void ComputeToIndirect();  // ComputeToCompute, and the writes -> indirect dispatch counts
   void ComputeToTransfer();  // a dispatch's writes -> copies from them; reads -> copies over them
   void TransferToCompute();  // copies and fills -> dispatches
   void ComputeToHost();      // a dispatch's writes -> host reads of a mapped buffer
@@ -49,6 +52,9 @@ class CommandBuffer {
   void CopyBuffer(const Buffer& src, const Buffer& dst, VkDeviceSize bytes,
                   VkDeviceSize src_offset = 0, VkDeviceSize dst_offset = 0);
   void FillBuffer(const Buffer& dst, uint32_t value);  // the whole buffer
+  // Writes `bytes` (a multiple of 4, at most 65536) from host memory into `dst`, in order with
+  // the commands around it (vkCmdUpdateBuffer: a transfer write).
+  void UpdateBuffer(const Buffer& dst, const void* data, VkDeviceSize bytes);
 
   void ResetQueries(const TimestampQueries& queries);
   // Timestamp `index`, written once every earlier command has completed.

@@ -24,11 +24,20 @@ class Kernel {
   // An error when the range needs more workgroups than the device dispatches along x.
   Status Record(CommandBuffer& cmd, uint32_t invocations, const void* push) const;
 
+  // An error when `invocations` need more workgroups than the device dispatches along x.
+  Status CheckGroups(uint64_t invocations) const;
+
+  // The same with the workgroup counts read on the GPU from `args` at `offset` (see
+  // CommandBuffer::DispatchIndirect): the shader decides whether its successor runs.
+  void RecordIndirect(CommandBuffer& cmd, const Buffer& args, VkDeviceSize offset,
+                      const void* push) const;
+
   const ComputePipeline& pipeline() const { return pipeline_; }
 
  private:
   Kernel(ComputePipeline pipeline, DescriptorSet set, uint32_t max_groups)
       : pipeline_(std::move(pipeline)), set_(std::move(set)), max_groups_(max_groups) {}
+  void Bind(CommandBuffer& cmd, const void* push) const;
 
   ComputePipeline pipeline_;
   DescriptorSet set_;
