@@ -20,6 +20,7 @@ class Buffer {
   // `bytes` == 0 allocates 16 bytes, so an empty cloud still has something to bind.
   static Result<Buffer> Create(const Device& device, VkDeviceSize bytes, MemoryKind kind);
 
+  Buffer() = default;  // owns nothing (as after a move), until a created buffer is moved in
   Buffer(Buffer&&) noexcept = default;
   Buffer& operator=(Buffer&&) noexcept = default;
 
@@ -30,8 +31,6 @@ class Buffer {
   void* mapped() const { return mapped_.get(); }
 
  private:
-  Buffer() = default;
-
   DeviceHandle<VkDeviceMemory, vkFreeMemory> memory_;  // freed after the buffer (and unmapped)
   DeviceHandle<VkBuffer, vkDestroyBuffer> buffer_;
   ResetOnMove<VkDeviceSize> size_;

@@ -1,0 +1,383 @@
+// The whole frame on Vulkan (host/frame_pipeline.h: one command buffer, upload, stages 1-9,
+// download) against the CPU reference (RunReference): every buffer of every stage byte for byte
+// (tests/frame_compare.h), on random clouds from 0 points to the pipeline's maximum, simulated
+// scenes of several sensors (with and without ring fields), and every real scan in
+// ../shared/data; then several frames in flight, slots reused, and the errors a frame can meet.
+#include <gtest/gtest-spi.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "host/frame_pipeline.h"
+#include "host/io/cloud_file.h"
+#include "host/io/sensor_profile.h"
+#include "reference_cpu/pipeline.h"
+#include "tests/frame_compare.h"
+#include "tests/stage_test_util.h"
+#include "tests/test_util.h"
+#include "tests/vk_test_util.h"
+
+namespace lpir {
+namespace {
+
+struct SensorSetup {
+  SensorProfile sensor;
+  Params params;
+  Tables tables;
+};
+SensorSetup MakeSetup(const SensorProfile& s) {
+  SensorSetup setup{s, ParamsForSensor(s), {}};
+  setup.tables = MakeTables(s, setup.params);
+  return setup;
+}
+SensorSetup MakeSetup(const std::string& name) {
+  return MakeSetup(LoadSensorProfile(name, test::SensorsDir()));
+}
+
+vk::FramePipeline MakePipeline(const vk::Context& context, const SensorSetup& s, uint32_t max_points,
+                               uint32_t slots) {
+  vk::Result<vk::FramePipeline> made =
+      vk::FramePipeline::Create(context, s.params, s.tables, max_points, slots);
+  EXPECT_TRUE(made.ok()) << made.error().message;
+  if (!made.ok()) throw std::runtime_error(made.error().message);
+  return std::move(made).value();
+}
+
+// Runs `cloud` through slot 0 with every buffer read back and compares the frame with
+// RunReference's. Returns the bytes compared.
+uint64_t ExpectSameWholeFrame(vk::FramePipeline& pipeline, const SensorSetup& s, const Cloud& cloud,
+                              const std::string& what) {
+  Frame cpu, gpu;
+  RunReference(cloud, s.params, s.tables, cpu);
+  const vk::Status submitted = pipeline.Submit(0, cloud);
+  EXPECT_TRUE(submitted.ok()) << what << ": " << submitted.message();
+  if (!submitted.ok()) return 0;
+  vk::FrameTimes times;
+  vk::GrowReport grow;
+  const vk::Status collected = pipeline.Collect(0, gpu, /*all_buffers=*/true, &times, &grow);
+  EXPECT_TRUE(collected.ok()) << what << ": " << collected.message();
+  if (!collected.ok()) return 0;
+  const uint64_t bytes = test::ExpectSameFrame(s.params, cpu, gpu, &cloud, what);
+  size_t ground = 0;
+  for (uint8_t l : cpu.label) ground += l;
+  std::printf("[frame_pipeline] %s: %zu points (%zu ground), %llu bytes compared; grow %u + "
+              "label %u sweeps; GPU %.2f ms (upload %.2f, download %.2f)\n",
+              what.c_str(), cloud.size(), ground, static_cast<unsigned long long>(bytes),
+              grow.grow_sweeps, grow.label_sweeps, times.total_ms, times.upload_ms,
+              times.download_ms);
+  return bytes;
+}
+
+// Street-like points with every kind of trouble mixed in: invalid (NaN, Inf, origin, 1e30),
+// reflection noise, second returns sharing a pixel, points above and below the beams.
+Cloud RandomCloud(size_t n, float sensor_height, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  Cloud cloud;
+  for (size_t i = 0; i < n; ++i) {
+    const float az = unit(rng) * 6.2831853f, r = 2.0f + 60.0f * unit(rng) * unit(rng);
+    float x = r * std::cos(az), y = r * std::sin(az), z = -sensor_height + 0.05f * unit(rng);
+    float in = unit(rng);
+    switch (rng() % 16) {
+      case 0:
+      case 1:
+      case 2:
+        z = -sensor_height + 3.0f * unit(rng);  // obstacles
+        break;
+      case 3:
+        z += 0.1f * r * unit(rng);  // slopes
+        break;
+      case 4:
+        switch (rng() % 5) {
+          case 0: x = y = z = 0.0f; break;
+          case 1: x = nan; break;
+          case 2: z = -inf; break;
+          case 3: y = 1e30f; break;
+          default: in = nan;
+        }
+        break;
+      case 5:
+        z = -sensor_height - 1.0f, in = 0.0f;  // reflection noise
+        break;
+      case 6:
+        if (i > 0) {  // a second return beside the previous point
+          x = cloud.x(i - 1) * (1.0f + 0.002f * unit(rng));
+          y = cloud.y(i - 1) * (1.0f + 0.002f * unit(rng));
+          z = cloud.z(i - 1) + 0.3f * (unit(rng) - 0.5f);
+        }
+        break;
+      case 7:
+        z = (unit(rng) - 0.5f) * 2.0f * r;  // outside the beams' fan
+        break;
+      default:
+        break;
+    }
+    cloud.Push(x, y, z, in * 100.0f);
+  }
+  return cloud;
+}
+
+class FramePipelineVk : public test::VkTest {};
+
+// The small 16-beam sensor: sizes from empty to exactly the maximum.
+TEST_F(FramePipelineVk, RandomCloudsUpToTheMaximum) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  constexpr uint32_t kMax = 40000;
+  vk::FramePipeline pipeline = MakePipeline(context(), s, kMax, 1);
+  uint64_t bytes = 0;
+  uint32_t seed = 1;
+  for (size_t n : {size_t(0), size_t(1), size_t(2), size_t(3), size_t(64), size_t(1000),
+                   size_t(4097), size_t(kMax)})
+    bytes += ExpectSameWholeFrame(pipeline, s, RandomCloud(n, 1.7f, seed++),
+                                  "random cloud of " + std::to_string(n) + " points");
+  EXPECT_GT(bytes, uint64_t(kMax) * 4 * 12);
+}
+
+// One ring field, as an Ouster or Velodyne PCD gives it, with a few rings out of range.
+TEST_F(FramePipelineVk, RandomCloudWithRings) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  vk::FramePipeline pipeline = MakePipeline(context(), s, 20000, 1);
+  Cloud cloud = RandomCloud(20000, 1.7f, 77);
+  std::mt19937 rng(5);
+  for (size_t i = 0; i < cloud.size(); ++i) cloud.ring.push_back(int32_t(rng() % 18) - 1);
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, cloud, "random cloud with rings"), 0u);
+  // The same pipeline then takes a cloud without rings (has_ring is per frame).
+  cloud.ring.clear();
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, cloud, "the same cloud without rings"), 0u);
+}
+
+TEST_F(FramePipelineVk, RandomHdl64eFrame) {
+  const SensorSetup s = MakeSetup("hdl64e");
+  vk::FramePipeline pipeline = MakePipeline(context(), s, 130000, 1);
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, RandomCloud(130000, 1.73f, 3), "random hdl64e"),
+            0u);
+}
+
+void SimulatedScenes(const vk::Context& context, const std::string& sensor) {
+  const SensorSetup s = MakeSetup(sensor);
+  vk::FramePipeline pipeline = MakePipeline(context, s, 300000, 1);
+  const struct {
+    SceneKind kind;
+    uint32_t seed;
+    bool rings;
+    const char* name;
+  } scenes[] = {{kUrban, 1, false, "urban 1"},
+                {kUrban, 2, true, "urban 2 with rings"},
+                {kFlatWithObjects, 0, false, "flat with objects"}};
+  for (const auto& sc : scenes) {
+    SimOptions o;
+    o.seed = sc.seed;
+    o.kind = sc.kind;
+    o.emit_rings = sc.rings;
+    const SimScan scan = Simulate(s.sensor, o);
+    EXPECT_GT(ExpectSameWholeFrame(pipeline, s, scan.cloud, sensor + " simulated " + sc.name), 0u);
+  }
+}
+
+TEST_F(FramePipelineVk, SimulatedHdl64e) { SimulatedScenes(context(), "hdl64e"); }
+TEST_F(FramePipelineVk, SimulatedVlp16) { SimulatedScenes(context(), "vlp16"); }
+TEST_F(FramePipelineVk, SimulatedOs1_128) { SimulatedScenes(context(), "os1-128"); }
+
+// Every real scan in ../shared/data with the profile of its sensor.
+struct RealScan {
+  const char* file;
+  const char* sensor;
+};
+const RealScan kRealScans[] = {
+    {"kitti/07/velodyne/000964.bin", "hdl64e"},
+    {"kitti/unknown/velodyne/000056.bin", "hdl64e"},
+    {"kitti/00/velodyne/000000.bin", "hdl64e"},
+    {"kitti/00/velodyne/000001.bin", "hdl64e"},
+    {"kitti/00/velodyne/000002.bin", "hdl64e"},
+    {"kitti/00/velodyne/000003.bin", "hdl64e"},
+    {"kitti/00/velodyne/000004.bin", "hdl64e"},
+    {"kitti/00/velodyne/000005.bin", "hdl64e"},
+    {"nuscenes/n015-2018-07-24-11-22-45+0800__LIDAR_TOP__1532402927647951.pcd.bin", "hdl32e"},
+    {"rellis3d/os1/000104.bin", "os1-64"},
+    {"rellis3d/os1/frame000104-1581624663_170.ply", "os1-64"},
+    {"rellis3d/vlp32c/000104.bin", "vlp32c"},
+    {"hdl32e/source.ply", "hdl32e"},
+    {"hdl32e/target.ply", "hdl32e"},
+};
+
+void PrintTo(const RealScan& scan, std::ostream* os) { *os << scan.file << " as " << scan.sensor; }
+
+class RealScanVk : public test::VkTest, public ::testing::WithParamInterface<RealScan> {};
+
+TEST_P(RealScanVk, EveryBufferEqual) {
+  const RealScan scan = GetParam();
+  LPIR_REQUIRE_DATA(scan.file);
+  const SensorSetup s = MakeSetup(scan.sensor);
+  const Cloud cloud = ReadCloud(test::DataFile(scan.file));
+  vk::FramePipeline pipeline = MakePipeline(context(), s, uint32_t(cloud.size()), 1);
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, cloud, std::string(scan.file) + " (" + scan.sensor +
+                                                         (cloud.ring.empty() ? "" : ", rings") +
+                                                         ")"),
+            0u);
+}
+
+std::string ScanName(const ::testing::TestParamInfo<RealScan>& info) {
+  std::string name = std::to_string(info.index) + "_";
+  const std::string file = info.param.file;
+  for (char c : file.substr(0, 24)) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return name;
+}
+INSTANTIATE_TEST_SUITE_P(Data, RealScanVk, ::testing::ValuesIn(kRealScans), ScanName);
+
+// Three slots, six frames of different sizes submitted ahead of their collection, slots reused:
+// every frame's labels equal the reference's, and the last one's buffers all do.
+TEST_F(FramePipelineVk, FramesInFlight) {
+  const SensorSetup s = MakeSetup("vlp16");
+  vk::FramePipeline pipeline = MakePipeline(context(), s, 60000, 3);
+  std::vector<Cloud> clouds;
+  for (uint32_t k = 0; k < 6; ++k) {
+    SimOptions o;
+    o.seed = 10 + k;
+    o.emit_rings = k % 2 == 1;
+    clouds.push_back(k == 3 ? RandomCloud(500, 1.7f, k) : Simulate(s.sensor, o).cloud);
+  }
+  auto check = [&](uint32_t k, bool all) {
+    Frame cpu, gpu;
+    RunReference(clouds[k], s.params, s.tables, cpu);
+    const vk::Status status = pipeline.Collect(k % 3, gpu, all);
+    ASSERT_TRUE(status.ok()) << "frame " << k << ": " << status.message();
+    EXPECT_EQ(gpu.n, cpu.n) << "frame " << k;
+    EXPECT_EQ(gpu.label, cpu.label) << "frame " << k << ": labels";
+    EXPECT_EQ(gpu.why, cpu.why) << "frame " << k << ": why";
+    if (all) test::ExpectSameFrame(s.params, cpu, gpu, &clouds[k], "frame " + std::to_string(k));
+  };
+  for (uint32_t k = 0; k < 3; ++k) ASSERT_TRUE(pipeline.Submit(k, clouds[k]).ok());
+  {
+    Frame f;  // every buffer of frame 0 can no longer be read: frames 1 and 2 came after it
+    const vk::Status status = pipeline.Collect(0, f, /*all_buffers=*/true);
+    EXPECT_FALSE(status.ok());
+    EXPECT_NE(status.message().find("only readable"), std::string::npos) << status.message();
+    EXPECT_TRUE(f.label.empty());
+  }
+  check(0, false);  // the refusal left slot 0 holding its frame
+  ASSERT_TRUE(pipeline.Submit(0, clouds[3]).ok());
+  check(1, false);
+  ASSERT_TRUE(pipeline.Submit(1, clouds[4]).ok());
+  check(2, false);
+  ASSERT_TRUE(pipeline.Submit(2, clouds[5]).ok());
+  check(3, false);
+  check(4, false);
+  check(5, true);
+}
+
+TEST_F(FramePipelineVk, ErrorsLeaveThePipelineUsable) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  vk::FramePipeline pipeline = MakePipeline(context(), s, 1000, 1);
+  EXPECT_EQ(pipeline.max_points(), 1000u);
+  EXPECT_GT(pipeline.device_bytes(), 0u);
+
+  vk::Status status = pipeline.Submit(0, RandomCloud(1001, 1.7f, 1));
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("1001 points, more than the pipeline's maximum of 1000"),
+            std::string::npos)
+      << status.message();
+
+  Cloud bad_rings = RandomCloud(10, 1.7f, 2);
+  bad_rings.ring.assign(9, 0);
+  status = pipeline.Submit(0, bad_rings);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("9 ring entries for 10 points"), std::string::npos)
+      << status.message();
+
+  Frame f;
+  status = pipeline.Collect(0, f);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("holds no submitted frame"), std::string::npos);
+  status = pipeline.Submit(1, bad_rings);
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("slot 1 is not free"), std::string::npos) << status.message();
+
+  ASSERT_TRUE(pipeline.Submit(0, RandomCloud(1000, 1.7f, 3)).ok());
+  status = pipeline.Submit(0, RandomCloud(5, 1.7f, 3));
+  ASSERT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("slot 0 is not free"), std::string::npos) << status.message();
+  ASSERT_TRUE(pipeline.Collect(0, f).ok());
+  EXPECT_EQ(f.label.size(), 1000u);
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, RandomCloud(1000, 1.7f, 4), "after the errors"),
+            0u);
+}
+
+// A pipeline destroyed with frames in flight waits for them (no validation message, no crash).
+TEST_F(FramePipelineVk, DestroyedWithFramesInFlight) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  vk::FramePipeline pipeline = MakePipeline(context(), s, 5000, 2);
+  ASSERT_TRUE(pipeline.Submit(0, RandomCloud(5000, 1.7f, 1)).ok());
+  ASSERT_TRUE(pipeline.Submit(1, RandomCloud(4000, 1.7f, 2)).ok());
+  vk::FramePipeline other = MakePipeline(context(), s, 100, 1);
+  ASSERT_TRUE(other.Submit(0, RandomCloud(100, 1.7f, 3)).ok());
+  other = std::move(pipeline);  // waits for other's frame, then takes the two in flight
+  EXPECT_EQ(other.max_points(), 5000u);
+  Frame f;
+  ASSERT_TRUE(other.Collect(1, f).ok());
+  EXPECT_EQ(f.n, 4000u);
+}
+
+TEST_F(FramePipelineVk, GrowBudgetTooSmallIsAnError) {
+  SensorSetup s = MakeSetup("hdl64e");
+  s.params.grow_max_iters = 1;  // the label loop needs more than one sweep on a real street
+  vk::FramePipeline pipeline = MakePipeline(context(), s, 200000, 1);
+  SimOptions o;
+  o.seed = 1;
+  ASSERT_TRUE(pipeline.Submit(0, Simulate(s.sensor, o).cloud).ok());
+  Frame f;
+  vk::GrowReport grow;
+  const vk::Status status = pipeline.Collect(0, f, false, nullptr, &grow);
+  ASSERT_FALSE(status.ok());
+  EXPECT_FALSE(grow.converged());
+  EXPECT_NE(status.message().find("grow reached no fixed point"), std::string::npos)
+      << status.message();
+}
+
+// What a mismatch prints: stage, buffer, first differing element, both values in decimal and
+// hex, and where it is (a pixel's u and v, a point's coordinates).
+TEST(FrameCompare, MismatchReportNamesStageBufferElementAndPlace) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  const Cloud cloud = RandomCloud(3000, 1.7f, 9);
+  Frame cpu;
+  RunReference(cloud, s.params, s.tables, cpu);
+  Frame gpu = cpu;
+  const uint32_t pixel = 5 * s.params.width + 17;
+  gpu.f_height[pixel] = 1.5f;
+  gpu.f_height[pixel + 3] = 2.5f;
+  EXPECT_NONFATAL_FAILURE(
+      test::ExpectSameFrame(s.params, cpu, gpu, &cloud, "corrupted"),
+      "stage feature_maps, buffer f_height differs first at element 1297 (2 of 4096 differ)");
+  EXPECT_NONFATAL_FAILURE(test::ExpectSameFrame(s.params, cpu, gpu, &cloud, "corrupted"),
+                          "GPU 1.5 (0x3fc00000); pixel (u 17, v 5)");
+  gpu = cpu;
+  gpu.zt[42] = -0.0f;
+  EXPECT_NONFATAL_FAILURE(test::ExpectSameFrame(s.params, cpu, gpu, &cloud, "corrupted"),
+                          "GPU -0 (0x80000000); point 42 (x ");
+  gpu = cpu;
+  gpu.why[7] ^= 1;
+  EXPECT_NONFATAL_FAILURE(test::ExpectSameFrame(s.params, cpu, gpu, &cloud, "corrupted"),
+                          "stage back_project, buffer why differs first at element 7");
+}
+
+TEST_F(FramePipelineVk, CreateRejectsBadArguments) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  EXPECT_FALSE(vk::FramePipeline::Create(context(), s.params, s.tables, 0, 1).ok());
+  EXPECT_FALSE(vk::FramePipeline::Create(context(), s.params, s.tables, 10, 0).ok());
+  Tables short_tables = s.tables;
+  short_tables.column_dir.pop_back();
+  const auto made = vk::FramePipeline::Create(context(), s.params, short_tables, 10, 1);
+  ASSERT_FALSE(made.ok());
+  EXPECT_NE(made.error().message.find("tables do not match"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lpir
