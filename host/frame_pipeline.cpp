@@ -225,6 +225,7 @@ Status FramePipeline::Submit(uint32_t index, const Cloud& cloud) {
   if (n) std::memcpy(upload, cloud.xyzi.data(), 16 * n);
   if (has_ring && n) std::memcpy(upload + 16 * VkDeviceSize(max_points_), cloud.ring.data(), 4 * n);
   slot.n = uint32_t(n);
+  slot.has_ring = has_ring;
   LPIR_VK_RETURN_IF_ERROR(Record(slot, has_ring));
   LPIR_VK_RETURN_IF_ERROR(slot.cmd.Submit(slot.fence));
   slot.busy = true;
@@ -325,7 +326,7 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
   if (grow_report) *grow_report = grow;
 
   if (times) {
-    *times = FrameTimes();
+    *times = FrameTimes{-1, {-1, -1, -1, -1, -1, -1, -1, -1, -1}, -1, -1};
     if (!slot.queries.empty()) {
       double ns[kQueries];
       LPIR_VK_RETURN_IF_ERROR(slot.queries[0].Read(ns));
@@ -380,6 +381,20 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
     return PipelineError("grow reached no fixed point within grow_max_iters = " +
                          std::to_string(params_.grow_max_iters) + " sweeps");
   return Status();
+}
+
+Cloud FramePipeline::StagedCloud(uint32_t index) const {
+  const Slot& slot = slots_.at(index);
+  const auto* upload = static_cast<const char*>(slot.upload.mapped());
+  Cloud cloud;
+  cloud.xyzi.resize(4 * size_t(slot.n));
+  if (slot.n) std::memcpy(cloud.xyzi.data(), upload, 16 * size_t(slot.n));
+  if (slot.has_ring) {
+    cloud.ring.resize(slot.n);
+    if (slot.n)
+      std::memcpy(cloud.ring.data(), upload + 16 * size_t(max_points_), 4 * size_t(slot.n));
+  }
+  return cloud;
 }
 
 }  // namespace lpir::vk

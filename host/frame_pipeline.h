@@ -21,15 +21,9 @@
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
 #include "reference_cpu/params.h"
+#include "reference_cpu/pipeline.h"
 
 namespace lpir::vk {
-
-// GPU time of one frame in milliseconds, from timestamps: the upload, each stage (kStageNames
-// order), the download, and the whole command buffer. All -1 when the device has no timestamps.
-struct FrameTimes {
-  double upload_ms = -1, stage_ms[9] = {-1, -1, -1, -1, -1, -1, -1, -1, -1}, download_ms = -1,
-         total_ms = -1;
-};
 
 class FramePipeline {
  public:
@@ -47,10 +41,16 @@ class FramePipeline {
   // `all_buffers`, every other buffer of the frame too (read back after the wait, so only for
   // the frame submitted last: the slots share the device buffers; asked of an earlier frame, an
   // error that leaves the slot as it was). `times` (optional) gets the
-  // frame's GPU times. An error when the growing loop did not reach its fixed point within
-  // Params::grow_max_iters sweeps (out.label is then not valid).
+  // frame's GPU times (timestamps), `grow` (optional) the growing loops' report, written once the
+  // frame has finished. An error when the growing loop did not reach its fixed point within
+  // Params::grow_max_iters sweeps (out.label is then not valid; StagedCloud gives the cloud back
+  // for the reference to label).
   Status Collect(uint32_t slot, Frame& out, bool all_buffers = false, FrameTimes* times = nullptr,
                  GrowReport* grow = nullptr);
+
+  // The cloud last submitted to slot `slot`, read back from its staging buffer (valid until the
+  // slot's next Submit).
+  Cloud StagedCloud(uint32_t slot) const;
 
   uint32_t slots() const { return uint32_t(slots_.size()); }
   uint32_t max_points() const { return max_points_; }
@@ -70,7 +70,7 @@ class FramePipeline {
     Buffer upload;    // host-visible: points (16 bytes each), then rings (4 bytes each)
     Buffer download;  // host-visible: label words, why words, the two grow summary words
     std::vector<TimestampQueries> queries;  // one pool of kQueries, or none without timestamps
-    bool busy = false;
+    bool busy = false, has_ring = false;
     uint32_t n = 0;
     uint64_t serial = 0;  // submission order
   };

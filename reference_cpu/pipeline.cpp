@@ -11,15 +11,19 @@ const char* const kStageNames[9] = {"prepare",      "project",         "grid_red
                                     "fuse",         "grow",            "back_project"};
 
 void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
-                  StageTimes* times) {
+                  FrameTimes* times) {
   Params p = params;
   p.has_ring = cloud.ring.empty() ? 0u : 1u;
   using Clock = std::chrono::steady_clock;
+  if (times) *times = FrameTimes();
   auto t0 = Clock::now();
   int stage = 0;
   auto lap = [&] {
     const auto t1 = Clock::now();
-    if (times) times->ms[stage] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    if (times) {
+      times->stage_ms[stage] = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      times->total_ms += times->stage_ms[stage];
+    }
     t0 = t1;
     ++stage;
   };

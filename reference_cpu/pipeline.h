@@ -6,13 +6,16 @@
 
 namespace lpir {
 
-struct StageTimes {
-  double ms[9] = {};  // wall time of stages 1..9 (index 0 = prepare)
+// Time of one frame in milliseconds: stage by stage (kStageNames order), the cloud's upload,
+// the labels' download, and the whole frame. The CPU reference measures wall time (it uploads and
+// downloads nothing: 0); Vulkan measures GPU timestamps (all -1 on a device without them).
+struct FrameTimes {
+  double upload_ms = 0, stage_ms[9] = {}, download_ms = 0, total_ms = 0;
 };
 
 // Runs stages 1-9; `times` (optional) receives per-stage wall times.
 void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
-                  StageTimes* times = nullptr);
+                  FrameTimes* times = nullptr);
 
 extern const char* const kStageNames[9];
 
