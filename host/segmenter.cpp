@@ -1,24 +1,119 @@
 #include "host/segmenter.h"
 
 #include <stdexcept>
+#include <utility>
+
+#include "host/frame_pipeline.h"
+#include "host/vk/context.h"
 
 namespace lpir {
 
-Segmenter::Segmenter(const SensorProfile& sensor, size_t max_points)
-    : sensor_(sensor),
-      params_(ParamsForSensor(sensor)),
-      tables_(MakeTables(sensor, params_)),
-      max_points_(max_points) {}
+Backend ParseBackend(const std::string& name) {
+  if (name == "auto") return Backend::kAuto;
+  if (name == "cpu") return Backend::kCpu;
+  if (name == "vulkan") return Backend::kVulkan;
+  throw std::invalid_argument("unknown backend '" + name + "' (auto, cpu or vulkan)");
+}
 
-const Frame& Segmenter::Segment(const Cloud& cloud, StageTimes* times) {
-  if (cloud.size() > max_points_)
+Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& options)
+    : sensor_(sensor),
+      options_(options),
+      params_(ParamsForSensor(sensor)),
+      tables_(MakeTables(sensor, params_)) {
+  if (options.max_points == 0 || options.max_points > UINT32_MAX / 16)
+    throw std::invalid_argument("max_points must be between 1 and " +
+                                std::to_string(UINT32_MAX / 16));
+  if (options.frames_in_flight == 0) throw std::invalid_argument("frames_in_flight is 0");
+  // Every buffer is read back after its frame, before the next one may start.
+  slots_ = options.all_buffers ? 1u : options.frames_in_flight;
+
+  if (options.backend != Backend::kCpu) {
+    vk::ContextOptions context_options;
+    context_options.device = options.device;
+    context_options.validation = options.validation;
+    vk::Result<vk::Context> context = vk::Context::Create(context_options);
+    std::string failure;
+    if (context.ok()) {
+      context_ = std::make_unique<vk::Context>(std::move(context).value());
+      vk::Result<vk::FramePipeline> pipeline = vk::FramePipeline::Create(
+          *context_, params_, tables_, uint32_t(options.max_points), slots_);
+      if (pipeline.ok()) {
+        pipeline_ = std::make_unique<vk::FramePipeline>(std::move(pipeline).value());
+        backend_ = Backend::kVulkan;
+        backend_note_ = "Vulkan on " + context_->device().name();
+      } else {
+        failure = pipeline.error().message;
+        context_.reset();
+      }
+    } else {
+      failure = context.error().message;
+    }
+    if (!pipeline_) {
+      if (options.backend == Backend::kVulkan || !options.device.empty())
+        throw std::runtime_error("the Vulkan backend could not be set up: " + failure);
+      backend_note_ = (context.ok() || !context.error().no_device
+                           ? "CPU reference, the Vulkan set-up failed: "
+                           : "CPU reference, no Vulkan device: ") +
+                      failure;
+    }
+  } else {
+    backend_note_ = "CPU reference (asked for)";
+  }
+  if (backend_ == Backend::kCpu) cpu_frames_.resize(slots_), cpu_times_.resize(slots_);
+}
+
+Segmenter::~Segmenter() = default;  // the pipeline (waiting for its frames) before the context
+Segmenter::Segmenter(Segmenter&&) noexcept = default;
+
+void Segmenter::CheckCloud(const Cloud& cloud) const {
+  if (cloud.size() > options_.max_points)
     throw std::length_error("cloud has " + std::to_string(cloud.size()) +
                             " points, more than the configured maximum of " +
-                            std::to_string(max_points_) + " (raise it with --max-points)");
+                            std::to_string(options_.max_points) + " (raise it with --max-points)");
   if (!cloud.ring.empty() && cloud.ring.size() != cloud.size())
     throw std::invalid_argument("cloud has " + std::to_string(cloud.ring.size()) +
                                 " ring entries for " + std::to_string(cloud.size()) + " points");
-  RunReference(cloud, params_, tables_, frame_, times);
+}
+
+const Frame& Segmenter::Segment(const Cloud& cloud, FrameTimes* times) {
+  if (!pending_.empty())
+    throw std::logic_error("Segment called with frames pending: Collect them first");
+  Submit(cloud);
+  return Collect(times);
+}
+
+void Segmenter::Submit(const Cloud& cloud) {
+  if (pending_.size() >= slots_)
+    throw std::logic_error("Submit called with " + std::to_string(pending_.size()) +
+                           " frames pending, the most in flight: Collect first");
+  CheckCloud(cloud);
+  const uint32_t slot = next_slot_;
+  if (backend_ == Backend::kCpu) {
+    RunReference(cloud, params_, tables_, cpu_frames_[slot], &cpu_times_[slot]);
+  } else {
+    const vk::Status status = pipeline_->Submit(slot, cloud);
+    if (!status.ok()) throw std::runtime_error("Vulkan: " + status.message());
+  }
+  pending_.push_back(slot);
+  next_slot_ = (slot + 1) % slots_;
+}
+
+const Frame& Segmenter::Collect(FrameTimes* times) {
+  if (pending_.empty()) throw std::logic_error("Collect called with no frame pending");
+  const uint32_t slot = pending_.front();
+  pending_.pop_front();
+  if (backend_ == Backend::kCpu) {
+    std::swap(frame_, cpu_frames_[slot]);  // the buffers go back to the slot for its next frame
+    if (times) *times = cpu_times_[slot];
+    return frame_;
+  }
+  vk::GrowReport grow{1, 1};  // written by Collect once the frame has finished
+  const vk::Status status = pipeline_->Collect(slot, frame_, options_.all_buffers, times, &grow);
+  if (status.ok()) return frame_;
+  if (grow.converged()) throw std::runtime_error("Vulkan: " + status.message());
+  // The growing loop needed more sweeps than the device was given: the reference finishes it.
+  ++reference_fallbacks_;
+  RunReference(pipeline_->StagedCloud(slot), params_, tables_, frame_, times);
   return frame_;
 }
 

@@ -1,9 +1,14 @@
-// The library's entry point: a Segmenter is made once per sensor and labels clouds one by one.
-// It owns the parameters, the host-derived tables and the frame buffers, allocated once and
-// reused (a frame allocates nothing once the buffers have grown to the cloud size).
+// The library's entry point: a Segmenter is made once per sensor and labels clouds one by one,
+// on a Vulkan device (host/frame_pipeline.h) or on the CPU reference (reference_cpu/), with the
+// same bytes either way. Its buffers are allocated once, for options.max_points points; a frame
+// allocates nothing on the device (and nothing on the host once its vectors have grown).
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
@@ -13,29 +18,95 @@
 
 namespace lpir {
 
+namespace vk {
+class Context;
+class FramePipeline;
+}  // namespace vk
+
 constexpr size_t kDefaultMaxPoints = size_t(1) << 20;
+
+enum class Backend {
+  kAuto,    // Vulkan when a device can be set up, else the CPU reference (backend_note says
+            // why); with SegmenterOptions::device named, as kVulkan
+  kCpu,     // the CPU reference
+  kVulkan,  // Vulkan, or an error
+};
+// "auto", "cpu" or "vulkan" (std::invalid_argument otherwise).
+Backend ParseBackend(const std::string& name);
+
+struct SegmenterOptions {
+  Backend backend = Backend::kAuto;
+  std::string device;  // Vulkan device: "" the first usable (discrete first), digits an index,
+                       // else a part of its name (`lpir-gseg devices` lists them)
+  size_t max_points = kDefaultMaxPoints;  // a larger cloud is an error
+  uint32_t frames_in_flight = 2;          // Submit may run this many frames ahead of Collect
+  // Every buffer of every stage in the returned Frame (pictures, debugging), not only label and
+  // why. On Vulkan they are read back after each frame, so frames are not overlapped.
+  bool all_buffers = false;
+  bool validation = false;  // Vulkan validation layer (messages go to stderr)
+
+  static SegmenterOptions For(Backend backend) {
+    SegmenterOptions options;
+    options.backend = backend;
+    return options;
+  }
+};
 
 class Segmenter {
  public:
-  // Throws std::invalid_argument for an inconsistent profile (see ParamsForSensor, MakeTables).
-  explicit Segmenter(const SensorProfile& sensor, size_t max_points = kDefaultMaxPoints);
+  // Throws std::invalid_argument for an inconsistent profile or options, std::runtime_error when
+  // Backend::kVulkan was asked for and no device could be set up.
+  explicit Segmenter(const SensorProfile& sensor, const SegmenterOptions& options = {});
+  ~Segmenter();
+  Segmenter(Segmenter&&) noexcept;
+  Segmenter& operator=(Segmenter&&) = delete;  // would free the old context before its pipeline
 
-  // Runs stages 1-9. Throws std::length_error when the cloud holds more than max_points points,
-  // and std::invalid_argument when its ring field does not match its size. The frame stays valid
-  // until the next call.
-  const Frame& Segment(const Cloud& cloud, StageTimes* times = nullptr);
+  // Labels one cloud: Submit then Collect. The frame stays valid until the next Segment or
+  // Collect. Throws std::length_error when the cloud holds more than max_points points,
+  // std::invalid_argument when its ring field does not match its size, std::runtime_error when
+  // the device fails.
+  const Frame& Segment(const Cloud& cloud, FrameTimes* times = nullptr);
+
+  // Frames in flight: Submit queues a cloud (copied; it need not outlive the call) while up to
+  // frames_in_flight frames are pending, Collect returns the oldest pending one (in submission
+  // order), valid until the next Collect or Segment. Same errors as Segment.
+  void Submit(const Cloud& cloud);
+  const Frame& Collect(FrameTimes* times = nullptr);
+  size_t pending() const { return pending_.size(); }
+  size_t frames_in_flight() const { return slots_; }
+
+  // The backend in use (never kAuto), and one line saying which and why: "Vulkan on <device>",
+  // "CPU reference (asked for)", "CPU reference, no Vulkan device: <reason>", "CPU reference,
+  // the Vulkan set-up failed: <reason>".
+  Backend backend() const { return backend_; }
+  const std::string& backend_note() const { return backend_note_; }
+  // Frames whose growing loop did not reach its fixed point within grow_max_iters sweeps on the
+  // device, and were labelled by the CPU reference instead (same bytes, more time).
+  size_t reference_fallbacks() const { return reference_fallbacks_; }
 
   const Params& params() const { return params_; }
   const Tables& tables() const { return tables_; }
   const SensorProfile& sensor() const { return sensor_; }
-  size_t max_points() const { return max_points_; }
+  size_t max_points() const { return options_.max_points; }
 
  private:
+  void CheckCloud(const Cloud& cloud) const;
+
   SensorProfile sensor_;
+  SegmenterOptions options_;
   Params params_;
   Tables tables_;
-  size_t max_points_;
-  Frame frame_;
+  Backend backend_ = Backend::kCpu;
+  std::string backend_note_;
+  uint32_t slots_ = 1;
+  std::unique_ptr<vk::Context> context_;          // Vulkan only
+  std::unique_ptr<vk::FramePipeline> pipeline_;   // Vulkan only; uses *context_
+  std::vector<Frame> cpu_frames_;                 // CPU: the frames computed at Submit, per slot
+  std::vector<FrameTimes> cpu_times_;             // and their times
+  std::deque<uint32_t> pending_;                  // slots submitted, oldest first
+  uint32_t next_slot_ = 0;
+  size_t reference_fallbacks_ = 0;
+  Frame frame_;                                   // what Segment and Collect return
 };
 
 }  // namespace lpir

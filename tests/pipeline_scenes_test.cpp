@@ -1,4 +1,4 @@
-// The whole pipeline (lpir::Segmenter, HDL-64E profile) on simulated scenes with known truth
+// The whole pipeline (lpir::Segmenter on the CPU reference, HDL-64E profile) on simulated scenes
 // (apps/sim): a flat plane, the plane with a car and a wall, and urban streets with a ramp,
 // curbs, sidewalks, cars, buildings and vegetation. Plus determinism of every Frame buffer.
 #include <gtest/gtest.h>
@@ -41,7 +41,7 @@ Labels Predicted(const Frame& f) { return Labels(f.label.begin(), f.label.end())
 
 TEST(PipelineScenes, FlatPlaneIsAllGround) {
   const SimScan scan = Scene(kFlat, 3);
-  Segmenter seg(Hdl64());
+  Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   const Frame& f = seg.Segment(scan.cloud);
   ASSERT_EQ(f.label.size(), scan.cloud.size());
   const Counts c = CountFrame(Protocol::kDG, Predicted(f), scan.labels, nullptr);
@@ -56,7 +56,7 @@ TEST(PipelineScenes, CarAndWallOnAFlatPlaneAreNotGround) {
   for (uint32_t seed : {1u, 2u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const SimScan scan = Scene(kFlatWithObjects, seed);
-    Segmenter seg(Hdl64());
+    Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
     const Frame& f = seg.Segment(scan.cloud);
     const Tally car = CountClass(scan, f, SkClass::kCar);
     const Tally wall = CountClass(scan, f, SkClass::kBuilding);
@@ -109,7 +109,7 @@ constexpr double kSidewalkGroundFloor = 0.92;  // sidewalk and curb points label
 
 // Streets without a car parked right beside the sensor (see the disabled test below for those).
 TEST(PipelineScenes, UrbanStreets) {
-  Segmenter seg(Hdl64());
+  Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   Counts summed;
   Tally ramp, sidewalk;
   for (uint32_t seed : {1u, 2u, 4u}) {
@@ -151,7 +151,7 @@ TEST(PipelineScenes, UrbanStreets) {
 // around them (no rise over the 3x3 neighbourhood), so only the slope prior of stage 4 keeps the
 // roof out of the seeds (ground_max_above; 5727 of 29240 car points were ground at 0.6).
 TEST(PipelineScenes, CarParkedBesideTheSensorIsNotGround) {
-  Segmenter seg(Hdl64());
+  Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   const SimScan scan = Scene(kUrban, 3);
   const Street st = Score(scan, seg.Segment(scan.cloud));
   EXPECT_GT(st.car.points, 10000u);
@@ -171,7 +171,7 @@ TEST(PipelineScenes, CarParkedBesideTheSensorIsNotGround) {
 // sensor no car point may be ground; far away a lone body point in a 4 m cell can still pass
 // (seed 13: one point at 68 m, 0.5 m above the road), so overall the bound is 0.1 %.
 TEST(PipelineScenes, CarRoofIsNotGroundNextToATiltedCellPlane) {
-  Segmenter seg(Hdl64());
+  Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   for (uint32_t seed : {13u, 18u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const SimScan scan = Scene(kUrban, seed);
@@ -235,7 +235,8 @@ std::vector<Buffer> Buffers(const Frame& f) {
 TEST(PipelineScenes, SegmentingTwiceGivesIdenticalBytes) {
   const SimScan scan = Scene(kUrban, 4);
   const SimScan other = Scene(kUrban, 5);
-  Segmenter a(Hdl64()), b(Hdl64());
+  Segmenter a(Hdl64(), SegmenterOptions::For(Backend::kCpu));
+  Segmenter b(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   const Frame first = a.Segment(scan.cloud);  // a copy
   a.Segment(other.cloud);                     // the reused buffers hold another frame meanwhile
   const Frame& again = a.Segment(scan.cloud);

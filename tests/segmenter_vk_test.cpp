@@ -1,0 +1,162 @@
+// lpir::Segmenter's backends: the choice (auto takes the Vulkan device, cpu the reference, a
+// device that is not there an error), frames in flight in submission order, every buffer when
+// asked, the CPU reference finishing a frame whose growing loop ran out of sweeps, and the misuse
+// errors; each frame's bytes against the CPU backend's.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "host/io/sensor_profile.h"
+#include "host/segmenter.h"
+#include "tests/frame_compare.h"
+#include "tests/test_util.h"
+#include "tests/vk_test_util.h"
+
+namespace lpir {
+namespace {
+
+SensorProfile Vlp16() { return LoadSensorProfile("vlp16", test::SensorsDir()); }
+
+Cloud Street(const SensorProfile& sensor, uint32_t seed) {
+  SimOptions o;
+  o.seed = seed;
+  o.emit_rings = seed % 2 == 0;
+  return Simulate(sensor, o).cloud;
+}
+
+SegmenterOptions Options(Backend backend, uint32_t in_flight = 2, bool all = false) {
+  SegmenterOptions o = SegmenterOptions::For(backend);
+  o.frames_in_flight = in_flight;
+  o.all_buffers = all;
+  o.validation = true;
+  o.max_points = 200000;
+  return o;
+}
+
+// The fixture makes the shared context first, so a machine without Vulkan skips these tests.
+class SegmenterVk : public test::VkTest {};
+
+TEST_F(SegmenterVk, AutoTakesTheVulkanDevice) {
+  Segmenter s(Vlp16(), Options(Backend::kAuto));
+  EXPECT_EQ(s.backend(), Backend::kVulkan);
+  EXPECT_EQ(s.backend_note(), "Vulkan on " + device().name());
+  Segmenter cpu(Vlp16(), Options(Backend::kCpu));
+  EXPECT_EQ(cpu.backend(), Backend::kCpu);
+  EXPECT_EQ(cpu.backend_note(), "CPU reference (asked for)");
+}
+
+TEST_F(SegmenterVk, AllBuffersEqualTheReferencesOnBothBackends) {
+  const SensorProfile sensor = Vlp16();
+  Segmenter gpu(sensor, Options(Backend::kVulkan, 2, true));
+  Segmenter cpu(sensor, Options(Backend::kCpu));
+  EXPECT_EQ(gpu.frames_in_flight(), 1u) << "all_buffers reads every frame back before the next";
+  for (uint32_t seed : {1u, 2u}) {
+    const Cloud cloud = Street(sensor, seed);
+    FrameTimes times;
+    const Frame& g = gpu.Segment(cloud, &times);
+    const Frame& c = cpu.Segment(cloud);
+    EXPECT_GT(test::ExpectSameFrame(gpu.params(), c, g, &cloud, "seed " + std::to_string(seed)),
+              0u);
+    EXPECT_GT(times.total_ms, 0.0);
+    EXPECT_GE(times.total_ms, times.stage_ms[7]);
+  }
+}
+
+TEST_F(SegmenterVk, FramesInFlightComeBackInSubmissionOrder) {
+  const SensorProfile sensor = Vlp16();
+  Segmenter gpu(sensor, Options(Backend::kVulkan, 3));
+  Segmenter cpu(sensor, Options(Backend::kCpu, 3));
+  std::vector<Cloud> clouds;
+  for (uint32_t k = 0; k < 7; ++k) clouds.push_back(Street(sensor, 20 + k));
+  clouds[4].xyzi.resize(4 * 10);  // a tiny frame among the big ones
+  if (!clouds[4].ring.empty()) clouds[4].ring.resize(10);
+  std::vector<Frame> reference;
+  for (const Cloud& c : clouds) reference.push_back(cpu.Segment(c));
+
+  for (Segmenter* s : {&gpu, &cpu}) {
+    SCOPED_TRACE(s->backend_note());
+    size_t submitted = 0, collected = 0;
+    while (collected < clouds.size()) {
+      while (submitted < clouds.size() && s->pending() < s->frames_in_flight())
+        s->Submit(clouds[submitted++]);
+      if (s->pending() == s->frames_in_flight()) {
+        EXPECT_THROW(s->Submit(clouds[0]), std::logic_error);
+      }
+      EXPECT_THROW(s->Segment(clouds[0]), std::logic_error);
+      const Frame& f = s->Collect();
+      EXPECT_EQ(f.label, reference[collected].label) << "frame " << collected;
+      EXPECT_EQ(f.why, reference[collected].why) << "frame " << collected;
+      ++collected;
+      if (collected == clouds.size()) break;
+    }
+    EXPECT_EQ(s->pending(), 0u);
+    EXPECT_THROW(s->Collect(), std::logic_error);
+  }
+}
+
+TEST_F(SegmenterVk, OversizedCloudIsAnErrorOnBothBackends) {
+  for (Backend b : {Backend::kVulkan, Backend::kCpu}) {
+    SegmenterOptions o = Options(b);
+    o.max_points = 1000;
+    Segmenter s(Vlp16(), o);
+    Cloud cloud = Street(Vlp16(), 1);
+    try {
+      s.Segment(cloud);
+      ADD_FAILURE() << "no error for " << cloud.size() << " points";
+    } catch (const std::length_error& e) {
+      EXPECT_NE(std::string(e.what()).find("more than the configured maximum of 1000"),
+                std::string::npos)
+          << e.what();
+    }
+    cloud.xyzi.resize(4 * 1000);
+    EXPECT_EQ(s.Segment(cloud).n, 1000u) << "the segmenter still works after the error";
+  }
+}
+
+// A growing budget of one sweep: the device's frame is unfinished, the reference labels it.
+TEST_F(SegmenterVk, UnfinishedGrowingIsFinishedByTheReference) {
+  SensorProfile sensor = Vlp16();
+  sensor.overrides.push_back({"grow_max_iters", 1});
+  Segmenter gpu(sensor, Options(Backend::kVulkan));
+  Segmenter cpu(sensor, Options(Backend::kCpu));
+  const Cloud cloud = Street(sensor, 3);
+  const Frame& g = gpu.Segment(cloud);
+  EXPECT_EQ(gpu.reference_fallbacks(), 1u);
+  EXPECT_EQ(g.label, cpu.Segment(cloud).label);
+}
+
+TEST_F(SegmenterVk, ANamedDeviceThatIsNotThereIsAnError) {
+  SegmenterOptions o = Options(Backend::kAuto);
+  o.device = "no-such-gpu";
+  try {
+    Segmenter s(Vlp16(), o);
+    ADD_FAILURE() << "made a segmenter on " << s.backend_note();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no-such-gpu"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(device().name()), std::string::npos)
+        << "the message lists the devices there are: " << e.what();
+  }
+}
+
+TEST(Segmenter, BackendNames) {
+  EXPECT_EQ(ParseBackend("auto"), Backend::kAuto);
+  EXPECT_EQ(ParseBackend("cpu"), Backend::kCpu);
+  EXPECT_EQ(ParseBackend("vulkan"), Backend::kVulkan);
+  EXPECT_THROW(ParseBackend("cuda"), std::invalid_argument);
+}
+
+TEST(Segmenter, BadOptionsAreErrors) {
+  SegmenterOptions o = SegmenterOptions::For(Backend::kCpu);
+  o.frames_in_flight = 0;
+  EXPECT_THROW(Segmenter(Vlp16(), o), std::invalid_argument);
+  o.frames_in_flight = 1;
+  o.max_points = 0;
+  EXPECT_THROW(Segmenter(Vlp16(), o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lpir
