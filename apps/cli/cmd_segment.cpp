@@ -1,10 +1,12 @@
 // lpir-gseg segment INPUT... --sensor NAME --out DIR [options]: labels every point of every input
 // cloud (files, or folders of them) and writes DIR/<stem>.label, or the cloud with a label field.
-// A file that cannot be read or segmented is reported and skipped; the exit code is then 1 and the
-// last line counts the failures.
+// On Vulkan the next file is read while the device works on the previous ones (frames in
+// flight). A file that cannot be read or segmented is reported and skipped; the exit code is then
+// 1 and the last line counts the failures.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <deque>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -37,7 +39,14 @@ const char kHelp[] =
     "  --images         also write pictures of every stage to DIR/images/\n"
     "  --gt PATH        ground truth .label file or folder (matched by stem) for the pictures\n"
     "  --max-points N   largest cloud accepted (default 1048576)\n"
-    "  --quiet          no per-frame lines\n";
+    "  --backend B      vulkan, cpu (the reference) or auto (default: Vulkan when a device can\n"
+    "                   be set up, else the reference; the first line says which). Both give the\n"
+    "                   same bytes\n"
+    "  --device D       Vulkan device: index or part of its name (`lpir-gseg devices` lists them)\n"
+    "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
+    "                   the CPU) and their medians at the end\n"
+    "  --quiet          no per-frame lines\n"
+    "Environment: LPIR_VK_VALIDATION=1 turns the Vulkan validation layer on.\n";
 
 // Input clouds: files as given, folders expanded to their cloud files in name order.
 std::vector<std::string> ListInputs(const std::vector<std::string>& inputs) {
@@ -59,11 +68,53 @@ std::vector<std::string> ListInputs(const std::vector<std::string>& inputs) {
   return files;
 }
 
+// One file between its reading and its writing.
+struct Job {
+  std::string file, stem;
+  Cloud cloud;
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t h = v.size() / 2;
+  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
+}
+
+// Per-stage times of every frame, printed as the frames finish and summarised at the end.
+class Timings {
+ public:
+  explicit Timings(bool gpu) : gpu_(gpu) {}
+  void Add(const std::string& stem, const FrameTimes& t) {
+    std::printf("%s times (ms):", stem.c_str());
+    if (gpu_) std::printf(" upload %.3f", t.upload_ms);
+    for (int k = 0; k < 9; ++k) std::printf(" %s %.3f", kStageNames[k], t.stage_ms[k]);
+    if (gpu_) std::printf(" download %.3f", t.download_ms);
+    std::printf(" total %.3f\n", t.total_ms);
+    upload_.push_back(t.upload_ms), download_.push_back(t.download_ms), total_.push_back(t.total_ms);
+    for (int k = 0; k < 9; ++k) stage_[k].push_back(t.stage_ms[k]);
+  }
+  void PrintMedians() const {
+    if (total_.empty()) return;
+    std::printf("median over %zu frame%s (%s, ms):", total_.size(), total_.size() == 1 ? "" : "s",
+                gpu_ ? "GPU timestamps" : "CPU wall time");
+    if (gpu_) std::printf(" upload %.3f", Median(upload_));
+    for (int k = 0; k < 9; ++k) std::printf(" %s %.3f", kStageNames[k], Median(stage_[k]));
+    if (gpu_) std::printf(" download %.3f", Median(download_));
+    std::printf(" total %.3f\n", Median(total_));
+  }
+
+ private:
+  bool gpu_;
+  std::vector<double> upload_, download_, total_, stage_[9];
+};
+
 }  // namespace
 
 int RunSegment(int argc, char** argv) {
-  const Args args(argc, argv, {"--images", "--nuscenes", "--quiet", "--help"},
-                  {"--sensor", "--out", "--format", "--gt", "--max-points"});
+  const Args args(argc, argv, {"--images", "--nuscenes", "--quiet", "--timings", "--help"},
+                  {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend",
+                   "--device"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     return 0;
@@ -73,29 +124,49 @@ int RunSegment(int argc, char** argv) {
   if (format != "label" && format != "pcd" && format != "ply")
     throw std::invalid_argument("--format must be label, pcd or ply, not '" + format + "'");
   const double max_points = args.GetNumber("--max-points", double(kDefaultMaxPoints));
-  if (!(max_points >= 1) || max_points > 1e9)
-    throw std::invalid_argument("--max-points must be between 1 and 1e9");
+  if (!(max_points >= 1) || max_points > 1e8)
+    throw std::invalid_argument("--max-points must be between 1 and 1e8");
   const std::string out_dir = args.Require("--out");
-  Segmenter segmenter(LoadSensorProfile(args.Require("--sensor"), SensorsDir()),
-                      size_t(max_points));
+  SegmenterOptions options;
+  options.backend = ParseBackend(args.Get("--backend", "auto"));
+  options.device = args.Get("--device");
+  options.max_points = size_t(max_points);
+  options.all_buffers = args.Has("--images");  // the pictures show every stage
+  const char* validation = std::getenv("LPIR_VK_VALIDATION");
+  options.validation = validation && *validation && std::string(validation) != "0";
+  const SensorProfile sensor = LoadSensorProfile(args.Require("--sensor"), SensorsDir());
   const std::vector<std::string> files = ListInputs(args.positional());
+  Segmenter segmenter(sensor, options);
+  if (options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
+    std::fprintf(stderr, "lpir-gseg segment: note: %s\n",
+                 segmenter.backend_note().c_str());
   fs::create_directories(out_dir);
   ReadOptions read_options;
   if (args.Has("--nuscenes")) read_options.bin_layout = BinLayout::kNuScenes5;
   const bool quiet = args.Has("--quiet");
+  const bool on_gpu = segmenter.backend() == Backend::kVulkan;
 
-  std::printf("segmenting %zu file%s with sensor '%s' on the CPU reference\n", files.size(),
-              files.size() == 1 ? "" : "s", segmenter.sensor().name.c_str());
+  std::printf("segmenting %zu file%s with sensor '%s' on %s\n", files.size(),
+              files.size() == 1 ? "" : "s", segmenter.sensor().name.c_str(),
+              on_gpu ? segmenter.backend_note().c_str() : "the CPU reference");
   Progress progress(files.size(), files.size() > 1);
+  Timings timings(on_gpu);
   size_t failures = 0;
-  for (const std::string& file : files) {
-    const std::string stem = fs::path(file).stem().string();
+  auto report = [&](const std::string& file, const std::exception& e) {
+    ++failures;
+    if (dynamic_cast<const IoError*>(&e))  // names the file already
+      std::fprintf(stderr, "lpir-gseg segment: error: %s\n", e.what());
+    else
+      std::fprintf(stderr, "lpir-gseg segment: error: %s: %s\n", file.c_str(), e.what());
+  };
+  // Collects the oldest frame in flight and writes what it gives.
+  std::deque<Job> jobs;
+  auto finish = [&] {
+    const Job job = std::move(jobs.front());
+    jobs.pop_front();
     try {
-      const Cloud cloud = ReadCloud(file, read_options);
-      const auto t0 = std::chrono::steady_clock::now();
-      const Frame& frame = segmenter.Segment(cloud);
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      FrameTimes times;
+      const Frame& frame = segmenter.Collect(&times);
       size_t ground = 0, invalid = 0;
       for (uint32_t i = 0; i < frame.n; ++i) {
         ground += frame.label[i];
@@ -103,34 +174,50 @@ int RunSegment(int argc, char** argv) {
       }
       if (format == "label") {
         std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
-        WriteLabelFile((fs::path(out_dir) / (stem + ".label")).string(), labels);
+        WriteLabelFile((fs::path(out_dir) / (job.stem + ".label")).string(), labels);
       } else {
-        WriteLabelledCloud((fs::path(out_dir) / (stem + "." + format)).string(), cloud, frame.label,
-                           format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
+        WriteLabelledCloud((fs::path(out_dir) / (job.stem + "." + format)).string(), job.cloud,
+                           frame.label, format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
       }
       if (args.Has("--images")) {
         std::vector<uint8_t> truth;
-        if (args.Has("--gt")) truth = LoadTruth(args.Get("--gt"), stem, cloud.size());
-        WriteImages((fs::path(out_dir) / "images").string(), stem, cloud, frame,
+        if (args.Has("--gt")) truth = LoadTruth(args.Get("--gt"), job.stem, job.cloud.size());
+        WriteImages((fs::path(out_dir) / "images").string(), job.stem, job.cloud, frame,
                     segmenter.params(), truth.empty() ? nullptr : &truth);
       }
       if (!quiet) {
-        std::printf("%s: %zu points, %.1f %% ground, %.2f ms", stem.c_str(), cloud.size(),
-                    cloud.size() ? 100.0 * double(ground) / double(cloud.size()) : 0.0, ms);
+        std::printf("%s: %zu points, %.1f %% ground, %.2f ms", job.stem.c_str(), job.cloud.size(),
+                    job.cloud.size() ? 100.0 * double(ground) / double(job.cloud.size()) : 0.0,
+                    times.total_ms);
         if (invalid)
           std::printf(" (%zu invalid points: NaN/Inf, at the origin or out of range; non-ground)",
                       invalid);
         std::printf("\n");
       }
-    } catch (const IoError& e) {  // names the file already
-      ++failures;
-      std::fprintf(stderr, "lpir-gseg segment: error: %s\n", e.what());
+      if (args.Has("--timings")) timings.Add(job.stem, times);
     } catch (const std::exception& e) {
-      ++failures;
-      std::fprintf(stderr, "lpir-gseg segment: error: %s: %s\n", file.c_str(), e.what());
+      report(job.file, e);
     }
-    progress.Step(stem);
+    progress.Step(job.stem);
+  };
+  for (const std::string& file : files) {
+    Job job{file, fs::path(file).stem().string(), {}};
+    try {
+      job.cloud = ReadCloud(file, read_options);
+      if (segmenter.pending() == segmenter.frames_in_flight()) finish();
+      segmenter.Submit(job.cloud);
+      jobs.push_back(std::move(job));
+    } catch (const std::exception& e) {
+      report(file, e);
+      progress.Step(job.stem);
+    }
   }
+  while (!jobs.empty()) finish();
+  if (args.Has("--timings")) timings.PrintMedians();
+  if (segmenter.reference_fallbacks())
+    std::printf("%zu frame%s needed more growing sweeps than grow_max_iters on the device and "
+                "were labelled by the CPU reference\n",
+                segmenter.reference_fallbacks(), segmenter.reference_fallbacks() == 1 ? "" : "s");
   if (failures) {
     std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, files.size());
     return 1;

@@ -8,6 +8,7 @@ int RunSegment(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
 int RunSimulate(int argc, char** argv);
 int RunDemo(int argc, char** argv);
+int RunDevices(int argc, char** argv);
 
 // The folder holding sensors/*.txt (next to the binary's sources, or $LPIR_SENSORS_DIR).
 const char* SensorsDir();

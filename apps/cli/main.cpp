@@ -16,10 +16,12 @@ const char* SensorsDir() {
 namespace {
 const char kUsage[] =
     "usage: lpir-gseg <command> [options]\n"
-    "  segment INPUT... --sensor NAME --out DIR [--format label|pcd|ply] [--images] [--gt PATH]\n"
+    "  segment INPUT... --sensor NAME --out DIR [--backend auto|vulkan|cpu] [--device D]\n"
+    "          [--timings] [--format label|pcd|ply] [--images] [--gt PATH]\n"
     "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json]\n"
     "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels FILE.label\n"
-    "  demo [--out DIR]\n";
+    "  demo [--out DIR] [--backend auto|vulkan|cpu]\n"
+    "  devices\n";
 }
 
 int main(int argc, char** argv) {
@@ -34,7 +36,8 @@ int main(int argc, char** argv) {
   const Command commands[] = {{"segment", lpir::RunSegment},
                               {"evaluate", lpir::RunEvaluate},
                               {"simulate", lpir::RunSimulate},
-                              {"demo", lpir::RunDemo}};
+                              {"demo", lpir::RunDemo},
+                              {"devices", lpir::RunDevices}};
   for (const Command& c : commands) {
     if (!std::strcmp(argv[1], c.name)) {
       try {

@@ -1,0 +1,43 @@
+// lpir-gseg devices: the Vulkan devices this machine offers, one line each (index, name, type,
+// API version, usable or why not), and the one `segment` would take without --device. Exit code
+// 1 when there is none.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "apps/cli/args.h"
+#include "apps/cli/commands.h"
+#include "host/vk/context.h"
+#include "host/vk/device.h"
+#include "host/vk/instance.h"
+
+namespace lpir {
+
+int RunDevices(int argc, char** argv) {
+  const Args args(argc, argv, {"--help"}, {});
+  if (args.Has("--help")) {
+    std::fputs("usage: lpir-gseg devices\n", stdout);
+    return 0;
+  }
+  vk::Result<vk::Instance> instance = vk::Instance::Create({});
+  if (!instance.ok()) {
+    std::printf("no Vulkan device: %s\n", instance.error().message.c_str());
+    return 1;
+  }
+  const vk::Result<std::vector<std::string>> lines = vk::Device::Describe(instance.value());
+  if (!lines.ok()) {
+    std::printf("no Vulkan device: %s\n", lines.error().message.c_str());
+    return 1;
+  }
+  for (const std::string& line : lines.value()) std::printf("%s\n", line.c_str());
+  vk::Result<vk::Device> chosen = vk::Device::Create(instance.value());
+  if (!chosen.ok()) {
+    std::printf("none usable: %s\n", chosen.error().message.c_str());
+    return 1;
+  }
+  std::printf("default (segment --backend auto without --device): %s\n",
+              chosen.value().name().c_str());
+  return 0;
+}
+
+}  // namespace lpir

@@ -1,0 +1,189 @@
+// lpir-gseg segment on both backends, as a user runs it: `--backend vulkan` and `--backend cpu`
+// write identical .label files for every real scan in ../shared/data (KITTI HDL-64E, nuScenes and
+// PLY HDL-32E, Ouster OS1-64, VLP-32C), with the validation layer on and silent; `--timings`
+// prints every stage; without any Vulkan driver it falls back to the reference with one notice.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace lpir {
+namespace {
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// ctest points VK_ICD_FILENAMES at lavapipe; without it these tests cannot run Vulkan.
+#define LPIR_REQUIRE_LAVAPIPE()                                                             \
+  do {                                                                                      \
+    const char* icd = std::getenv("VK_ICD_FILENAMES");                                      \
+    if (!icd || !fs::exists(icd))                                                           \
+      GTEST_SKIP() << "no lavapipe ICD (VK_ICD_FILENAMES=" << (icd ? icd : "")              \
+                   << "); install mesa-vulkan-drivers";                                     \
+  } while (0)
+
+size_t Count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Segments `files` with `sensor` on each backend and compares every .label file byte for byte.
+void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
+                                    const std::string& sensor) {
+  LPIR_REQUIRE_LAVAPIPE();
+  std::string inputs;
+  std::vector<std::string> stems;
+  for (const std::string& f : files) {
+    if (test::DataFile(f).empty()) continue;
+    inputs += " '" + test::DataFile(f) + "'";
+    std::string stem = fs::path(f).stem().string();
+    stems.push_back(stem);
+  }
+  if (stems.empty()) GTEST_SKIP() << "none of the scans is under " LPIR_DATA_DIR;
+  const std::string out = test::TempDir();
+  std::string log;
+  ASSERT_EQ(test::RunCommand("LPIR_VK_VALIDATION=1 " + test::CliPath() + " segment" + inputs +
+                                 " --sensor " + sensor + " --backend vulkan --out " + out +
+                                 "/vulkan",
+                             &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("on Vulkan on "), std::string::npos) << log;
+  EXPECT_EQ(log.find("[vulkan"), std::string::npos) << "validation messages:\n" << log;
+  ASSERT_EQ(test::RunCommand(test::CliPath() + " segment" + inputs + " --sensor " + sensor +
+                                 " --backend cpu --out " + out + "/cpu",
+                             &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("on the CPU reference"), std::string::npos) << log;
+  for (const std::string& stem : stems) {
+    const std::string vulkan = ReadAll(out + "/vulkan/" + stem + ".label");
+    const std::string cpu = ReadAll(out + "/cpu/" + stem + ".label");
+    EXPECT_GT(cpu.size(), 0u) << stem;
+    EXPECT_TRUE(vulkan == cpu) << stem << ": the .label files differ (" << vulkan.size()
+                               << " and " << cpu.size() << " bytes)";
+    std::printf("[cli_backend] %s (%s): %zu labels identical on vulkan and cpu\n", stem.c_str(),
+                sensor.c_str(), cpu.size() / 4);
+  }
+}
+
+TEST(CliBackend, KittiHdl64eScansSameOnBothBackends) {
+  ExpectSameLabelsOnBothBackends(
+      {"kitti/07/velodyne/000964.bin", "kitti/unknown/velodyne/000056.bin",
+       "kitti/00/velodyne/000000.bin", "kitti/00/velodyne/000001.bin",
+       "kitti/00/velodyne/000002.bin", "kitti/00/velodyne/000003.bin",
+       "kitti/00/velodyne/000004.bin", "kitti/00/velodyne/000005.bin"},
+      "hdl64e");
+}
+
+TEST(CliBackend, Hdl32eScansSameOnBothBackends) {
+  ExpectSameLabelsOnBothBackends(
+      {"nuscenes/n015-2018-07-24-11-22-45+0800__LIDAR_TOP__1532402927647951.pcd.bin",
+       "hdl32e/source.ply", "hdl32e/target.ply"},
+      "hdl32e");
+}
+
+TEST(CliBackend, OusterOs1ScansSameOnBothBackends) {
+  ExpectSameLabelsOnBothBackends(
+      {"rellis3d/os1/000104.bin", "rellis3d/os1/frame000104-1581624663_170.ply"}, "os1-64");
+}
+
+TEST(CliBackend, Vlp32cScanSameOnBothBackends) {
+  ExpectSameLabelsOnBothBackends({"rellis3d/vlp32c/000104.bin"}, "vlp32c");
+}
+
+TEST(CliBackend, TimingsNameEveryStage) {
+  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
+  std::string log;
+  ASSERT_EQ(test::RunCommand(test::CliPath() + " segment " +
+                                 test::DataFile("kitti/07/velodyne/000964.bin") +
+                                 " --sensor hdl64e --backend vulkan --timings --out " +
+                                 test::TempDir(),
+                             &log),
+            0)
+      << log;
+  for (const char* stage : {"upload", "prepare", "project", "grid_reduce", "coarse_segment",
+                            "feature_maps", "classify_pixels", "fuse", "grow", "back_project",
+                            "download", "total"})
+    EXPECT_EQ(Count(log, std::string(" ") + stage + " "), 2u) << stage << " in\n" << log;
+  EXPECT_NE(log.find("median over 1 frame (GPU timestamps, ms)"), std::string::npos) << log;
+}
+
+// No Vulkan driver at all: auto falls back to the reference with one notice and the same labels;
+// --backend vulkan is an error that says why.
+TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
+  LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
+  const std::string scan = test::DataFile("kitti/07/velodyne/000964.bin");
+  const std::string out = test::TempDir();
+  std::string log;
+  ASSERT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() +
+                                 " segment " + scan + " --sensor hdl64e --out " + out + "/auto",
+                             &log),
+            0)
+      << log;
+  EXPECT_EQ(Count(log, "note: "), 1u) << log;
+  EXPECT_NE(log.find("lpir-gseg segment: note: CPU reference, no Vulkan device: no Vulkan driver "
+                     "found: vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("on the CPU reference"), std::string::npos) << log;
+  ASSERT_EQ(test::RunCommand(test::CliPath() + " segment " + scan +
+                                 " --sensor hdl64e --backend cpu --out " + out + "/cpu",
+                             &log),
+            0)
+      << log;
+  const std::string fallback = ReadAll(out + "/auto/000964.label");
+  EXPECT_EQ(fallback.size(), 4u * 120485);
+  EXPECT_TRUE(fallback == ReadAll(out + "/cpu/000964.label"));
+
+  EXPECT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() +
+                                 " segment " + scan + " --sensor hdl64e --backend vulkan --out " +
+                                 out + "/vulkan",
+                             &log),
+            1);
+  EXPECT_NE(log.find("the Vulkan backend could not be set up"), std::string::npos) << log;
+  EXPECT_NE(log.find("VK_ICD_FILENAMES=/nonexistent.json"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out + "/vulkan/000964.label"));
+}
+
+TEST(CliBackend, BadBackendOrDeviceIsAnError) {
+  std::string log;
+  EXPECT_EQ(test::RunCommand(test::CliPath() + " segment x.bin --sensor hdl64e --backend cuda " +
+                                 "--out " + test::TempDir(),
+                             &log),
+            1);
+  EXPECT_NE(log.find("unknown backend 'cuda' (auto, cpu or vulkan)"), std::string::npos) << log;
+  EXPECT_EQ(test::RunCommand(test::CliPath() + " segment x.bin --sensor hdl64e --device nosuch " +
+                                 "--out " + test::TempDir(),
+                             &log),
+            1);
+  EXPECT_NE(log.find("nosuch"), std::string::npos) << log;
+}
+
+TEST(CliBackend, DevicesListsLavapipe) {
+  LPIR_REQUIRE_LAVAPIPE();
+  std::string log;
+  ASSERT_EQ(test::RunCommand(test::CliPath() + " devices", &log), 0) << log;
+  EXPECT_NE(log.find("#0 "), std::string::npos) << log;
+  EXPECT_NE(log.find("default (segment --backend auto without --device): "), std::string::npos)
+      << log;
+  EXPECT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " devices",
+                             &log),
+            1);
+  EXPECT_NE(log.find("no Vulkan device"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace lpir
