@@ -197,7 +197,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
     LPIR_VK_ASSIGN_OR_RETURN(Buffer upload,
                              Buffer::Create(device, 5 * point, MemoryKind::kHostVisible));
     LPIR_VK_ASSIGN_OR_RETURN(Buffer download,
-                             Buffer::Create(device, 2 * point + 8, MemoryKind::kHostVisible));
+                             Buffer::Create(device, 2 * point + 4, MemoryKind::kHostVisible));
     Slot slot{std::move(cmd), std::move(fence), std::move(upload), std::move(download), {}};
     if (timed) {
       LPIR_VK_ASSIGN_OR_RETURN(TimestampQueries q, TimestampQueries::Create(device, kQueries));
@@ -290,8 +290,8 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
     cmd.CopyBuffer(b.label, slot.download, 4 * VkDeviceSize(n));
     cmd.CopyBuffer(b.why, slot.download, 4 * VkDeviceSize(n), 0, point);
   }
-  const VkDeviceSize summary = 4 * VkDeviceSize(GrowStage::FlagWords(params_.grow_max_iters) - 2);
-  cmd.CopyBuffer(b.grow_flags, slot.download, 8, summary, 2 * point);
+  const VkDeviceSize summary = 4 * VkDeviceSize(GrowStage::FlagWords(params_.grow_max_iters) - 1);
+  cmd.CopyBuffer(b.grow_flags, slot.download, 4, summary, 2 * point);
   cmd.TransferToHost();
   time();
   return cmd.End();
@@ -322,7 +322,7 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
     out.label[i] = uint8_t(label[i]);
     out.why[i] = uint8_t(why[i]);
   }
-  const GrowReport grow{summary[0], summary[1]};
+  const GrowReport grow{summary[0]};
   if (grow_report) *grow_report = grow;
 
   if (times) {

@@ -68,7 +68,7 @@ class FramePipeline {
     CommandBuffer cmd;
     Fence fence;
     Buffer upload;    // host-visible: points (16 bytes each), then rings (4 bytes each)
-    Buffer download;  // host-visible: label words, why words, the two grow summary words
+    Buffer download;  // host-visible: label words, why words, the grow summary word
     std::vector<TimestampQueries> queries;  // one pool of kQueries, or none without timestamps
     bool busy = false, has_ring = false;
     uint32_t n = 0;

@@ -107,7 +107,7 @@ const Frame& Segmenter::Collect(FrameTimes* times) {
     if (times) *times = cpu_times_[slot];
     return frame_;
   }
-  vk::GrowReport grow{1, 1};  // written by Collect once the frame has finished
+  vk::GrowReport grow{1};  // written by Collect once the frame has finished
   const vk::Status status = pipeline_->Collect(slot, frame_, options_.all_buffers, times, &grow);
   if (status.ok()) return frame_;
   if (grow.converged()) throw std::runtime_error("Vulkan: " + status.message());

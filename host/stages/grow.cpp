@@ -25,7 +25,15 @@ Error GrowError(const std::string& message) {
 struct Push {
   uint32_t mode, sweep, count, budget;
 };
-enum Mode : uint32_t { kInit = 0, kGrow = 1, kSettle = 2, kLabel = 3, kCount = 4, kFinish = 5 };
+enum Mode : uint32_t {
+  kInit = 0,
+  kGrow = 1,
+  kSettle = 2,
+  kMerge = 3,
+  kFlatten = 4,
+  kCount = 5,
+  kFinish = 6
+};
 }  // namespace
 
 Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b,
@@ -62,22 +70,17 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
   // here, where the tile count is known.
   LPIR_VK_RETURN_IF_ERROR(pass(kInit, 0, std::max(pixels, FlagWords(budget)), pixels));
   LPIR_VK_RETURN_IF_ERROR(kernel_.CheckGroups(tiles * uint64_t(kLocalSize)));
-  for (uint32_t loop : {kGrow, kLabel}) {
-    if (loop == kLabel) {
-      cmd.ComputeToCompute();
-      LPIR_VK_RETURN_IF_ERROR(pass(kSettle, 0, pixels, pixels));
-    }
-    const VkDeviceSize base = loop == kGrow ? 0 : 3 * VkDeviceSize(budget + 1);
-    for (uint32_t k = 0; k < budget; ++k) {
-      cmd.ComputeToIndirect();
-      const Push push{loop, k, tiles * kLocalSize, budget};
-      kernel_.RecordIndirect(cmd, *flags_, 4 * (base + 3 * VkDeviceSize(k)), &push);
-    }
+  for (uint32_t k = 0; k < budget; ++k) {
+    cmd.ComputeToIndirect();
+    const Push push{kGrow, k, tiles * kLocalSize, budget};
+    kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k), &push);
+  }
+  for (uint32_t mode : {kSettle, kMerge, kFlatten, kCount}) {
+    cmd.ComputeToCompute();
+    LPIR_VK_RETURN_IF_ERROR(pass(mode, 0, pixels, pixels));
   }
   cmd.ComputeToCompute();
-  LPIR_VK_RETURN_IF_ERROR(pass(kCount, 0, pixels, pixels));
-  cmd.ComputeToCompute();
-  // At least one invocation: pixel 0's writes the summary words.
+  // At least one invocation: pixel 0's writes the summary word.
   return pass(kFinish, 0, std::max(pixels, 1u), pixels);
 }
 
@@ -157,8 +160,7 @@ Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* re
   }
   if (!r.converged())
     return GrowError("no fixed point within grow_max_iters = " + std::to_string(budget) +
-                     " sweeps (grow sweeps " + std::to_string(r.grow_sweeps) + ", label sweeps " +
-                     std::to_string(r.label_sweeps) + ", 0 = not converged)");
+                     " sweeps");
   return Status();
 }
 

@@ -1,7 +1,7 @@
 // Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is the
-// per-frame piece (bound once to the frame's buffers, recorded every frame: two fixed-point loops
-// of `max_iters` gated sweeps each, no CPU round trip); RunGrow is the one-shot twin of lpir::Grow
-// for tests and tools.
+// per-frame piece (bound once to the frame's buffers, recorded every frame: a fixed-point loop of
+// `max_iters` gated sweeps, then a union-find for the components, no CPU round trip); RunGrow is
+// the one-shot twin of lpir::Grow for tests and tools.
 #pragma once
 #include <cstdint>
 
@@ -33,9 +33,8 @@ struct GrowBuffers {
 
 // What the flags buffer says after a frame (GrowStage::ReadReport).
 struct GrowReport {
-  uint32_t grow_sweeps = 0;   // sweeps run, the last one proving the fixed point; 0: not reached
-  uint32_t label_sweeps = 0;  // the same for the component labels
-  bool converged() const { return grow_sweeps != 0 && label_sweeps != 0; }
+  uint32_t grow_sweeps = 0;  // sweeps run, the last one proving the fixed point; 0: not reached
+  bool converged() const { return grow_sweeps != 0; }
 };
 
 class GrowStage {
@@ -43,24 +42,24 @@ class GrowStage {
   static constexpr uint32_t kLocalSize = 256;  // one 8 x 32 tile per workgroup
   static constexpr uint32_t kTileW = 32, kTileH = 8;
 
-  // The flags buffer: for each loop, max_iters + 1 indirect dispatch arguments (shaders/grow.comp
-  // says how the sweeps set them), then the two summary words flags[6 (max_iters + 1)] (grow
-  // sweeps, 0 = not converged) and the next (label sweeps).
-  static uint32_t FlagWords(uint32_t max_iters) { return 6 * (max_iters + 1) + 2; }
+  // The flags buffer: max_iters + 1 indirect dispatch arguments (shaders/grow.comp says how the
+  // sweeps set them), then the summary word flags[3 (max_iters + 1)] (grow sweeps, 0 = not
+  // converged).
+  static uint32_t FlagWords(uint32_t max_iters) { return 3 * (max_iters + 1) + 1; }
   static GrowReport ReadReport(const uint32_t* flags, uint32_t max_iters) {
-    return {flags[6 * (max_iters + 1)], flags[6 * (max_iters + 1) + 1]};
+    return {flags[3 * (max_iters + 1)]};
   }
 
-  // `max_iters` (Params::grow_max_iters, at least 1): the sweeps recorded for each of the two
-  // fixed points; the sweeps after the first one that changes nothing launch no workgroup.
+  // `max_iters` (Params::grow_max_iters, at least 1): the growing sweeps recorded; the sweeps
+  // after the first one that changes nothing launch no workgroup.
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers,
                                   uint32_t max_iters);
 
   // Records the whole stage over a width x beams image (the Params uploaded to buffers.params
   // must say the same), with compute-to-compute barriers between its passes but none before the
   // first or after the last (the caller orders it with the stages around). The production
-  // pipeline must check the summary words (ReadReport) and reject a frame whose grow or label
-  // loop did not converge.
+  // pipeline must check the summary word (ReadReport) and reject a frame whose growing loop did
+  // not converge.
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
 
   uint32_t max_iters() const { return max_iters_; }
@@ -77,9 +76,9 @@ class GrowStage {
 // Stage 8 on the GPU, the twin of lpir::Grow(p, f): allocates device-local buffers, uploads
 // f.pixel_fused, f.f_inten, f.f_height and f.f_range, runs, and fills f.pixel_grown,
 // f.pixel_comp and f.pixel_label (nothing else of f is touched). An error when a per-pixel input
-// does not hold width * beams elements, or when either fixed point was not reached within
-// p.grow_max_iters sweeps (outputs then still downloaded). `report`, when given, gets the sweep
-// counts; `gpu_ns` the stage's GPU time in nanoseconds (-1 without timestamps). Waits for the GPU.
+// does not hold width * beams elements, or when the growing loop's fixed point was not reached
+// within p.grow_max_iters sweeps (outputs then still downloaded). `report`, when given, gets the
+// sweep count; `gpu_ns` the stage's GPU time in nanoseconds (-1 without timestamps). Waits for the GPU.
 Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* report = nullptr,
                double* gpu_ns = nullptr);
 
