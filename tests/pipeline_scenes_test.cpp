@@ -1,6 +1,7 @@
 // The whole pipeline (lpir::Segmenter on the CPU reference, HDL-64E profile) on simulated
-// scenes with known truth (apps/sim): a flat plane, the plane with a car and a wall, and urban streets with a ramp,
-// curbs, sidewalks, cars, buildings and vegetation. Plus determinism of every Frame buffer.
+// scenes with known truth (apps/sim): a flat plane, the plane with a car and a wall, and urban
+// streets with a ramp, curbs, sidewalks, cars, buildings and vegetation. Plus determinism of
+// every Frame buffer.
 #include <gtest/gtest.h>
 
 #include <cstring>
