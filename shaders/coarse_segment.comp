@@ -6,12 +6,15 @@
 //     rise and slope-prior rules, the whole-cell rule), cell_seed_mode, cell_plane zeroed, the
 //     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
 //     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds).
-//   pass 1, one invocation per point: seed iff z_t - h <= lambda (one rounded float op, the CPU's
-//     test; mode 2 decided on z_t's bits with the same outcome, no infinity arithmetic); a seed adds n, x, y, z and the six products to its cell's sums.
+//   pass 1, one invocation per kChunk consecutive points: seed iff z_t - h <= lambda (one rounded
+//     float op, the CPU's test; mode 2 decided on z_t's bits with the same outcome, no infinity
+//     arithmetic); a seed adds n, x, y, z and the six products to its cell's sums. The chunk's
+//     seeds are summed in registers while their cell stays the same (scans come ring by ring,
+//     so consecutive points mostly share a cell) and each run is added with one set of atomics.
 //   pass 2, one invocation per cell: mean (DivToZero), centred moments, PlaneNormal, the plane
 //     (cell_plane[0..5, 7]), cell_plane[6] = -1 when the normal is too steep.
-//   pass 3, one invocation per point: |n . q - n . mean| of the seeds of ground cells, summed per
-//     cell.
+//   pass 3, one invocation per kChunk consecutive points: |n . q - n . mean| of the seeds of
+//     ground cells, summed per cell (runs of one cell summed in registers first, as in pass 1).
 //   pass 4, one invocation per cell: threshold max(floor, scale * mean seed distance) into
 //     cell_plane[6] of the ground cells.
 //   pass 5, one invocation per point: coarse = the point's cell is a ground cell and its
@@ -71,9 +74,12 @@ const uint kSumDist = 10u;
 const uint kTestH = 22u;
 const uint kTestLambda = 23u;
 
+const uint kChunk = 32u;  // points per invocation in passes 1 and 3 (host/stages/coarse_segment.h)
+
 uint Base(uint cell) { return cell * kScratch; }
 
 void AtomicAdd64(uint word, uint64_t v) {
+  if (v == uint64_t(0)) return;
   uint lo = uint(v), hi = uint(v >> 32);
   uint old = atomicAdd(scratch[word], lo);
   uint carry = (old + lo < old) ? 1u : 0u;
@@ -306,33 +312,73 @@ int64_t Distance(uint i, uint c) {
   return d < int64_t(0) ? -d : d;
 }
 
+// ---- passes 1 and 3: per-cell sums over a chunk of points ----------------------------------
+
+// Adds one run's sums (s[0] = seeds, then x, y, z, xx, xy, xz, yy, yz, zz) to cell c.
+void FlushSeedSums(uint c, uint64_t s[10]) {
+  uint b = Base(c);
+  atomicAdd(scratch[b], uint(s[0]));  // n < 2^32: its high word stays 0
+  for (uint k = 1u; k < 10u; ++k) AtomicAdd64(b + 2u * k, s[k]);
+}
+
+// Pass 1 over points first .. first + kChunk - 1.
+void SeedSums(uint first) {
+  uint end = min(first + kChunk, pc.count);
+  uint cur = kNone;
+  uint64_t s[10];
+  for (uint i = first; i < end; ++i) {
+    uint c = point_cell[i];
+    if (c == kNone || !IsSeed(i, c)) continue;
+    if (c != cur) {
+      if (cur != kNone) FlushSeedSums(cur, s);
+      cur = c;
+      for (uint k = 0u; k < 10u; ++k) s[k] = uint64_t(0);
+    }
+    ivec3 q = Mm(i);
+    int64_t x = int64_t(q.x), y = int64_t(q.y), z = int64_t(q.z);
+    s[0] += uint64_t(1);
+    s[1] += uint64_t(x);
+    s[2] += uint64_t(y);
+    s[3] += uint64_t(z);
+    s[4] += uint64_t(x * x);
+    s[5] += uint64_t(x * y);
+    s[6] += uint64_t(x * z);
+    s[7] += uint64_t(y * y);
+    s[8] += uint64_t(y * z);
+    s[9] += uint64_t(z * z);
+  }
+  if (cur != kNone) FlushSeedSums(cur, s);
+}
+
+// Pass 3 over points first .. first + kChunk - 1.
+void DistanceSums(uint first) {
+  uint end = min(first + kChunk, pc.count);
+  uint cur = kNone;
+  uint64_t sum = uint64_t(0);
+  for (uint i = first; i < end; ++i) {
+    uint c = point_cell[i];
+    if (c == kNone || !Ground(c) || !IsSeed(i, c)) continue;
+    if (c != cur) {
+      if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
+      cur = c;
+      sum = uint64_t(0);
+    }
+    sum += uint64_t(Distance(i, c));
+  }
+  if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   if (pc.pass == 0u) {
     SeedMode(i);
   } else if (pc.pass == 1u) {
-    uint c = point_cell[i];
-    if (c == kNone || !IsSeed(i, c)) return;
-    ivec3 q = Mm(i);
-    int64_t x = int64_t(q.x), y = int64_t(q.y), z = int64_t(q.z);
-    uint b = Base(c);
-    atomicAdd(scratch[b], 1u);  // n < 2^32: its high word stays 0
-    AtomicAdd64(b + 2u, uint64_t(x));
-    AtomicAdd64(b + 4u, uint64_t(y));
-    AtomicAdd64(b + 6u, uint64_t(z));
-    AtomicAdd64(b + 8u, uint64_t(x * x));
-    AtomicAdd64(b + 10u, uint64_t(x * y));
-    AtomicAdd64(b + 12u, uint64_t(x * z));
-    AtomicAdd64(b + 14u, uint64_t(y * y));
-    AtomicAdd64(b + 16u, uint64_t(y * z));
-    AtomicAdd64(b + 18u, uint64_t(z * z));
+    SeedSums(i * kChunk);
   } else if (pc.pass == 2u) {
     FitPlane(i);
   } else if (pc.pass == 3u) {
-    uint c = point_cell[i];
-    if (c == kNone || !Ground(c) || !IsSeed(i, c)) return;
-    AtomicAdd64(Base(c) + 2u * kSumDist, uint64_t(Distance(i, c)));
+    DistanceSums(i * kChunk);
   } else if (pc.pass == 4u) {
     if (!Ground(i)) return;
     int64_t floor_q = exact_ToFixed(p.plane_dist_floor, 16384000.0);  // metres -> mm * 2^14
