@@ -7,6 +7,7 @@ namespace lpir {
 int RunSegment(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
 int RunSimulate(int argc, char** argv);
+int RunCalibrate(int argc, char** argv);
 int RunDemo(int argc, char** argv);
 int RunDevices(int argc, char** argv);
 

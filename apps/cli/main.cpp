@@ -20,6 +20,7 @@ const char kUsage[] =
     "          [--timings] [--format label|pcd|ply] [--images] [--gt PATH]\n"
     "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json]\n"
     "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels FILE.label\n"
+    "  calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
     "  demo [--out DIR] [--backend auto|vulkan|cpu]\n"
     "  devices\n";
 }
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
   const Command commands[] = {{"segment", lpir::RunSegment},
                               {"evaluate", lpir::RunEvaluate},
                               {"simulate", lpir::RunSimulate},
+                              {"calibrate", lpir::RunCalibrate},
                               {"demo", lpir::RunDemo},
                               {"devices", lpir::RunDevices}};
   for (const Command& c : commands) {
