@@ -198,6 +198,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                              Buffer::Create(device, 5 * point, MemoryKind::kHostVisible));
     LPIR_VK_ASSIGN_OR_RETURN(Buffer download,
                              Buffer::Create(device, 2 * point + 4, MemoryKind::kHostVisible));
+    fp.device_bytes_ += upload.size() + download.size();
     Slot slot{std::move(cmd), std::move(fence), std::move(upload), std::move(download), {}};
     if (timed) {
       LPIR_VK_ASSIGN_OR_RETURN(TimestampQueries q, TimestampQueries::Create(device, kQueries));

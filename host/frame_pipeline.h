@@ -54,7 +54,8 @@ class FramePipeline {
 
   uint32_t slots() const { return uint32_t(slots_.size()); }
   uint32_t max_points() const { return max_points_; }
-  // Device memory allocated for the buffers, in bytes (constant for the pipeline's life).
+  // Vulkan memory allocated, in bytes: the device buffers and the slots' staging buffers (all
+  // made by Create: constant for the pipeline's life).
   uint64_t device_bytes() const { return device_bytes_; }
 
   ~FramePipeline();  // waits for the frames in flight

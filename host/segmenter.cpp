@@ -65,6 +65,8 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
 Segmenter::~Segmenter() = default;  // the pipeline (waiting for its frames) before the context
 Segmenter::Segmenter(Segmenter&&) noexcept = default;
 
+uint64_t Segmenter::device_bytes() const { return pipeline_ ? pipeline_->device_bytes() : 0; }
+
 void Segmenter::CheckCloud(const Cloud& cloud) const {
   if (cloud.size() > options_.max_points)
     throw std::length_error("cloud has " + std::to_string(cloud.size()) +

@@ -83,6 +83,9 @@ class Segmenter {
   // Frames whose growing loop did not reach its fixed point within grow_max_iters sweeps on the
   // device, and were labelled by the CPU reference instead (same bytes, more time).
   size_t reference_fallbacks() const { return reference_fallbacks_; }
+  // Device memory allocated for the frame buffers, in bytes: constant for the segmenter's life
+  // (everything is allocated at construction); 0 on the CPU.
+  uint64_t device_bytes() const;
 
   const Params& params() const { return params_; }
   const Tables& tables() const { return tables_; }

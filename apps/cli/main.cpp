@@ -22,7 +22,8 @@ const char kUsage[] =
     "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels FILE.label\n"
     "  calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
     "  demo [--out DIR] [--backend auto|vulkan|cpu]\n"
-    "  devices\n";
+    "  devices\n"
+    "  bench [--runs N] [--json]\n";
 }
 
 int main(int argc, char** argv) {
@@ -39,7 +40,8 @@ int main(int argc, char** argv) {
                               {"simulate", lpir::RunSimulate},
                               {"calibrate", lpir::RunCalibrate},
                               {"demo", lpir::RunDemo},
-                              {"devices", lpir::RunDevices}};
+                              {"devices", lpir::RunDevices},
+                              {"bench", lpir::RunBench}};
   for (const Command& c : commands) {
     if (!std::strcmp(argv[1], c.name)) {
       try {

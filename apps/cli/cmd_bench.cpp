@@ -1,0 +1,364 @@
+// lpir-gseg bench [options]: the benchmark suite in one command, one table (or --json). For the
+// CPU reference (single-threaded) and the Vulkan device: each stage's median time and spread
+// (reference: wall time; Vulkan: GPU timestamps) and their ratio; the whole frame end to end
+// (upload, stages, download: wall time of Segmenter::Segment); sustained frames per second over
+// a sequence with 1, 2 and 4 frames in flight; peak host memory and device memory allocated;
+// and the scaling of cost with points and image size from 16 to 256 beams (simulated streets:
+// VLP-16, then OS1-128's field of view with 32, 64, 128 and 256 beams).
+// Every timed configuration first checks that its labels equal the CPU reference's byte for byte.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "apps/cli/args.h"
+#include "apps/cli/commands.h"
+#include "apps/sim/scene.h"
+#include "host/io/kitti_bin.h"
+#include "host/io/sensor_profile.h"
+#include "host/segmenter.h"
+
+namespace fs = std::filesystem;
+
+namespace lpir {
+namespace {
+
+const char kHelp[] =
+    "usage: lpir-gseg bench [--data DIR] [--runs N] [--scaling-runs N] [--frames N]\n"
+    "                       [--device D] [--json]\n"
+    "  --data DIR         real scans (default ../shared/data beside the repository, or\n"
+    "                     $LPIR_DATA_DIR): kitti/00/velodyne/*.bin; absent: simulated HDL-64E\n"
+    "                     streets instead\n"
+    "  --runs N           timed frames per scan and backend (default 20)\n"
+    "  --scaling-runs N   timed frames per sensor in the scaling table (default 5)\n"
+    "  --frames N         frames per throughput measurement (default 24)\n"
+    "  --device D         Vulkan device (index or name part); without a device, CPU rows only\n"
+    "  --json             one JSON object instead of the table\n";
+
+using Clock = std::chrono::steady_clock;
+double Ms(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+struct Spread {
+  double median = 0, p25 = 0, p75 = 0;
+};
+Spread SpreadOf(std::vector<double> v) {
+  Spread s;
+  if (v.empty()) return s;
+  std::sort(v.begin(), v.end());
+  auto at = [&](double q) {  // linear interpolation between order statistics
+    const double x = q * double(v.size() - 1);
+    const size_t i = size_t(x);
+    const double f = x - double(i);
+    return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
+  };
+  s.median = at(0.5), s.p25 = at(0.25), s.p75 = at(0.75);
+  return s;
+}
+
+// What one backend's timed frames gave.
+struct Timed {
+  std::vector<double> wall, stage[9], upload, download, gpu_total;
+};
+
+// Labels of every cloud on `s` equal to the reference's, or std::runtime_error.
+void CheckAgainstReference(Segmenter& s, Segmenter& reference, const std::vector<Cloud>& clouds,
+                           const std::vector<std::string>& names) {
+  for (size_t k = 0; k < clouds.size(); ++k) {
+    const Labels got = s.Segment(clouds[k]).label;
+    if (got != reference.Segment(clouds[k]).label)
+      throw std::runtime_error(names[k] + ": the labels of " + s.backend_note() +
+                               " differ from the CPU reference's; nothing timed");
+  }
+}
+
+Timed TimeFrames(Segmenter& s, const std::vector<Cloud>& clouds, int runs) {
+  Timed t;
+  for (int r = 0; r < runs; ++r)
+    for (const Cloud& cloud : clouds) {
+      FrameTimes ft;
+      const auto t0 = Clock::now();
+      s.Segment(cloud, &ft);
+      t.wall.push_back(Ms(t0, Clock::now()));
+      for (int k = 0; k < 9; ++k) t.stage[k].push_back(ft.stage_ms[k]);
+      t.upload.push_back(ft.upload_ms), t.download.push_back(ft.download_ms);
+      t.gpu_total.push_back(ft.total_ms);
+    }
+  return t;
+}
+
+// Frames per second over `frames` frames (the clouds in turn) with `in_flight` frames in flight.
+double Throughput(const SensorProfile& sensor, SegmenterOptions options,
+                  const std::vector<Cloud>& clouds, uint32_t in_flight, int frames) {
+  options.frames_in_flight = in_flight;
+  Segmenter s(sensor, options);
+  s.Segment(clouds[0]);  // warm
+  const auto t0 = Clock::now();
+  for (int submitted = 0, collected = 0; collected < frames;) {
+    while (submitted < frames && s.pending() < s.frames_in_flight())
+      s.Submit(clouds[size_t(submitted++) % clouds.size()]);
+    s.Collect();
+    ++collected;
+  }
+  return 1000.0 * frames / Ms(t0, Clock::now());
+}
+
+double PeakRssMiB() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+  return -1;
+}
+
+std::string CpuName() {
+  std::ifstream info("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(info, line))
+    if (line.rfind("model name", 0) == 0) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  return "CPU";
+}
+
+// os1-128's field of view and width with `beams` beams spread evenly over it: the 32, 64 and
+// 256-beam rows of the scaling table, so that from row to row only the beam count changes and the
+// points double.
+SensorProfile Os1With(const SensorProfile& os1_128, uint32_t beams) {
+  SensorProfile s = os1_128;
+  s.name = "os1-" + std::to_string(beams);
+  s.beams = beams;
+  s.elevation_deg.clear();
+  const float top = os1_128.elevation_deg.front(), bottom = os1_128.elevation_deg.back();
+  for (uint32_t b = 0; b < beams; ++b)
+    s.elevation_deg.push_back(top + (bottom - top) * float(b) / float(beams - 1));
+  return s;
+}
+
+struct ScalingRow {
+  std::string sensor;
+  uint32_t beams = 0, width = 0;
+  size_t points = 0;
+  double cpu_ms = 0, vulkan_ms = -1;
+};
+
+std::string JsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+int RunBench(int argc, char** argv) {
+  const Args args(argc, argv, {"--json", "--help"},
+                  {"--data", "--runs", "--scaling-runs", "--frames", "--device"});
+  if (args.Has("--help")) {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  const int runs = int(args.GetNumber("--runs", 20));
+  const int scaling_runs = int(args.GetNumber("--scaling-runs", 5));
+  const int frames = int(args.GetNumber("--frames", 24));
+  if (runs < 1 || scaling_runs < 1 || frames < 1)
+    throw std::invalid_argument("--runs, --scaling-runs and --frames must be at least 1");
+  const char* env_data = std::getenv("LPIR_DATA_DIR");
+  // ../shared/data beside the repository, whose sensors/ folder SensorsDir() is.
+  const std::string beside = (fs::path(SensorsDir()).parent_path().parent_path() / "shared" /
+                              "data").string();
+  const std::string data = args.Get("--data", env_data && *env_data ? env_data : beside);
+  const bool json = args.Has("--json");
+  auto say = [&](const char* what) {
+    if (!json) std::fprintf(stderr, "bench: %s\n", what);
+  };
+
+  // The frames: the six consecutive kitti/00 scans, or simulated HDL-64E streets.
+  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", SensorsDir());
+  std::vector<Cloud> clouds;
+  std::vector<std::string> names;
+  const fs::path kitti = fs::path(data) / "kitti" / "00" / "velodyne";
+  std::error_code ec;
+  if (fs::is_directory(kitti, ec)) {
+    for (const auto& entry : fs::directory_iterator(kitti, ec))
+      if (entry.path().extension() == ".bin") names.push_back(entry.path().string());
+    std::sort(names.begin(), names.end());
+    for (const std::string& n : names) clouds.push_back(ReadKittiBin(n));
+    for (std::string& n : names) n = "kitti/00/" + fs::path(n).stem().string();
+  }
+  if (clouds.empty()) {
+    for (uint32_t seed = 1; seed <= 6; ++seed) {
+      SimOptions o;
+      o.seed = seed;
+      clouds.push_back(Simulate(hdl64e, o).cloud);
+      names.push_back("simulated hdl64e street " + std::to_string(seed));
+    }
+  }
+  size_t points = 0;
+  for (const Cloud& c : clouds) points += c.size();
+
+  SegmenterOptions cpu_options = SegmenterOptions::For(Backend::kCpu);
+  SegmenterOptions vk_options = SegmenterOptions::For(Backend::kVulkan);
+  vk_options.device = args.Get("--device");
+  vk_options.frames_in_flight = 1;
+  Segmenter reference(hdl64e, cpu_options);
+  std::unique_ptr<Segmenter> gpu;
+  std::string no_device;
+  try {
+    gpu = std::make_unique<Segmenter>(hdl64e, vk_options);
+  } catch (const std::exception& e) {
+    no_device = e.what();
+  }
+  const std::string device = gpu ? gpu->backend_note().substr(std::string("Vulkan on ").size())
+                                 : std::string("none (") + no_device + ")";
+  const std::string cpu_name = CpuName() + ", 1 thread";
+
+  say("checking the labels of both backends against the reference");
+  Segmenter cpu(hdl64e, cpu_options);
+  CheckAgainstReference(cpu, reference, clouds, names);
+  if (gpu) CheckAgainstReference(*gpu, reference, clouds, names);
+  say("timing frames");
+  const Timed c = TimeFrames(cpu, clouds, runs);
+  Timed g;
+  if (gpu) g = TimeFrames(*gpu, clouds, runs);
+  const uint64_t device_bytes = gpu ? gpu->device_bytes() : 0;
+
+  say("throughput");
+  const double cpu_fps = Throughput(hdl64e, cpu_options, clouds, 1, frames);
+  double fps[3] = {-1, -1, -1};
+  const uint32_t in_flight[3] = {1, 2, 4};
+  if (gpu)
+    for (int k = 0; k < 3; ++k) fps[k] = Throughput(hdl64e, vk_options, clouds, in_flight[k], frames);
+
+  say("scaling");
+  std::vector<ScalingRow> scaling;
+  {
+    const SensorProfile os1_128 = LoadSensorProfile("os1-128", SensorsDir());
+    std::vector<SensorProfile> sensors = {LoadSensorProfile("vlp16", SensorsDir())};
+    for (uint32_t beams : {32u, 64u, 128u, 256u}) sensors.push_back(Os1With(os1_128, beams));
+    for (const SensorProfile& sensor : sensors) {
+      SimOptions o;
+      o.seed = 1;
+      const std::vector<Cloud> scene = {Simulate(sensor, o).cloud};
+      const std::vector<std::string> scene_name = {sensor.name + " simulated street"};
+      SegmenterOptions co = cpu_options, vo = vk_options;
+      co.max_points = vo.max_points = std::max<size_t>(scene[0].size(), 1);
+      Segmenter sc(sensor, co), sref(sensor, co);
+      CheckAgainstReference(sc, sref, scene, scene_name);
+      ScalingRow row{sensor.name, sensor.beams, sensor.width, scene[0].size(), 0, -1};
+      row.cpu_ms = SpreadOf(TimeFrames(sc, scene, scaling_runs).wall).median;
+      if (gpu) {
+        Segmenter sg(sensor, vo);
+        CheckAgainstReference(sg, sref, scene, scene_name);
+        row.vulkan_ms = SpreadOf(TimeFrames(sg, scene, scaling_runs).wall).median;
+      }
+      scaling.push_back(row);
+    }
+  }
+  const double rss = PeakRssMiB();
+
+  const Spread cpu_e2e = SpreadOf(c.wall), gpu_e2e = SpreadOf(g.wall);
+  if (json) {
+    std::string j = "{\"device\": " + JsonString(device) + ", \"cpu\": " + JsonString(cpu_name) +
+                    ", \"frames\": " + std::to_string(clouds.size()) +
+                    ", \"mean_points\": " + std::to_string(points / clouds.size()) +
+                    ", \"runs\": " + std::to_string(runs);
+    auto spread = [](const Spread& s) {
+      char b[128];
+      std::snprintf(b, sizeof b, "{\"median_ms\": %.4f, \"p25_ms\": %.4f, \"p75_ms\": %.4f}",
+                    s.median, s.p25, s.p75);
+      return std::string(b);
+    };
+    j += ", \"end_to_end\": {\"cpu\": " + spread(cpu_e2e) +
+         (gpu ? ", \"vulkan\": " + spread(gpu_e2e) : std::string(", \"vulkan\": null"));
+    if (gpu) j += ", \"vulkan_gpu_total\": " + spread(SpreadOf(g.gpu_total));
+    j += "}, \"stages\": [";
+    for (int k = 0; k < 9; ++k) {
+      char b[256];
+      const Spread cs = SpreadOf(c.stage[k]), gs = SpreadOf(g.stage[k]);
+      std::snprintf(b, sizeof b, "%s{\"name\": \"%s\", \"cpu_ms\": %.4f, \"vulkan_ms\": %.4f, "
+                    "\"cpu_p25_ms\": %.4f, \"cpu_p75_ms\": %.4f, \"vulkan_p25_ms\": %.4f, "
+                    "\"vulkan_p75_ms\": %.4f}",
+                    k ? ", " : "", kStageNames[k], cs.median, gpu ? gs.median : -1.0, cs.p25,
+                    cs.p75, gpu ? gs.p25 : -1.0, gpu ? gs.p75 : -1.0);
+      j += b;
+    }
+    char b[512];
+    std::snprintf(b, sizeof b,
+                  "], \"throughput_fps\": {\"cpu\": %.2f, \"1\": %.2f, \"2\": %.2f, \"4\": %.2f}, "
+                  "\"peak_host_mib\": %.1f, \"device_mib\": %.1f, \"scaling\": [",
+                  cpu_fps, fps[0], fps[1], fps[2], rss, double(device_bytes) / (1 << 20));
+    j += b;
+    for (size_t k = 0; k < scaling.size(); ++k) {
+      const ScalingRow& r = scaling[k];
+      std::snprintf(b, sizeof b,
+                    "%s{\"sensor\": \"%s\", \"beams\": %u, \"width\": %u, \"points\": %zu, "
+                    "\"cpu_ms\": %.4f, \"vulkan_ms\": %.4f}",
+                    k ? ", " : "", r.sensor.c_str(), r.beams, r.width, r.points, r.cpu_ms,
+                    r.vulkan_ms);
+      j += b;
+    }
+    std::printf("%s]}\n", j.c_str());
+    return 0;
+  }
+
+  std::printf("lpir-gseg bench: %zu frames (%s..., %zu points on average), %d runs each\n",
+              clouds.size(), names[0].c_str(), points / clouds.size(), runs);
+  std::printf("CPU: %s | Vulkan device: %s\n\n", cpu_name.c_str(), device.c_str());
+  std::printf("%-16s %-26s %-26s %8s   %s\n", "stage", "cpu ms median (p25-p75)",
+              "vulkan ms median (p25-p75)", "vk/cpu", "device");
+  auto row = [&](const char* name, const std::vector<double>& cv, const std::vector<double>& gv) {
+    const Spread cs = SpreadOf(cv), gs = SpreadOf(gv);
+    char cpu_text[64] = "-", gpu_text[64] = "-", ratio[32] = "-";
+    if (!cv.empty())
+      std::snprintf(cpu_text, sizeof cpu_text, "%.3f (%.3f-%.3f)", cs.median, cs.p25, cs.p75);
+    if (gpu && !gv.empty()) {
+      std::snprintf(gpu_text, sizeof gpu_text, "%.3f (%.3f-%.3f)", gs.median, gs.p25, gs.p75);
+      if (!cv.empty() && cs.median > 0)
+        std::snprintf(ratio, sizeof ratio, "%.1fx", gs.median / cs.median);
+    }
+    std::printf("%-16s %-26s %-26s %8s   %s\n", name, cpu_text, gpu_text, ratio, device.c_str());
+  };
+  const std::vector<double> none;
+  row("upload", none, g.upload);
+  for (int k = 0; k < 9; ++k) row(kStageNames[k], c.stage[k], g.stage[k]);
+  row("download", none, g.download);
+  row("gpu total", none, g.gpu_total);
+  row("end to end", c.wall, g.wall);
+  std::printf("\nthroughput (frames/s over %d frames): cpu %.1f | vulkan, frames in flight 1: "
+              "%.1f, 2: %.1f, 4: %.1f   %s\n",
+              frames, cpu_fps, fps[0], fps[1], fps[2], device.c_str());
+  std::printf("memory: peak host RSS %.1f MiB | device memory allocated %.1f MiB   %s\n", rss,
+              double(device_bytes) / (1 << 20), device.c_str());
+  std::printf("\nscaling (simulated street, seed 1, median of %d end-to-end frames):\n",
+              scaling_runs);
+  std::printf("(x: growth from the row above; linear cost: time x equal to points x)\n");
+  std::printf("%-10s %6s %6s %9s %9s %10s %10s %12s %14s   %s\n", "sensor", "beams", "width",
+              "points", "points x", "cpu ms", "cpu x", "vulkan ms", "vulkan x", "device");
+  for (size_t k = 0; k < scaling.size(); ++k) {
+    const ScalingRow& r = scaling[k];
+    char px[32] = "-", cr[32] = "-", gr[32] = "-", gms[32] = "-";
+    if (k > 0) {
+      const ScalingRow& q = scaling[k - 1];
+      std::snprintf(px, sizeof px, "%.2f", double(r.points) / double(q.points));
+      std::snprintf(cr, sizeof cr, "%.2f", r.cpu_ms / q.cpu_ms);
+      if (gpu) std::snprintf(gr, sizeof gr, "%.2f", r.vulkan_ms / q.vulkan_ms);
+    }
+    if (gpu) std::snprintf(gms, sizeof gms, "%.2f", r.vulkan_ms);
+    std::printf("%-10s %6u %6u %9zu %9s %10.2f %10s %12s %14s   %s\n", r.sensor.c_str(), r.beams,
+                r.width, r.points, px, r.cpu_ms, cr, gms, gr, device.c_str());
+  }
+  return 0;
+}
+
+}  // namespace lpir
