@@ -27,12 +27,13 @@ struct Push {
 };
 enum Mode : uint32_t {
   kInit = 0,
-  kGrow = 1,
+  kGrow = 1,     // per tile
   kSettle = 2,
-  kMerge = 3,
-  kFlatten = 4,
-  kCount = 5,
-  kFinish = 6
+  kLocal = 3,    // per tile
+  kBorder = 4,   // per tile
+  kFlatten = 5,
+  kCount = 6,
+  kFinish = 7
 };
 }  // namespace
 
@@ -69,15 +70,16 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
   // The sweeps' workgroup counts come from the flags buffer: checked against the device's limit
   // here, where the tile count is known.
   LPIR_VK_RETURN_IF_ERROR(pass(kInit, 0, std::max(pixels, FlagWords(budget)), pixels));
-  LPIR_VK_RETURN_IF_ERROR(kernel_.CheckGroups(tiles * uint64_t(kLocalSize)));
+  LPIR_VK_RETURN_IF_ERROR(kernel_.CheckGroups(tiles));  // one invocation per tile
   for (uint32_t k = 0; k < budget; ++k) {
     cmd.ComputeToIndirect();
-    const Push push{kGrow, k, tiles * kLocalSize, budget};
+    const Push push{kGrow, k, tiles, budget};
     kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k), &push);
   }
-  for (uint32_t mode : {kSettle, kMerge, kFlatten, kCount}) {
+  for (uint32_t mode : {kSettle, kLocal, kBorder, kFlatten, kCount}) {
     cmd.ComputeToCompute();
-    LPIR_VK_RETURN_IF_ERROR(pass(mode, 0, pixels, pixels));
+    const bool per_tile = mode == kLocal || mode == kBorder;
+    LPIR_VK_RETURN_IF_ERROR(pass(mode, 0, per_tile ? tiles : pixels, pixels));
   }
   cmd.ComputeToCompute();
   // At least one invocation: pixel 0's writes the summary word.

@@ -39,8 +39,8 @@ struct GrowReport {
 
 class GrowStage {
  public:
-  static constexpr uint32_t kLocalSize = 256;  // one 8 x 32 tile per workgroup
-  static constexpr uint32_t kTileW = 32, kTileH = 8;
+  static constexpr uint32_t kLocalSize = 64;   // per-pixel passes; the sweeps: 64 tiles a group
+  static constexpr uint32_t kTileW = 32, kTileH = 8;  // a tile: one invocation of a sweep
 
   // The flags buffer: max_iters + 1 indirect dispatch arguments (shaders/grow.comp says how the
   // sweeps set them), then the summary word flags[3 (max_iters + 1)] (grow sweeps, 0 = not
