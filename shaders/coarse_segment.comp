@@ -17,8 +17,8 @@
 //     ground cells, summed per cell (runs of one cell summed in registers first, as in pass 1).
 //   pass 4, one invocation per cell: threshold max(floor, scale * mean seed distance) into
 //     cell_plane[6] of the ground cells.
-//   pass 5, one invocation per point: coarse = the point's cell is a ground cell and its
-//     |distance| <= threshold.
+//   pass 5, one invocation per kChunk consecutive points: coarse = the point's cell is a ground
+//     cell and its |distance| <= threshold (the cell's plane read once per run of one cell).
 // In: binding 0 Params (uniform), 1 xyzi (4 floats per point), 2 zt, 3 point_cell (per point),
 //     4 cell_zmin, 5 cell_zmax (ordered keys), 6 cell_count (per cell), 7 ring_inner (per ring).
 // Out: 8 cell_seed_mode, 9 cell_plane (8 ints per cell), 10 coarse (per point).
@@ -74,7 +74,7 @@ const uint kSumDist = 10u;
 const uint kTestH = 22u;
 const uint kTestLambda = 23u;
 
-const uint kChunk = 32u;  // points per invocation in passes 1 and 3 (host/stages/coarse_segment.h)
+const uint kChunk = 32u;  // points per invocation in passes 1, 3 and 5 (host/stages/coarse_segment.h)
 
 uint Base(uint cell) { return cell * kScratch; }
 
@@ -368,6 +368,38 @@ void DistanceSums(uint first) {
   if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
 }
 
+// Pass 5 over points first .. first + kChunk - 1: coarse = the point's cell is a ground cell and
+// its |distance| (Distance's arithmetic) <= the threshold; the cell's plane is read once per run.
+void Classify(uint first) {
+  uint end = min(first + kChunk, pc.count);
+  uint cur = kNone;
+  bool ground = false;
+  int64_t nx = int64_t(0), ny = int64_t(0), nz = int64_t(0), offset = int64_t(0);
+  int64_t threshold = int64_t(0);
+  for (uint i = first; i < end; ++i) {
+    uint c = point_cell[i];
+    if (c != cur) {
+      cur = c;
+      ground = c != kNone && Ground(c);
+      if (ground) {
+        uint b = 8u * c;
+        nx = int64_t(cell_plane[b]), ny = int64_t(cell_plane[b + 1u]);
+        nz = int64_t(cell_plane[b + 2u]);
+        offset = nx * int64_t(cell_plane[b + 3u]) + ny * int64_t(cell_plane[b + 4u]) +
+                 nz * int64_t(cell_plane[b + 5u]);
+        threshold = int64_t(cell_plane[b + 6u]);
+      }
+    }
+    uint label = 0u;
+    if (ground) {
+      ivec3 q = Mm(i);
+      int64_t d = nx * int64_t(q.x) + ny * int64_t(q.y) + nz * int64_t(q.z) - offset;
+      label = (d < int64_t(0) ? -d : d) <= threshold ? 1u : 0u;
+    }
+    coarse[i] = label;
+  }
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
@@ -387,10 +419,6 @@ void main() {
                                           int64_t(256) * int64_t(cell_plane[8u * i + 7u]));
     cell_plane[8u * i + 6u] = int(min(max(floor_q, mean_scaled), int64_t(0x7FFFFFFF)));
   } else {
-    uint c = point_cell[i];
-    uint label = 0u;
-    if (c != kNone && Ground(c))
-      label = Distance(i, c) <= int64_t(cell_plane[8u * c + 6u]) ? 1u : 0u;
-    coarse[i] = label;
+    Classify(i * kChunk);
   }
 }

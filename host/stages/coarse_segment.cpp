@@ -46,8 +46,8 @@ Status CoarseSegmentStage::Record(CommandBuffer& cmd, uint32_t n, uint32_t cells
   for (uint32_t pass = 0; pass < 6; ++pass) {
     if (pass) cmd.ComputeToCompute();
     const Push push{pass % 2 == 0 ? cells : n, pass};
-    // Passes 1 and 3: one invocation per kChunk points (shaders/coarse_segment.comp).
-    const uint32_t invocations = pass == 1 || pass == 3 ? (n + kChunk - 1) / kChunk : push.count;
+    // Passes 1, 3 and 5: one invocation per kChunk points (shaders/coarse_segment.comp).
+    const uint32_t invocations = pass % 2 == 1 ? (n + kChunk - 1) / kChunk : push.count;
     LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, invocations, &push));
   }
   return Status();

@@ -38,7 +38,7 @@ class CoarseSegmentStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
   static constexpr uint32_t kScratchWords = 24;  // per cell, shaders/coarse_segment.comp
-  static constexpr uint32_t kChunk = 32;  // points per invocation of passes 1 and 3 (the shader's)
+  static constexpr uint32_t kChunk = 32;  // points per invocation of passes 1, 3, 5 (the shader's)
 
   static VkDeviceSize ScratchBytes(uint32_t cells) {
     return 4 * VkDeviceSize(kScratchWords) * cells;
