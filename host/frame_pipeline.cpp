@@ -272,7 +272,7 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   LPIR_VK_RETURN_IF_ERROR(s.coarse_segment.Record(cmd, n, cells_));
   cmd.ComputeToCompute();
   time();
-  LPIR_VK_RETURN_IF_ERROR(s.feature_maps.Record(cmd, pixels_));
+  LPIR_VK_RETURN_IF_ERROR(s.feature_maps.Record(cmd, params_.width, params_.beams));
   cmd.ComputeToCompute();
   time();
   LPIR_VK_RETURN_IF_ERROR(s.classify_pixels.Record(cmd, pixels_));

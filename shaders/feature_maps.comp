@@ -1,7 +1,8 @@
 // Stage 5, feature maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
 // reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the push
-// constant `pass`, with a compute -> compute barrier between them; one invocation per pixel
-// < pixels (push constant), pixel = v * width + u.
+// constant `pass`, with a compute -> compute barrier between them; pass 0 one invocation per
+// pixel < pixels (push constant), pixel = v * width + u; pass 1 one per run of kRun pixels of a
+// row (its 3x3 window's column moments sliding along the run).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
 //     2 r2, 3 zt, 4 inten (floats per point).
 // Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (written
@@ -49,6 +50,7 @@ layout(push_constant) uniform Push {
 } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
+const uint kRun = 32u;  // pass 1: pixels of one row per invocation (host/stages/feature_maps.h)
 
 // reference_cpu/feature_maps.cpp: kHeightScale, kIntensityScale (10000), kHeightQuantum2,
 // kIntensityQuantum2 (1e-8f), by their bits so that no literal parsing can differ.
@@ -100,9 +102,32 @@ void MeasureAndFill(uint pix) {
   f_height[pix] = height;
 }
 
-void Features(uint pix) {
+// The int64 moments of one column's pixels in rows v - 1 .. v + 1 (clipped): filled count, sum
+// and sum of squares of the quantised heights and intensities (empty pixels hold 0).
+struct Moments {
+  int64_t n, sz, szz, si, sii;
+};
+Moments ColumnMoments(uint col, uint v) {
   uint w = p.width, h = p.beams;
-  uint v = pix / w, u = pix - v * w;
+  Moments m = Moments(int64_t(0), int64_t(0), int64_t(0), int64_t(0), int64_t(0));
+  for (int dv = -1; dv <= 1; ++dv) {
+    int vv = int(v) + dv;
+    if (vv < 0 || vv >= int(h)) continue;
+    uint q = uint(vv) * w + col;
+    if (pixel_filled[q] != 0u) m.n += int64_t(1);
+    int64_t qz = exact_ToFixed(f_height[q], kScale);
+    int64_t qi = exact_ToFixed(f_inten[q], kScale);
+    m.sz += qz;
+    m.szz += qz * qz;
+    m.si += qi;
+    m.sii += qi * qi;
+  }
+  return m;
+}
+
+// Pass 1 for pixel pix = v * w + u, the 3x3 moments being the sum of its window's three columns.
+void Features(uint pix, uint v, uint u, Moments l, Moments c, Moments r) {
+  uint w = p.width, h = p.beams;
   if (pixel_filled[pix] == 0u) {
     f_slope[pix] = 0.0;
     f_edge_l[pix] = 0.0;
@@ -113,7 +138,7 @@ void Features(uint pix) {
   }
   uint ul = u == 0u ? w - 1u : u - 1u, ur = u + 1u == w ? 0u : u + 1u;
   uint row = v * w;
-  float z = f_height[pix], r = f_range[pix];
+  float z = f_height[pix], r_ = f_range[pix];
 
   // Slope toward the next row down.
   float slope = -1.0;
@@ -121,7 +146,7 @@ void Features(uint pix) {
     uint below = pix + w;
     if (pixel_filled[below] != 0u) {
       precise float dz = abs(f_height[below] - z);
-      precise float dr = abs(f_range[below] - r);
+      precise float dr = abs(f_range[below] - r_);
       if (AbsPositive(dr)) slope = exact_Div(dz, dr);
     }
   }
@@ -134,24 +159,9 @@ void Features(uint pix) {
   f_edge_l[pix] = el;
   f_edge_r[pix] = er;
 
-  // 3x3 moments of the quantised values (empty pixels hold 0, which quantises to 0).
-  int64_t n = 0, sz = 0, szz = 0, si = 0, sii = 0;
-  uint cols[3] = uint[3](ul, u, ur);
-  for (int dv = -1; dv <= 1; ++dv) {
-    int vv = int(v) + dv;
-    if (vv < 0 || vv >= int(h)) continue;
-    uint o = uint(vv) * w;
-    for (int k = 0; k < 3; ++k) {
-      uint q = o + cols[k];
-      if (pixel_filled[q] != 0u) n += int64_t(1);
-      int64_t qz = exact_ToFixed(f_height[q], kScale);
-      int64_t qi = exact_ToFixed(f_inten[q], kScale);
-      sz += qz;
-      szz += qz * qz;
-      si += qi;
-      sii += qi * qi;
-    }
-  }
+  // 3x3 moments of the quantised values: integers, so any summation order gives the same.
+  int64_t n = l.n + c.n + r.n, sz = l.sz + c.sz + r.sz, szz = l.szz + c.szz + r.szz;
+  int64_t si = l.si + c.si + r.si, sii = l.sii + c.sii + r.sii;
   float den = float(int(n * n));  // <= 81: exact
   precise float varz = exact_Div(exact_I64ToFloat(n * szz - sz * sz), den) * kQuantum2;
   precise float vari = exact_Div(exact_I64ToFloat(n * sii - si * si), den) * kQuantum2;
@@ -159,9 +169,26 @@ void Features(uint pix) {
   f_vari[pix] = vari;
 }
 
+// Pass 1 over run `run` (kRun consecutive pixels of one row): the window's column moments slide
+// along the row, each column's computed once instead of three times.
+void FeaturesRun(uint run) {
+  uint w = p.width;
+  uint runs_per_row = (w + kRun - 1u) / kRun;
+  uint v = run / runs_per_row, u0 = (run % runs_per_row) * kRun;
+  uint u1 = min(u0 + kRun, w);
+  Moments l = ColumnMoments(u0 == 0u ? w - 1u : u0 - 1u, v);  // columns wrap
+  Moments c = ColumnMoments(u0, v);
+  for (uint u = u0; u < u1; ++u) {
+    Moments r = ColumnMoments(u + 1u == w ? 0u : u + 1u, v);
+    Features(v * w + u, v, u, l, c, r);
+    l = c;
+    c = r;
+  }
+}
+
 void main() {
-  uint pix = gl_GlobalInvocationID.x;
-  if (pix >= pc.pixels) return;
-  if (pc.pass == 0u) MeasureAndFill(pix);
-  else Features(pix);
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.pixels) return;  // pass 1: i is a run, and pc.pixels the runs' count
+  if (pc.pass == 0u) MeasureAndFill(i);
+  else FeaturesRun(i);
 }

@@ -44,11 +44,12 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   return FeatureMapsStage(std::move(kernel));
 }
 
-Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t pixels) const {
-  const Push measure{pixels, 0u}, features{pixels, 1u};
+Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
+  const uint32_t pixels = width * beams, runs = (width + kRun - 1) / kRun * beams;
+  const Push measure{pixels, 0u}, features{runs, 1u};
   LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, pixels, &measure));
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, pixels, &features);
+  return kernel_.Record(cmd, runs, &features);
 }
 
 Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double* gpu_ns) {
@@ -107,7 +108,7 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
   bindings.f_vari = &maps[7];
   LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage stage, FeatureMapsStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(pixels)); }, gpu_ns));
+      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));
 
   filled_out->resize(pixels);
   for (std::vector<float>* m : maps_out) m->resize(pixels);

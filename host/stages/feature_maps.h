@@ -38,12 +38,14 @@ struct FeatureMapsBuffers {
 class FeatureMapsStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
+  static constexpr uint32_t kRun = 32;  // pixels of a row per invocation of pass 1 (the shader's)
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
 
-  // Records the measure-and-fill pass over `pixels` pixels, a compute -> compute barrier and the
-  // features pass (no barrier before or after: the caller orders it with the stages around).
-  Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+  // Records the measure-and-fill pass over the width x beams image (one invocation per pixel), a
+  // compute -> compute barrier and the features pass (one invocation per kRun pixels of a row),
+  // with no barrier before or after (the caller orders it with the stages around).
+  Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
 
  private:
   explicit FeatureMapsStage(Kernel kernel) : kernel_(std::move(kernel)) {}
