@@ -2,7 +2,8 @@
 // bytes. Two passes of this one shader, chosen by the push constant `pass`, with a compute ->
 // compute barrier between them (GridReduceStage::Record records both):
 //   pass 0, one invocation per cell c < count: cell_zmin = kNone, cell_zmax = 0, cell_count = 0.
-//   pass 1, one invocation per point i < count: point_cell and the per-cell reductions.
+//   pass 1, one invocation per kChunk consecutive points (of count): point_cell and the per-cell
+//     reductions (runs of one cell reduced in registers, then one set of atomics per run).
 // In: binding 0 Params (uniform), 1 flags, 2 r2, 3 zt, 4 point_pixel (per point), 5 ring_bound2
 //     (rings_near + rings_far floats, ascending: the host's table, the reference's bytes).
 // Out: 6 point_cell (per point), 7 cell_zmin, 8 cell_zmax (ordered keys of z_t), 9 cell_count.
@@ -49,6 +50,8 @@ uint OrderKey(float f) {
 bool Less(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) < OrderKey(b); }
 
 // reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
+const uint kChunk = 32u;  // points per invocation of pass 1 (host/stages/grid_reduce.h)
+
 uint RingOf(float r, uint rings) {
   uint lo = 0u, hi = rings;
   while (lo < hi) {
@@ -59,33 +62,52 @@ uint RingOf(float r, uint rings) {
   return lo;
 }
 
+// Point i's cell, kNone for invalid and noise points and beyond the last ring.
+uint CellOf(uint i) {
+  if (flags[i] != kPointValid) return kNone;  // invalid or noise
+  uint rings = p.rings_near + p.rings_far;
+  uint ring = RingOf(r2[i], rings);
+  if (ring >= rings) return kNone;
+  uint u = point_pixel[i] % p.width;
+  return ring < p.rings_near
+             ? ring * p.sectors_near + u / (p.width / p.sectors_near)
+             : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
+                   u / (p.width / p.sectors_far);
+}
+
+void Flush(uint cell, uint zmin, uint zmax, uint count) {
+  atomicMin(cell_zmin[cell], zmin);
+  atomicMax(cell_zmax[cell], zmax);
+  atomicAdd(cell_count[cell], count);
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.count) return;
   if (pc.pass == 0u) {
+    if (i >= pc.count) return;
     cell_zmin[i] = kNone;
     cell_zmax[i] = 0u;
     cell_count[i] = 0u;
     return;
   }
-  if (flags[i] != kPointValid) {  // invalid or noise
-    point_cell[i] = kNone;
-    return;
+  // Pass 1: points kChunk * i .. kChunk * i + kChunk - 1, each run of one cell reduced in
+  // registers first (scans come ring by ring: consecutive points mostly share a cell).
+  uint first = i * kChunk;
+  if (first >= pc.count) return;
+  uint end = min(first + kChunk, pc.count);
+  uint cur = kNone, zmin = kNone, zmax = 0u, count = 0u;
+  for (uint k = first; k < end; ++k) {
+    uint cell = CellOf(k);
+    point_cell[k] = cell;
+    if (cell == kNone) continue;
+    if (cell != cur) {
+      if (cur != kNone) Flush(cur, zmin, zmax, count);
+      cur = cell, zmin = kNone, zmax = 0u, count = 0u;
+    }
+    uint key = exact_Key(zt[k]);
+    zmin = min(zmin, key);
+    zmax = max(zmax, key);
+    ++count;
   }
-  uint rings = p.rings_near + p.rings_far;
-  uint ring = RingOf(r2[i], rings);
-  if (ring >= rings) {
-    point_cell[i] = kNone;
-    return;
-  }
-  uint u = point_pixel[i] % p.width;
-  uint cell = ring < p.rings_near
-                  ? ring * p.sectors_near + u / (p.width / p.sectors_near)
-                  : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
-                        u / (p.width / p.sectors_far);
-  point_cell[i] = cell;
-  uint key = exact_Key(zt[i]);
-  atomicMin(cell_zmin[cell], key);
-  atomicMax(cell_zmax[cell], key);
-  atomicAdd(cell_count[cell], 1u);
+  if (cur != kNone) Flush(cur, zmin, zmax, count);
 }

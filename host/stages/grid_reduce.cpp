@@ -46,7 +46,7 @@ Status GridReduceStage::Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) c
   const Push clear{cells, 0u}, reduce{n, 1u};
   LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, cells, &clear));
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, n, &reduce);
+  return kernel_.Record(cmd, (n + kChunk - 1) / kChunk, &reduce);  // kChunk points each
 }
 
 Status RunGridReduce(const Context& context, const Params& p, const Tables& t, Frame& f,

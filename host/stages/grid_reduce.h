@@ -34,6 +34,7 @@ struct GridReduceBuffers {
 class GridReduceStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
+  static constexpr uint32_t kChunk = 32;  // points per invocation of the reduction (the shader's)
 
   static Result<GridReduceStage> Create(const Device& device, const GridReduceBuffers& buffers);
 
