@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "bench/kitti_scans.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
 #include "host/segmenter.h"
@@ -58,21 +59,13 @@ void BM_Frame(benchmark::State& state, const std::string& path, Backend backend)
 }  // namespace lpir
 
 int main(int argc, char** argv) {
-  const std::string dir = std::string(LPIR_DATA_DIR) + "/kitti/00/velodyne";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    std::printf("frame_bench: %s not found (../shared/data absent): nothing to benchmark\n",
-                dir.c_str());
-    return 0;
-  }
-  for (int i = 0; i <= 5; ++i) {
-    char name[64];
-    std::snprintf(name, sizeof name, "%06d", i);
-    const std::string path = dir + "/" + name + ".bin";
+  const std::vector<std::string> scans = lpir::bench::Kitti00Scans("frame_bench");
+  if (scans.empty()) return 0;
+  for (const std::string& path : scans) {
     for (lpir::Backend backend : {lpir::Backend::kCpu, lpir::Backend::kVulkan}) {
       const std::string bench = std::string("BM_Frame/") +
-                                (backend == lpir::Backend::kCpu ? "cpu" : "vulkan") +
-                                "/kitti00_" + name;
+                                (backend == lpir::Backend::kCpu ? "cpu" : "vulkan") + "/" +
+                                lpir::bench::ScanLabel(path);
       benchmark::RegisterBenchmark(bench.c_str(), lpir::BM_Frame, path, backend)
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1)

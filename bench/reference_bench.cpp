@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench/kitti_scans.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
 #include "host/segmenter.h"
@@ -42,18 +43,10 @@ void BM_Reference(benchmark::State& state, const std::string& path) {
 }  // namespace lpir
 
 int main(int argc, char** argv) {
-  const std::string dir = std::string(LPIR_DATA_DIR) + "/kitti/00/velodyne";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    std::printf("reference_bench: %s not found (../shared/data absent): nothing to benchmark\n",
-                dir.c_str());
-    return 0;
-  }
-  for (int i = 0; i <= 5; ++i) {
-    char name[64];
-    std::snprintf(name, sizeof name, "%06d", i);
-    const std::string path = dir + "/" + name + ".bin";
-    benchmark::RegisterBenchmark(("BM_Reference/kitti00_" + std::string(name)).c_str(),
+  const std::vector<std::string> scans = lpir::bench::Kitti00Scans("reference_bench");
+  if (scans.empty()) return 0;
+  for (const std::string& path : scans) {
+    benchmark::RegisterBenchmark(("BM_Reference/" + lpir::bench::ScanLabel(path)).c_str(),
                                  lpir::BM_Reference, path)
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1)

@@ -17,12 +17,7 @@
 namespace lpir::vk {
 namespace {
 
-Error PipelineError(const std::string& message) {
-  Error e;
-  e.result = VK_ERROR_UNKNOWN;
-  e.message = "frame pipeline: " + message;
-  return e;
-}
+Error PipelineError(const std::string& message) { return UsageError("frame pipeline", message); }
 
 }  // namespace
 

@@ -12,12 +12,7 @@ namespace lpir::vk {
 namespace {
 #include "shaders/back_project.spv.h"  // kBackProjectSpv, from shaders/back_project.comp
 
-Error BackProjectError(const std::string& message) {
-  Error e;
-  e.result = VK_ERROR_UNKNOWN;
-  e.message = "back_project: " + message;
-  return e;
-}
+Error BackProjectError(const std::string& message) { return UsageError("back_project", message); }
 }  // namespace
 
 Result<BackProjectStage> BackProjectStage::Create(const Device& device,

@@ -12,12 +12,7 @@ namespace lpir::vk {
 namespace {
 #include "shaders/fuse.spv.h"  // kFuseSpv, compiled from shaders/fuse.comp at build time
 
-Error SizeError(const std::string& message) {
-  Error e;
-  e.result = VK_ERROR_UNKNOWN;
-  e.message = "fuse: " + message;
-  return e;
-}
+Error SizeError(const std::string& message) { return UsageError("fuse", message); }
 }  // namespace
 
 Result<FuseStage> FuseStage::Create(const Device& device, const FuseBuffers& b) {

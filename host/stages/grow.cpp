@@ -14,12 +14,7 @@ namespace lpir::vk {
 namespace {
 #include "shaders/grow.spv.h"  // kGrowSpv, compiled from shaders/grow.comp at build time
 
-Error GrowError(const std::string& message) {
-  Error e;
-  e.result = VK_ERROR_UNKNOWN;
-  e.message = "grow: " + message;
-  return e;
-}
+Error GrowError(const std::string& message) { return UsageError("grow", message); }
 
 // The push constants of shaders/grow.comp.
 struct Push {

@@ -17,12 +17,7 @@ struct Push {
   uint32_t pass;  // 0: pixels and keys, 1: winners
 };
 
-Error StageError(const std::string& message) {
-  Error e;
-  e.result = VK_ERROR_UNKNOWN;
-  e.message = "project: " + message;
-  return e;
-}
+Error StageError(const std::string& message) { return UsageError("project", message); }
 
 }  // namespace
 

@@ -26,6 +26,14 @@ std::string VkResultName(VkResult result);
 // `what` is empty.
 Error CallError(const char* call, VkResult result, const std::string& what = "");
 
+// An error that is no failed Vulkan call (bad sizes, a missing fixed point): "<who>: <message>".
+inline Error UsageError(const std::string& who, const std::string& message) {
+  Error e;
+  e.result = VK_ERROR_UNKNOWN;
+  e.message = who + ": " + message;
+  return e;
+}
+
 class [[nodiscard]] Status {
  public:
   Status() = default;
