@@ -2,6 +2,8 @@
 // In: cloud xyzi (+ ring). Out per point: flags (kPointValid, kPointNoise), zt, r2, inten.
 // Valid: x, y, z, intensity finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2; z^2 <= max_range2; ring
 // (when present) inside [0, beams). Everything of an invalid point is written as 0.
+// inten is clamped to [-kMaxIntensity, kMaxIntensity] (1e4, far beyond any sensor's [0, 1]): stage
+// 5 quantises it to 1e-4 steps and squares it in int64, which a raw intensity of 1e30 overflowed.
 // Subnormal inputs (x, y, z, intensity) and outputs (zt, r2, inten) are flushed to zero.
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
 // sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
@@ -13,6 +15,8 @@
 
 namespace lpir {
 namespace {
+
+constexpr float kMaxIntensity = 10000.0f;  // shaders/prepare.comp: the same bound
 
 // |bits| - 1 is below 0x7FFFFF exactly for subnormals (zero wraps to the largest value), so the
 // minimum over several values tells whether any is subnormal, with one branch that real scans
@@ -53,6 +57,7 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
     const float tilt = tx + ty;
     float zt = z - tilt;  // eq. 3
     float inten = in * p.intensity_scale;
+    inten = std::min(std::max(inten, -kMaxIntensity), kMaxIntensity);
     float r2_out = r2;
     if (AnySubnormal(SubKey(zt), SubKey(r2), SubKey(inten)))
       zt = exact::Ftz(zt), r2_out = exact::Ftz(r2), inten = exact::Ftz(inten);

@@ -10,7 +10,8 @@
 // subnormals or folds NaN tests away agrees with the CPU.
 // Operations, in this order, each one rounded float op (`precise`, never an FMA): xx = x*x,
 // yy = y*y, r2 = xx + yy; zz = z*z; tx = k_xz*x, ty = k_yz*y, tilt = tx + ty, zt = z - tilt
-// (eq. 3); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
+// (eq. 3); inten = intensity * intensity_scale clamped to [-1e4, 1e4] (stage 5's int64
+// moments); noise = zt < h_noise && inten < i_noise.
 // No ties: each point is its own invocation.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -77,7 +78,7 @@ void main() {
   precise float ty = p.k_yz * y;
   precise float tilt = tx + ty;
   precise float height = z - tilt;  // eq. 3
-  precise float in_scaled = in_raw * p.intensity_scale;
+  precise float in_scaled = clamp(in_raw * p.intensity_scale, -10000.0, 10000.0);
   float height_out = exact_Ftz(height), in_out = exact_Ftz(in_scaled);
   uint f = kPointValid;
   if (height_out < p.h_noise && in_out < p.i_noise) f |= kPointNoise;
