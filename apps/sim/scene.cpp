@@ -185,8 +185,12 @@ void BuildUrban(SimRandom& rng, SimScene* s) {
           const double bx = rng.Uniform(x + 1.0, x1 - 1.0);
           const double by = outer + dir * 0.5 * setback;
           const double r = 0.45 * setback;
-          AddBlob(rng, SkClass::kVegetation, bx, by, s->GroundHeight(bx, by) + 0.4 * r,
-                  rng.Uniform(0.8, 2.0), r, r * rng.Uniform(0.8, 1.5), &prims);
+          // One draw per statement: the order of a call's arguments is unspecified (GCC took
+          // the last first, clang the first); this is GCC's order, so its scenes are unchanged.
+          const double rz = r * rng.Uniform(0.8, 1.5);
+          const double rx = rng.Uniform(0.8, 2.0);
+          AddBlob(rng, SkClass::kVegetation, bx, by, s->GroundHeight(bx, by) + 0.4 * r, rx, r, rz,
+                  &prims);
         }
         x += len;
       } else {
@@ -209,9 +213,10 @@ void BuildUrban(SimRandom& rng, SimScene* s) {
           const double wy = outer + dir * rng.Uniform(0.3, 1.0);
           const double wx0 = x + 0.5, wx1 = std::min(x + len - 0.5, kHalfLength);
           const double base = std::min(s->GroundHeight(wx0, wy), s->GroundHeight(wx1, wy));
-          prims.push_back(MakeBox(SkClass::kFence, wx0, wx1, wy, wy + dir * 0.25, base - 0.3,
-                                  s->GroundHeight(0.5 * (wx0 + wx1), wy) + rng.Uniform(0.5, 1.0),
-                                  static_cast<float>(rng.Uniform(0.2, 0.4)), 0.05f));
+          const float reflectivity = static_cast<float>(rng.Uniform(0.2, 0.4));  // GCC's order
+          const double top = s->GroundHeight(0.5 * (wx0 + wx1), wy) + rng.Uniform(0.5, 1.0);
+          prims.push_back(MakeBox(SkClass::kFence, wx0, wx1, wy, wy + dir * 0.25, base - 0.3, top,
+                                  reflectivity, 0.05f));
         }
         x += len;
       }
@@ -254,7 +259,9 @@ void BuildFlat(SimRandom& rng, bool with_objects, SimScene* s) {
   s->primitives.push_back(MakePatch(SkClass::kRoad, -kFlatHalfSize, kFlatHalfSize, -kFlatHalfSize,
                                     kFlatHalfSize, 0.0, 0.0, 0.2f, 0.03f, 0.0));
   if (!with_objects) return;
-  AddCar(rng, rng.Uniform(9.0, 11.0), rng.Uniform(-0.3, 0.3), 0.0, &s->primitives);
+  const double car_y = rng.Uniform(-0.3, 0.3);  // GCC's order of the call's arguments
+  const double car_x = rng.Uniform(9.0, 11.0);
+  AddCar(rng, car_x, car_y, 0.0, &s->primitives);
   const double wall_y = rng.Uniform(5.0, 6.0);
   s->primitives.push_back(
       MakeBox(SkClass::kBuilding, -15.0, 15.0, wall_y, wall_y + 0.3, -0.5, 2.5, 0.35f, 0.05f));
