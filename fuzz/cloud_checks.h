@@ -1,0 +1,46 @@
+// Properties every cloud a reader returns must have, checked by the cloud fuzz targets: a ring
+// field empty or one entry per point, every ring >= 0; and a write/read round trip through the
+// project's own writer that gives the same cloud back (bit for bit in binary; in ASCII, NaN
+// comes back as a NaN, its payload not kept by its text form).
+#pragma once
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <string>
+
+#include "fuzz/fuzz_file.h"
+#include "reference_cpu/cloud.h"
+
+namespace lpir::fuzz {
+
+inline void CheckCloudShape(const Cloud& cloud) {
+  LPIR_FUZZ_CHECK(cloud.xyzi.size() % 4 == 0);
+  LPIR_FUZZ_CHECK(cloud.ring.empty() || cloud.ring.size() == cloud.size());
+  for (int32_t ring : cloud.ring) LPIR_FUZZ_CHECK(ring >= 0);
+}
+
+inline bool SameFloat(float a, float b, bool nan_matches_nan) {
+  if (nan_matches_nan && std::isnan(a) && std::isnan(b)) return true;
+  return std::memcmp(&a, &b, sizeof(float)) == 0;
+}
+
+inline void CheckSameCloud(const Cloud& a, const Cloud& b, bool nan_matches_nan) {
+  LPIR_FUZZ_CHECK(a.xyzi.size() == b.xyzi.size());
+  for (size_t i = 0; i < a.xyzi.size(); ++i)
+    LPIR_FUZZ_CHECK(SameFloat(a.xyzi[i], b.xyzi[i], nan_matches_nan));
+  LPIR_FUZZ_CHECK(a.ring == b.ring);
+}
+
+// Writes `cloud` with write(path, cloud, labels, binary) into `out`, reads it back with
+// read(path), both binary and ASCII, and checks the cloud is unchanged.
+inline void CheckRoundTrip(
+    const Cloud& cloud, FuzzFile* out,
+    const std::function<void(const std::string&, const Cloud&, const Labels*, bool)>& write,
+    const std::function<Cloud(const std::string&)>& read) {
+  for (bool binary : {true, false}) {
+    write(out->path(), cloud, nullptr, binary);
+    CheckSameCloud(cloud, read(out->path()), /*nan_matches_nan=*/!binary);
+  }
+}
+
+}  // namespace lpir::fuzz
