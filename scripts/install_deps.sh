@@ -9,6 +9,7 @@ PACKAGES=(
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libgtest-dev libbenchmark-dev
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
+  clang libclang-rt-14-dev  # the fuzz build (fuzz/): clang with libFuzzer and its sanitizers
 )
 
 say() { echo "[install_deps] $*"; }
