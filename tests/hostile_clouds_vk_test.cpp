@@ -1,0 +1,265 @@
+// Whole clouds no sensor should send, through the full pipeline on both backends (Segmenter with
+// Backend::kVulkan and Backend::kCpu, every buffer read back): 0 points, 1 point, all points
+// identical, all at the origin, all NaN, Inf mixed in, coordinates of 1e30, every point on one
+// pixel, intensities outside the sensor's range (negative, huge, NaN, Inf, subnormal), rings past
+// the last beam, and a cloud larger than the configured maximum. Each must give a defined result,
+// the same bytes in all 30 buffers on both backends (tests/frame_compare.h): a label for every
+// point, ground (1) exactly when why is kWhyGround, and non-ground with why kWhyInvalid exactly
+// for the points stage 1 must reject (a non-finite value, the origin, a ring past the beams, a
+// planar range or |z| outside the profile's range), decided here independently of the pipeline.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "host/segmenter.h"
+#include "reference_cpu/frame.h"
+#include "tests/frame_compare.h"
+#include "tests/stage_test_util.h"
+#include "tests/vk_test_util.h"
+
+namespace lpir {
+namespace {
+
+constexpr size_t kMaxPoints = 4096;  // the small sensor's 16 x 256 pixels
+const float kNan = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+const float kMaxFloat = std::numeric_limits<float>::max();
+
+// A simulated street seen by the small sensor (16 beams x 256 columns): the base of the mixed
+// cases, so that hostile points sit among ground and obstacles.
+Cloud Street() {
+  SimOptions options;
+  options.seed = 6;
+  return Simulate(test::SmallSensor(), options).cloud;
+}
+
+Cloud Repeat(size_t n, float x, float y, float z, float intensity) {
+  Cloud cloud;
+  for (size_t i = 0; i < n; ++i) cloud.Push(x, y, z, intensity);
+  return cloud;
+}
+
+// Every point on one pixel: along the ray through the centre of row 7 (-5 degrees) and column 40,
+// from 2 m to 60 m, each range twice (exact duplicates tie on the nearest-point rule).
+Cloud OnePixel() {
+  const double kPi = 3.14159265358979323846;
+  const double azimuth = kPi - 2.0 * kPi * 40.5 / 256.0, elevation = -5.0 * kPi / 180.0;
+  Cloud cloud;
+  for (int k = 0; k < 600; ++k) {
+    const double r = 2.0 + 0.1 * (k / 2);
+    cloud.Push(float(r * std::cos(azimuth)), float(r * std::sin(azimuth)),
+               float(r * std::tan(elevation)), 0.25f + 0.001f * float(k));
+  }
+  return cloud;
+}
+
+// The street with every 7th point given an infinite coordinate or intensity.
+Cloud InfMixedIn() {
+  Cloud cloud = Street();
+  for (size_t i = 0; i < cloud.size(); i += 7)
+    cloud.xyzi[4 * i + (i / 7) % 4] = (i % 2) ? kInf : -kInf;
+  return cloud;
+}
+
+// The street with every 5th point's coordinates scaled to 1e30 (or one of them set to it).
+Cloud HugeCoordinates() {
+  Cloud cloud = Street();
+  for (size_t i = 0; i < cloud.size(); i += 5) {
+    switch ((i / 5) % 4) {
+      case 0:
+        cloud.xyzi[4 * i + 0] = 1e30f;
+        break;
+      case 1:
+        cloud.xyzi[4 * i + 1] = -1e30f;
+        break;
+      case 2:
+        cloud.xyzi[4 * i + 2] = 1e30f;
+        break;
+      default:
+        for (int k = 0; k < 3; ++k) cloud.xyzi[4 * i + k] *= 1e30f;
+    }
+  }
+  return cloud;
+}
+
+// The street with intensities far outside [0, 1 / intensity_scale]: negative, huge, the largest
+// float, NaN, infinite, subnormal, negative zero.
+Cloud WildIntensities() {
+  const float wild[] = {-1.0f, 1e30f, kMaxFloat, kNan, -kInf, 1e-40f, 256.0f, -0.0f, -kMaxFloat};
+  Cloud cloud = Street();
+  for (size_t i = 0; i < cloud.size(); ++i) cloud.xyzi[4 * i + 3] = wild[i % 9];
+  return cloud;
+}
+
+// The street with a ring field, every 3rd ring past the small sensor's 16 beams.
+Cloud RingsPastTheBeams() {
+  Cloud cloud = Street();
+  for (size_t i = 0; i < cloud.size(); ++i) cloud.ring.push_back(int32_t(i % 3 ? i % 16 : 16 + i));
+  return cloud;
+}
+
+// Whether stage 1 must reject the point, decided in double precision from the contract of
+// reference_cpu/prepare.cpp (the cases keep clear of the range limits, where float and double
+// could disagree).
+bool MustBeInvalid(const Cloud& cloud, size_t i, const SensorProfile& s) {
+  const double x = cloud.x(i), y = cloud.y(i), z = cloud.z(i), in = cloud.intensity(i);
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in))
+    return true;
+  if (x == 0 && y == 0 && z == 0) return true;
+  if (!cloud.ring.empty() && (cloud.ring[i] < 0 || uint32_t(cloud.ring[i]) >= s.beams)) return true;
+  const double r2 = x * x + y * y, max2 = double(s.max_range) * s.max_range;
+  return r2 < double(s.min_range) * s.min_range || r2 > max2 || z * z > max2;
+}
+
+struct HostileCase {
+  const char* name;
+  Cloud (*make)();
+};
+
+class HostileVk : public test::VkTest {
+ public:
+  static void TearDownTestSuite() { gpu_.reset(), cpu_.reset(); }
+
+ protected:
+  static SegmenterOptions Options(Backend backend) {
+    SegmenterOptions o = SegmenterOptions::For(backend);
+    o.all_buffers = true;
+    o.validation = true;
+    o.max_points = kMaxPoints;
+    return o;
+  }
+  // One segmenter per backend for the whole suite (made after the fixture found a device).
+  static Segmenter& Gpu() {
+    if (!gpu_) gpu_ = std::make_unique<Segmenter>(test::SmallSensor(), Options(Backend::kVulkan));
+    return *gpu_;
+  }
+  static Segmenter& Cpu() {
+    if (!cpu_) cpu_ = std::make_unique<Segmenter>(test::SmallSensor(), Options(Backend::kCpu));
+    return *cpu_;
+  }
+
+  // Segments `cloud` on both backends, compares every buffer and checks the labels' contract.
+  // Returns the CPU frame (a copy).
+  Frame ExpectDefinedAndSame(const Cloud& cloud, const std::string& what) {
+    const Frame gpu = Gpu().Segment(cloud);
+    const Frame cpu = Cpu().Segment(cloud);
+    EXPECT_EQ(Gpu().backend(), Backend::kVulkan);
+    test::ExpectSameFrame(Cpu().params(), cpu, gpu, &cloud, what);
+    const SensorProfile sensor = test::SmallSensor();
+    EXPECT_EQ(cpu.n, cloud.size()) << what;
+    EXPECT_EQ(cpu.label.size(), cloud.size()) << what;
+    EXPECT_EQ(cpu.why.size(), cloud.size()) << what;
+    size_t wrong = 0, invalid = 0, ground = 0;
+    for (size_t i = 0; i < cloud.size() && i < cpu.label.size() && i < cpu.why.size(); ++i) {
+      const bool must_be_invalid = MustBeInvalid(cloud, i, sensor);
+      const bool ok = cpu.label[i] <= 1 && cpu.why[i] <= kWhyNoise &&
+                      (cpu.label[i] == 1) == (cpu.why[i] == kWhyGround) &&
+                      (cpu.why[i] == kWhyInvalid) == must_be_invalid;
+      if (!ok && wrong++ < 5)
+        ADD_FAILURE() << what << ": point " << i << " (" << cloud.x(i) << ", " << cloud.y(i) << ", "
+                      << cloud.z(i) << ", intensity " << cloud.intensity(i) << ") has label "
+                      << int(cpu.label[i]) << ", why " << int(cpu.why[i])
+                      << "; must be invalid: " << must_be_invalid;
+      invalid += must_be_invalid;
+      ground += cpu.label[i];
+    }
+    std::printf("[hostile] %s: %zu points, %zu invalid, %zu ground; %s\n", what.c_str(),
+                cloud.size(), invalid, ground,
+                HasFailure() ? "FAILED (see above)" : "identical on both backends");
+    return cpu;
+  }
+
+ private:
+  static std::unique_ptr<Segmenter> gpu_, cpu_;
+};
+std::unique_ptr<Segmenter> HostileVk::gpu_, HostileVk::cpu_;
+
+class HostileCloudsVk : public HostileVk, public ::testing::WithParamInterface<HostileCase> {};
+
+TEST_P(HostileCloudsVk, DefinedResultIdenticalOnBothBackends) {
+  const Cloud cloud = GetParam().make();
+  ASSERT_LE(cloud.size(), kMaxPoints);
+  ExpectDefinedAndSame(cloud, GetParam().name);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Clouds, HostileCloudsVk,
+    ::testing::Values(
+        HostileCase{"empty", [] { return Cloud{}; }},
+        HostileCase{"one_point", [] { return Repeat(1, 10.0f, 0.5f, -1.7f, 0.3f); }},
+        HostileCase{"all_identical", [] { return Repeat(3000, 7.0f, -2.0f, -1.7f, 0.3f); }},
+        HostileCase{"all_at_origin", [] { return Repeat(3000, 0.0f, 0.0f, 0.0f, 0.5f); }},
+        HostileCase{"all_nan", [] { return Repeat(3000, kNan, kNan, kNan, kNan); }},
+        HostileCase{"all_1e30", [] { return Repeat(3000, 1e30f, 1e30f, 1e30f, 1e30f); }},
+        HostileCase{"street", Street}, HostileCase{"inf_mixed_in", InfMixedIn},
+        HostileCase{"coordinates_of_1e30", HugeCoordinates},
+        HostileCase{"every_point_on_one_pixel", OnePixel},
+        HostileCase{"wild_intensities", WildIntensities},
+        HostileCase{"rings_past_the_beams", RingsPastTheBeams}),
+    [](const ::testing::TestParamInfo<HostileCase>& info) { return std::string(info.param.name); });
+
+// The cases are what they claim to be: the hostile points are there, and valid points remain.
+TEST(HostileClouds, CasesHoldWhatTheyClaim) {
+  const SensorProfile s = test::SmallSensor();
+  auto invalid = [&](const Cloud& c) {
+    size_t n = 0;
+    for (size_t i = 0; i < c.size(); ++i) n += MustBeInvalid(c, i, s);
+    return n;
+  };
+  const Cloud street = Street();
+  EXPECT_GT(street.size(), 2000u);
+  EXPECT_LE(street.size(), kMaxPoints);
+  EXPECT_EQ(invalid(street), 0u);
+  for (Cloud (*make)() : {InfMixedIn, HugeCoordinates, WildIntensities, RingsPastTheBeams}) {
+    const Cloud c = make();
+    EXPECT_GT(invalid(c), c.size() / 10);
+    EXPECT_LT(invalid(c), c.size() / 2);
+  }
+  EXPECT_EQ(invalid(OnePixel()), 0u);
+}
+
+// Every point of OnePixel lands on one pixel, so the nearest-point rule and its ties decide.
+TEST_F(HostileVk, OnePixelReallyIsOnePixel) {
+  const Cloud cloud = OnePixel();
+  const Frame frame = ExpectDefinedAndSame(cloud, "one pixel");
+  ASSERT_EQ(frame.point_pixel.size(), cloud.size());
+  for (size_t i = 0; i < cloud.size(); ++i)
+    ASSERT_EQ(frame.point_pixel[i], 7u * 256u + 40u) << "point " << i;
+  size_t filled = 0;
+  for (uint32_t p : frame.pixel_point) filled += p != kNone;
+  EXPECT_EQ(filled, 1u);
+}
+
+// A cloud over the configured maximum is a clear std::length_error on both backends, nothing is
+// left pending, and the segmenter labels the next clouds as if nothing had happened.
+TEST_F(HostileVk, MoreThanTheMaximumIsALengthErrorAndTheSegmenterGoesOn) {
+  Cloud big = Street();
+  while (big.size() <= kMaxPoints) big.Push(5.0f, float(big.size() % 50), -1.7f, 0.3f);
+  for (Segmenter* s : {&Gpu(), &Cpu()}) {
+    const std::string backend = s == &Cpu() ? "cpu" : "vulkan";
+    try {
+      s->Segment(big);
+      ADD_FAILURE() << backend << ": no error for " << big.size() << " points";
+    } catch (const std::length_error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(std::to_string(big.size()) + " points"), std::string::npos)
+          << backend << ": " << message;
+      EXPECT_NE(message.find("more than the configured maximum of 4096"), std::string::npos)
+          << backend << ": " << message;
+    }
+    EXPECT_EQ(s->pending(), 0u) << backend;
+  }
+  ExpectDefinedAndSame(Street(), "street after the error");
+  big.xyzi.resize(4 * kMaxPoints);
+  ExpectDefinedAndSame(big, "exactly the maximum after the error");
+}
+
+}  // namespace
+}  // namespace lpir
