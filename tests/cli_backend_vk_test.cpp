@@ -18,20 +18,6 @@ namespace fs = std::filesystem;
 namespace lpir {
 namespace {
 
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-// ctest points VK_ICD_FILENAMES at lavapipe; without it these tests cannot run Vulkan.
-#define LPIR_REQUIRE_LAVAPIPE()                                                             \
-  do {                                                                                      \
-    const char* icd = std::getenv("VK_ICD_FILENAMES");                                      \
-    if (!icd || !fs::exists(icd))                                                           \
-      GTEST_SKIP() << "no lavapipe ICD (VK_ICD_FILENAMES=" << (icd ? icd : "")              \
-                   << "); install mesa-vulkan-drivers";                                     \
-  } while (0)
-
 size_t Count(const std::string& text, const std::string& what) {
   size_t n = 0;
   for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
@@ -68,8 +54,8 @@ void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
       << log;
   EXPECT_NE(log.find("on the CPU reference"), std::string::npos) << log;
   for (const std::string& stem : stems) {
-    const std::string vulkan = ReadAll(out + "/vulkan/" + stem + ".label");
-    const std::string cpu = ReadAll(out + "/cpu/" + stem + ".label");
+    const std::string vulkan = test::ReadFileBytes(out + "/vulkan/" + stem + ".label");
+    const std::string cpu = test::ReadFileBytes(out + "/cpu/" + stem + ".label");
     EXPECT_GT(cpu.size(), 0u) << stem;
     EXPECT_TRUE(vulkan == cpu) << stem << ": the .label files differ (" << vulkan.size()
                                << " and " << cpu.size() << " bytes)";
@@ -144,9 +130,9 @@ TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
                              &log),
             0)
       << log;
-  const std::string fallback = ReadAll(out + "/auto/000964.label");
+  const std::string fallback = test::ReadFileBytes(out + "/auto/000964.label");
   EXPECT_EQ(fallback.size(), 4u * 120485);
-  EXPECT_TRUE(fallback == ReadAll(out + "/cpu/000964.label"));
+  EXPECT_TRUE(fallback == test::ReadFileBytes(out + "/cpu/000964.label"));
 
   EXPECT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() +
                                  " segment " + scan + " --sensor hdl64e --backend vulkan --out " +

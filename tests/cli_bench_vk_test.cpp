@@ -15,8 +15,7 @@ namespace {
 
 // Runs `bench` with few repetitions (stdout only); skips without lavapipe.
 std::string Bench(const std::string& extra) {
-  const char* icd = std::getenv("VK_ICD_FILENAMES");
-  if (!icd || !std::filesystem::exists(icd)) return "";
+  if (!test::HasLavapipe()) return "";
   std::string out;
   const int code = test::RunCommand(test::CliPath() + " bench --runs 1 --scaling-runs 1 --frames 2 " +
                                         extra + " 2>/dev/null",

@@ -23,19 +23,6 @@ namespace fs = std::filesystem;
 namespace lpir {
 namespace {
 
-#define LPIR_REQUIRE_LAVAPIPE()                                                \
-  do {                                                                         \
-    const char* icd = std::getenv("VK_ICD_FILENAMES");                         \
-    if (!icd || !fs::exists(icd))                                              \
-      GTEST_SKIP() << "no lavapipe ICD (VK_ICD_FILENAMES=" << (icd ? icd : "") \
-                   << "); install mesa-vulkan-drivers";                        \
-  } while (0)
-
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 void WriteBytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
@@ -79,9 +66,9 @@ void ExpectGoodLabelledBadNamed(const std::string& dir, const std::string& backe
     EXPECT_EQ(run.log.find("[vulkan"), std::string::npos) << "validation messages:\n" << run.log;
   }
   for (const std::string& stem : good) {
-    const std::string labels = ReadAll(out + "/" + stem + ".label");
+    const std::string labels = test::ReadFileBytes(out + "/" + stem + ".label");
     EXPECT_GT(labels.size(), 1000u) << backend << ": " << stem;
-    EXPECT_TRUE(labels == ReadAll(reference + "/" + stem + ".label"))
+    EXPECT_TRUE(labels == test::ReadFileBytes(reference + "/" + stem + ".label"))
         << backend << ": " << stem << ".label differs from the file segmented without bad ones";
   }
   for (const std::string& name : bad) {

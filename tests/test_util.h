@@ -14,8 +14,19 @@ std::string CliPath();
 std::string TempDir();
 // Runs a shell command; returns its exit code and fills `output` with stdout+stderr.
 int RunCommand(const std::string& command, std::string* output = nullptr);
+// A file's bytes ("" when it cannot be read).
+std::string ReadFileBytes(const std::string& path);
+// True when VK_ICD_FILENAMES names an existing file (ctest points it at lavapipe for *_vk_test).
+bool HasLavapipe();
 
 }  // namespace lpir::test
+
+// For tests that run Vulkan through the CLI (no VkTest fixture): skip without the lavapipe ICD.
+#define LPIR_REQUIRE_LAVAPIPE()                                                           \
+  do {                                                                                    \
+    if (!::lpir::test::HasLavapipe())                                                     \
+      GTEST_SKIP() << "no lavapipe ICD (VK_ICD_FILENAMES); install mesa-vulkan-drivers";  \
+  } while (0)
 
 #define LPIR_REQUIRE_DATA(path)                                                             \
   do {                                                                                      \
