@@ -8,8 +8,8 @@
 //    frames it can no longer name ("<unknown module>", or misattributed to libasan), so no
 //    suppression by library can match. Opened here once more with RTLD_NODELETE (RTLD_LOCAL: no
 //    symbol is interposed), they stay mapped: their globals are scanned and their frames named.
-//  - What they then still leak is their own (measured: ~7 KB per process in
-//    libVkLayer_khronos_validation.so, its state trackers' caches), suppressed by library in
+//  - What they then still leak is their own (measured: 7-320 KB per process, all in
+//    libVkLayer_khronos_validation.so; lavapipe and LLVM leak nothing), suppressed by library in
 //    tests/lsan_vulkan.supp: only third-party Vulkan libraries, never project code. A Vulkan object
 //    the project forgets to destroy is still caught: the validation layer reports it at
 //    vkDestroyDevice/vkDestroyInstance, which the VkTest fixture and the CLI tests fail on.
