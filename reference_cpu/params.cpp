@@ -149,8 +149,21 @@ Params ParamsForSensor(const SensorProfile& s) {
       p.width % p.sectors_far)
     throw std::invalid_argument("sensor profile '" + s.name +
                                 "': sectors_near and sectors_far must divide the image width");
-  if (p.rings_near + p.rings_far == 0 || !(p.ring_res_near > 0) || !(p.ring_res_far > 0))
+  const uint64_t rings = uint64_t(p.rings_near) + p.rings_far;
+  if (rings == 0 || !(p.ring_res_near > 0) || !(p.ring_res_far > 0))
     throw std::invalid_argument("sensor profile '" + s.name + "': the grid needs rings");
+  // Bounds that keep every index and fixed-point value of stages 3-5 inside its integer type (the
+  // profile reader enforces the same for k and max_range; these hold for profiles built in code).
+  const uint64_t cells =
+      uint64_t(p.rings_near) * p.sectors_near + uint64_t(p.rings_far) * p.sectors_far;
+  if (rings > 4096 || cells > (uint64_t(1) << 22))
+    throw std::invalid_argument("sensor profile '" + s.name + "': a grid of " +
+                                std::to_string(rings) + " rings and " + std::to_string(cells) +
+                                " cells (at most 4096 rings and 4194304 cells)");
+  if (!(std::fabs(s.k_xz) <= 1.0f) || !(std::fabs(s.k_yz) <= 1.0f) || !(s.max_range <= 1000.0f))
+    throw std::invalid_argument("sensor profile '" + s.name +
+                                "': k_xz and k_yz must lie in -1..1 and max_range be at most "
+                                "1000 m");
   return p;
 }
 

@@ -272,5 +272,32 @@ TEST(SensorProfile, MissingFileIsUnknownAndUnwritableFolderAnIoError) {
                IoError);
 }
 
+// Profiles built in code get the bounds the reader enforces, and a grid that fits its integers.
+TEST(SensorProfile, ParamsForSensorBoundsTheGridTiltAndRange) {
+  const SensorProfile good = LoadSensorProfile("hdl64e", test::SensorsDir());
+  EXPECT_NO_THROW(ParamsForSensor(good));
+  auto message = [](const SensorProfile& s) -> std::string {
+    try {
+      ParamsForSensor(s);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "no exception";
+  };
+  SensorProfile s = good;
+  s.overrides.push_back({"rings_near", 4e9f});
+  EXPECT_NE(message(s).find("at most 4096 rings"), std::string::npos) << message(s);
+  s = good;
+  s.overrides.push_back({"sectors_far", 2048.0f});
+  s.overrides.push_back({"rings_far", 4000.0f});
+  EXPECT_NE(message(s).find("4194304 cells"), std::string::npos) << message(s);
+  s = good;
+  s.k_xz = 1e30f;
+  EXPECT_NE(message(s).find("k_xz and k_yz must lie in -1..1"), std::string::npos) << message(s);
+  s = good;
+  s.max_range = 1e6f;
+  EXPECT_NE(message(s).find("max_range be at most 1000 m"), std::string::npos) << message(s);
+}
+
 }  // namespace
 }  // namespace lpir
