@@ -160,7 +160,8 @@ Params ParamsForSensor(const SensorProfile& s) {
     throw std::invalid_argument("sensor profile '" + s.name + "': a grid of " +
                                 std::to_string(rings) + " rings and " + std::to_string(cells) +
                                 " cells (at most 4096 rings and 4194304 cells)");
-  if (!(std::fabs(s.k_xz) <= 1.0f) || !(std::fabs(s.k_yz) <= 1.0f) || !(s.max_range <= 1000.0f))
+  if (!(std::fabs(s.k_xz) <= kMaxProfileTiltSlope) || !(std::fabs(s.k_yz) <= kMaxProfileTiltSlope) ||
+      !(s.max_range <= kMaxProfileRange))
     throw std::invalid_argument("sensor profile '" + s.name +
                                 "': k_xz and k_yz must lie in -1..1 and max_range be at most "
                                 "1000 m");

@@ -7,6 +7,11 @@
 
 namespace lpir {
 
+// Bounds on a profile that keep every valid point inside the fixed-point ranges of stages 4 and 5
+// (mm in int32, 0.1 mm moments in int64); ParamsForSensor and the profile reader enforce them.
+constexpr float kMaxProfileRange = 1000.0f;   // m, the largest max_range
+constexpr float kMaxProfileTiltSlope = 1.0f;  // |k_xz|, |k_yz|: a mount tilt of at most 45 degrees
+
 struct SensorProfile {
   std::string name;                   // e.g. "hdl64e"
   unsigned beams = 64;                // image rows

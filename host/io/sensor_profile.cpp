@@ -38,7 +38,6 @@ const char* const kKeys[] = {"name",
                              "b_y",
                              "param"};
 const char* const kRequired[] = {"name", "beams", "width", "elevation_deg"};
-constexpr float kMaxRange = 1000.0f;  // m, the largest max_range a profile may give
 
 std::string KnownKeys() {
   std::string all;
@@ -177,12 +176,12 @@ class Parser {
         // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger
         // one let a point with z = 1e20 through to an overflowing float -> int64 conversion.
         p.max_range = Float(line, key, v);
-        if (!(p.max_range <= kMaxRange)) Fail(line, "max_range must be at most 1000 m");
+        if (!(p.max_range <= kMaxProfileRange)) Fail(line, "max_range must be at most 1000 m");
       } else if (key == "k_xz" || key == "k_yz") {
         // A mount tilt of at most 45 degrees: |z_t| <= 3 max_range (eq. 3). k_xz = 1e30 made
         // z_t overflow the same conversion.
         const float k = Float(line, key, v);
-        if (!(std::fabs(k) <= 1.0f))
+        if (!(std::fabs(k) <= kMaxProfileTiltSlope))
           Fail(line, key + " must be within -1..1 (a mount tilt of at most 45 degrees)");
         (key == "k_xz" ? p.k_xz : p.k_yz) = k;
       } else if (key == "b_x") {
