@@ -1,7 +1,7 @@
 // Stage 4, coarse segment (paper eqs. 5-7): the GPU twin of reference_cpu/coarse_segment.cpp,
 // same bytes (cell_seed_mode, cell_plane, coarse). Six passes of this one shader, chosen by the
-// push constant `pass`, with a compute -> compute barrier between each two
-// (CoarseSegmentStage::Record records them all):
+// specialization constant kPass (one pipeline each), with a compute -> compute barrier between
+// each two (CoarseSegmentStage::Record records them all):
 //   pass 0, one invocation per cell: seed mode (eq. 5: lambda, the 3x3 neighbour minimum, the
 //     rise and slope-prior rules, the whole-cell rule), cell_seed_mode, cell_plane zeroed, the
 //     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
@@ -56,9 +56,10 @@ layout(std430, set = 0, binding = 9) buffer CellPlane { int cell_plane[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer Coarse { uint coarse[]; };
 layout(std430, set = 0, binding = 11) buffer CellScratch { uint scratch[]; };
 
+layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+
 layout(push_constant) uniform Push {
   uint count;  // cells (passes 0, 2, 4) or points (passes 1, 3, 5)
-  uint pass;
 } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
@@ -403,15 +404,15 @@ void Classify(uint first) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
-  if (pc.pass == 0u) {
+  if (kPass == 0u) {
     SeedMode(i);
-  } else if (pc.pass == 1u) {
+  } else if (kPass == 1u) {
     SeedSums(i * kChunk);
-  } else if (pc.pass == 2u) {
+  } else if (kPass == 2u) {
     FitPlane(i);
-  } else if (pc.pass == 3u) {
+  } else if (kPass == 3u) {
     DistanceSums(i * kChunk);
-  } else if (pc.pass == 4u) {
+  } else if (kPass == 4u) {
     if (!Ground(i)) return;
     int64_t floor_q = exact_ToFixed(p.plane_dist_floor, 16384000.0);  // metres -> mm * 2^14
     int64_t scale_q = exact_ToFixed(p.plane_dist_scale, 256.0);

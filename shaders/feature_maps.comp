@@ -1,8 +1,9 @@
 // Stage 5, feature maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
-// reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the push
-// constant `pass`, with a compute -> compute barrier between them; pass 0 one invocation per
-// pixel < pixels (push constant), pixel = v * width + u; pass 1 one per run of kRun pixels of a
-// row (its 3x3 window's column moments sliding along the run).
+// reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the
+// specialization constant kPass (one pipeline each), with a compute -> compute barrier between
+// them; pass 0 one invocation per pixel < pixels (push constant), pixel = v * width + u;
+// pass 1 one per run of kRun pixels of a row (its 3x3 window's column moments sliding along
+// the run).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
 //     2 r2, 3 zt, 4 inten (floats per point).
 // Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (written
@@ -44,9 +45,10 @@ layout(std430, set = 0, binding = 11) writeonly buffer EdgeR { float f_edge_r[];
 layout(std430, set = 0, binding = 12) writeonly buffer VarZ { float f_varz[]; };
 layout(std430, set = 0, binding = 13) writeonly buffer VarI { float f_vari[]; };
 
+layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+
 layout(push_constant) uniform Push {
   uint pixels;
-  uint pass;  // 0 measure and fill, 1 slope, edges and variances
 } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
@@ -189,6 +191,6 @@ void FeaturesRun(uint run) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.pixels) return;  // pass 1: i is a run, and pc.pixels the runs' count
-  if (pc.pass == 0u) MeasureAndFill(i);
+  if (kPass == 0u) MeasureAndFill(i);
   else FeaturesRun(i);
 }

@@ -1,6 +1,6 @@
 // Stage 3, grid reduce (paper eq. 4, V-C.1): the GPU twin of reference_cpu/grid_reduce.cpp, same
-// bytes. Two passes of this one shader, chosen by the push constant `pass`, with a compute ->
-// compute barrier between them (GridReduceStage::Record records both):
+// bytes. Two passes of this one shader, chosen by the specialization constant kPass, with a
+// compute -> compute barrier between them (GridReduceStage::Record records both):
 //   pass 0, one invocation per cell c < count: cell_zmin = kNone, cell_zmax = 0, cell_count = 0.
 //   pass 1, one invocation per kChunk consecutive points (of count): point_cell and the per-cell
 //     reductions (runs of one cell reduced in registers, then one set of atomics per run).
@@ -33,9 +33,10 @@ layout(std430, set = 0, binding = 7) buffer CellZmin { uint cell_zmin[]; };
 layout(std430, set = 0, binding = 8) buffer CellZmax { uint cell_zmax[]; };
 layout(std430, set = 0, binding = 9) buffer CellCount { uint cell_count[]; };
 
+layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+
 layout(push_constant) uniform Push {
   uint count;  // cells (pass 0) or points (pass 1)
-  uint pass;
 } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
@@ -83,7 +84,7 @@ void Flush(uint cell, uint zmin, uint zmax, uint count) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (pc.pass == 0u) {
+  if (kPass == 0u) {
     if (i >= pc.count) return;
     cell_zmin[i] = kNone;
     cell_zmax[i] = 0u;

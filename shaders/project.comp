@@ -1,7 +1,7 @@
 // Stage 2, project (paper eq. 1): the GPU twin of reference_cpu/project.cpp, same bytes.
-// One invocation per point i < n; two dispatches of this shader (push constant `pass`) with a
-// compute-to-compute barrier between them, pixel_key and pixel_point cleared to kNone before the
-// first (vkCmdFillBuffer).
+// One invocation per point i < n; two dispatches of this shader (specialization constant kPass)
+// with a compute-to-compute barrier between them, pixel_key and pixel_point cleared to kNone
+// before the first (vkCmdFillBuffer).
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
 //     1 xyzi (vec4 per point, the raw cloud), 2 ring (int per point, or a dummy), 3 flags and
 //     4 r2 (stage 1's outputs), 5 column_dir (width (cos, sin) pairs), 6 beam_bound and
@@ -42,9 +42,10 @@ layout(std430, set = 0, binding = 8) buffer PointPixel { uint point_pixel[]; };
 layout(std430, set = 0, binding = 9) buffer PixelKey { uint pixel_key[]; };
 layout(std430, set = 0, binding = 10) buffer PixelPoint { uint pixel_point[]; };
 
+layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+
 layout(push_constant) uniform Push {
   uint n;
-  uint pass;  // 0: pixels and keys, 1: winners
 } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
@@ -180,7 +181,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.n) return;
   uint f = flags[i];
-  if (pc.pass == 0u) {
+  if (kPass == 0u) {
     if ((f & kPointValid) == 0u) {
       point_pixel[i] = kNone;
       return;

@@ -14,7 +14,6 @@ namespace {
 
 struct Push {
   uint32_t count;  // cells (passes 0, 2, 4) or points (passes 1, 3, 5)
-  uint32_t pass;
 };
 
 Error Invalid(const std::string& message) {
@@ -34,6 +33,7 @@ Result<CoarseSegmentStage> CoarseSegmentStage::Create(const Device& device,
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
+  desc.passes = 6;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -45,10 +45,10 @@ Result<CoarseSegmentStage> CoarseSegmentStage::Create(const Device& device,
 Status CoarseSegmentStage::Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const {
   for (uint32_t pass = 0; pass < 6; ++pass) {
     if (pass) cmd.ComputeToCompute();
-    const Push push{pass % 2 == 0 ? cells : n, pass};
+    const Push push{pass % 2 == 0 ? cells : n};
     // Passes 1, 3 and 5: one invocation per kChunk points (shaders/coarse_segment.comp).
     const uint32_t invocations = pass % 2 == 1 ? (n + kChunk - 1) / kChunk : push.count;
-    LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, invocations, &push));
+    LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, invocations, &push, pass));
   }
   return Status();
 }

@@ -15,7 +15,6 @@ namespace {
 
 struct Push {
   uint32_t pixels;
-  uint32_t pass;  // 0 measure and fill, 1 slope, edges and variances
 };
 
 Error Invalid(const std::string& message) {
@@ -35,6 +34,7 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
+  desc.passes = 2;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -46,10 +46,10 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
 
 Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
   const uint32_t pixels = width * beams, runs = (width + kRun - 1) / kRun * beams;
-  const Push measure{pixels, 0u}, features{runs, 1u};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, pixels, &measure));
+  const Push measure{pixels}, features{runs};
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, pixels, &measure, 0));
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, runs, &features);
+  return kernel_.Record(cmd, runs, &features, 1);
 }
 
 Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double* gpu_ns) {

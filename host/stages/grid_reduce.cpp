@@ -14,7 +14,6 @@ namespace {
 
 struct Push {
   uint32_t count;  // cells (pass 0) or points (pass 1)
-  uint32_t pass;
 };
 
 Error Invalid(const std::string& message) {
@@ -34,6 +33,7 @@ Result<GridReduceStage> GridReduceStage::Create(const Device& device,
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
+  desc.passes = 2;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -43,10 +43,10 @@ Result<GridReduceStage> GridReduceStage::Create(const Device& device,
 }
 
 Status GridReduceStage::Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const {
-  const Push clear{cells, 0u}, reduce{n, 1u};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, cells, &clear));
+  const Push clear{cells}, reduce{n};
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, cells, &clear, 0));
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, (n + kChunk - 1) / kChunk, &reduce);  // kChunk points each
+  return kernel_.Record(cmd, (n + kChunk - 1) / kChunk, &reduce, 1);  // kChunk points each
 }
 
 Status RunGridReduce(const Context& context, const Params& p, const Tables& t, Frame& f,

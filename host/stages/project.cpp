@@ -14,7 +14,6 @@ namespace {
 
 struct Push {
   uint32_t n;
-  uint32_t pass;  // 0: pixels and keys, 1: winners
 };
 
 Error StageError(const std::string& message) { return UsageError("project", message); }
@@ -29,6 +28,7 @@ Result<ProjectStage> ProjectStage::Create(const Device& device, const ProjectBuf
   for (int i = 1; i <= 10; ++i) desc.bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
+  desc.passes = 2;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -41,11 +41,10 @@ Status ProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
   cmd.FillBuffer(*pixel_key_, 0xFFFFFFFFu);  // kNone
   cmd.FillBuffer(*pixel_point_, 0xFFFFFFFFu);
   cmd.TransferToCompute();
-  Push push{n, 0};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, n, &push));
+  const Push push{n};
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, n, &push, 0));
   cmd.ComputeToCompute();
-  push.pass = 1;
-  return kernel_.Record(cmd, n, &push);
+  return kernel_.Record(cmd, n, &push, 1);
 }
 
 Status RunProject(const Context& context, const Cloud& cloud, const Params& p, const Tables& t,

@@ -78,12 +78,14 @@ Result<ComputePipeline> ComputePipeline::Create(const Device& device, const Pipe
                 "vkCreatePipelineLayout", what);
   pipeline.layout_ = DeviceHandle<VkPipelineLayout, vkDestroyPipelineLayout>(vk_device, layout);
 
-  const VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+  const uint32_t constants[2] = {desc.local_size_x, desc.pass};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
+                                               {1, sizeof(uint32_t), sizeof(uint32_t)}};
   VkSpecializationInfo specialization{};
-  specialization.mapEntryCount = 1;
-  specialization.pMapEntries = &entry;
-  specialization.dataSize = sizeof(uint32_t);
-  specialization.pData = &desc.local_size_x;
+  specialization.mapEntryCount = 2;
+  specialization.pMapEntries = entries;
+  specialization.dataSize = sizeof(constants);
+  specialization.pData = constants;
 
   VkComputePipelineCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;

@@ -1,7 +1,11 @@
 // ComputePipeline: one compute shader from SPIR-V embedded at build time (<build>/shaders/
 // <stage>.spv.h, k<Stage>Spv), with its descriptor set layout (set 0: binding i of the type
-// bindings[i], storage or uniform buffers), an optional push-constant block, and the workgroup
-// size given as specialization constant 0 (shaders declare `layout(local_size_x_id = 0) in;`).
+// bindings[i], storage or uniform buffers), an optional push-constant block, the workgroup
+// size given as specialization constant 0 (shaders declare `layout(local_size_x_id = 0) in;`)
+// and, for a stage of several passes, the pass as specialization constant 1
+// (`layout(constant_id = 1) const uint kPass = 0u;`). One pipeline per pass: a CPU driver such
+// as lavapipe runs every branch of a shader under a lane mask (an `if` skips no code), so a
+// pass chosen at run time would pay for the code of all the others.
 #pragma once
 #include <vulkan/vulkan.h>
 
@@ -31,6 +35,8 @@ struct PipelineDesc {
   std::vector<VkDescriptorType> bindings;  // set 0, binding i
   uint32_t push_constant_bytes = 0;        // 0: none (at most 128, the guaranteed minimum)
   uint32_t local_size_x = 64;              // specialization constant 0
+  uint32_t pass = 0;                       // specialization constant 1 (multi-pass stages)
+  uint32_t passes = 1;                     // Kernel: one pipeline for each pass 0 .. passes - 1
 };
 
 class ComputePipeline {

@@ -1,7 +1,9 @@
-// Kernel: the generic dispatcher. One compute shader ready to run over a 1-D range: its pipeline
+// Kernel: the generic dispatcher. One compute shader ready to run over a 1-D range: a pipeline
+// for each of its desc.passes passes (compute_pipeline.h: the pass is specialization constant 1)
 // and one descriptor set bound to buffers fixed at creation (allocated once for the largest
-// cloud, SPEC section 5). Recording binds, pushes the constants and dispatches
-// ceil(invocations / local size) workgroups; the shader skips invocations past its count.
+// cloud, SPEC section 5), shared by the passes (their set layouts are identical). Recording
+// binds, pushes the constants and dispatches ceil(invocations / local size) workgroups; the
+// shader skips invocations past its count.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -22,7 +24,8 @@ class Kernel {
 
   // `push` holds desc.push_constant_bytes bytes (nullptr when none). No barrier is recorded.
   // An error when the range needs more workgroups than the device dispatches along x.
-  Status Record(CommandBuffer& cmd, uint32_t invocations, const void* push) const;
+  Status Record(CommandBuffer& cmd, uint32_t invocations, const void* push,
+                uint32_t pass = 0) const;
 
   // An error when `invocations` need more workgroups than the device dispatches along x.
   Status CheckGroups(uint64_t invocations) const;
@@ -30,16 +33,17 @@ class Kernel {
   // The same with the workgroup counts read on the GPU from `args` at `offset` (see
   // CommandBuffer::DispatchIndirect): the shader decides whether its successor runs.
   void RecordIndirect(CommandBuffer& cmd, const Buffer& args, VkDeviceSize offset,
-                      const void* push) const;
+                      const void* push, uint32_t pass = 0) const;
 
-  const ComputePipeline& pipeline() const { return pipeline_; }
+  // `pass` < desc.passes.
+  const ComputePipeline& pipeline(uint32_t pass = 0) const { return pipelines_[pass]; }
 
  private:
-  Kernel(ComputePipeline pipeline, DescriptorSet set, uint32_t max_groups)
-      : pipeline_(std::move(pipeline)), set_(std::move(set)), max_groups_(max_groups) {}
-  void Bind(CommandBuffer& cmd, const void* push) const;
+  Kernel(std::vector<ComputePipeline> pipelines, DescriptorSet set, uint32_t max_groups)
+      : pipelines_(std::move(pipelines)), set_(std::move(set)), max_groups_(max_groups) {}
+  void Bind(CommandBuffer& cmd, const void* push, uint32_t pass) const;
 
-  ComputePipeline pipeline_;
+  std::vector<ComputePipeline> pipelines_;  // pass k: pipelines_[k]
   DescriptorSet set_;
   uint32_t max_groups_ = 0;
 };
