@@ -274,7 +274,7 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   cmd.ComputeToCompute();
   time();
   LPIR_VK_RETURN_IF_ERROR(s.fuse.Record(cmd, pixels_));
-  cmd.ComputeToIndirect();  // grow's first sweep reads its workgroup count from its flags
+  cmd.ComputeToCompute();
   time();
   LPIR_VK_RETURN_IF_ERROR(s.grow.Record(cmd, params_.width, params_.beams));
   cmd.ComputeToCompute();

@@ -18,17 +18,17 @@ Error GrowError(const std::string& message) { return UsageError("grow", message)
 
 // The push constants of shaders/grow.comp.
 struct Push {
-  uint32_t mode, sweep, count, budget;
+  uint32_t sweep, count, budget;
 };
 enum Mode : uint32_t {
   kInit = 0,
-  kGrow = 1,     // per tile
-  kSettle = 2,
-  kLocal = 3,    // per tile
-  kBorder = 4,   // per tile
+  kSweep0 = 1,
+  kList = 2,   // one invocation
+  kSweep = 3,  // sweeps 1 .. budget - 1, per list entry, indirect
+  kMerge = 4,
   kFlatten = 5,
-  kCount = 6,
-  kFinish = 7
+  kFinish = 6,
+  kModes = 7
 };
 }  // namespace
 
@@ -46,6 +46,7 @@ Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b,
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
+  desc.passes = kModes;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -56,29 +57,29 @@ Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b,
 
 Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
   const uint32_t pixels = width * beams;
-  const uint32_t tiles = ((width + kTileW - 1) / kTileW) * ((beams + kTileH - 1) / kTileH);
   const uint32_t budget = max_iters_;
-  auto pass = [&](uint32_t mode, uint32_t sweep, uint32_t invocations, uint32_t count) {
-    const Push push{mode, sweep, count, budget};
-    return kernel_.Record(cmd, invocations, &push);
+  auto pass = [&](uint32_t mode, uint32_t invocations) {
+    const Push push{0, pixels, budget};
+    return kernel_.Record(cmd, invocations, &push, mode);
   };
-  // The sweeps' workgroup counts come from the flags buffer: checked against the device's limit
-  // here, where the tile count is known.
-  LPIR_VK_RETURN_IF_ERROR(pass(kInit, 0, std::max(pixels, FlagWords(budget)), pixels));
-  LPIR_VK_RETURN_IF_ERROR(kernel_.CheckGroups(tiles));  // one invocation per tile
-  for (uint32_t k = 0; k < budget; ++k) {
+  LPIR_VK_RETURN_IF_ERROR(pass(kInit, std::max(pixels, FlagWords(budget))));
+  cmd.ComputeToCompute();
+  LPIR_VK_RETURN_IF_ERROR(pass(kSweep0, pixels));
+  cmd.ComputeToCompute();
+  LPIR_VK_RETURN_IF_ERROR(pass(kList, 1));
+  // Sweeps 1 .. budget - 1 over the list (at most `pixels` entries: checked by the passes above).
+  for (uint32_t k = 1; k < budget; ++k) {
     cmd.ComputeToIndirect();
-    const Push push{kGrow, k, tiles, budget};
-    kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k), &push);
+    const Push push{k, pixels, budget};
+    kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k), &push, kSweep);
   }
-  for (uint32_t mode : {kSettle, kLocal, kBorder, kFlatten, kCount}) {
+  for (uint32_t mode : {kMerge, kFlatten}) {
     cmd.ComputeToCompute();
-    const bool per_tile = mode == kLocal || mode == kBorder;
-    LPIR_VK_RETURN_IF_ERROR(pass(mode, 0, per_tile ? tiles : pixels, pixels));
+    LPIR_VK_RETURN_IF_ERROR(pass(mode, pixels));
   }
   cmd.ComputeToCompute();
-  // At least one invocation: pixel 0's writes the summary word.
-  return pass(kFinish, 0, std::max(pixels, 1u), pixels);
+  // At least one invocation: invocation 0 writes the summary word.
+  return pass(kFinish, std::max(pixels, 1u));
 }
 
 Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* report,

@@ -23,10 +23,10 @@ struct GrowBuffers {
   const Buffer* f_inten = nullptr;      // float per pixel
   const Buffer* f_height = nullptr;     // float per pixel
   const Buffer* f_range = nullptr;      // float per pixel
-  const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel (also a ping-pong state)
+  const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel (also the growing state)
   const Buffer* pixel_comp = nullptr;   // out: uint32 component label per pixel, kNone off ground
   const Buffer* pixel_label = nullptr;  // out: uint32 kPix* per pixel
-  const Buffer* scratch = nullptr;      // uint32 per pixel: the other ping-pong state
+  const Buffer* scratch = nullptr;      // uint32 per pixel: the unknown pixels left by sweep 0
   const Buffer* sizes = nullptr;        // uint32 per pixel: component sizes
   const Buffer* flags = nullptr;        // GrowStage::FlagWords(max_iters) uint32 (see below)
 };
@@ -39,12 +39,11 @@ struct GrowReport {
 
 class GrowStage {
  public:
-  static constexpr uint32_t kLocalSize = 64;   // per-pixel passes; the sweeps: 64 tiles a group
-  static constexpr uint32_t kTileW = 32, kTileH = 8;  // a tile: one invocation of a sweep
+  static constexpr uint32_t kLocalSize = 64;
 
-  // The flags buffer: max_iters + 1 indirect dispatch arguments (shaders/grow.comp says how the
-  // sweeps set them), then the summary word flags[3 (max_iters + 1)] (grow sweeps, 0 = not
-  // converged).
+  // The flags buffer: three words of the list, max_iters indirect dispatch arguments
+  // (shaders/grow.comp says how the sweeps set them), then the summary word
+  // flags[3 (max_iters + 1)] (grow sweeps, 0 = not converged).
   static uint32_t FlagWords(uint32_t max_iters) { return 3 * (max_iters + 1) + 1; }
   static GrowReport ReadReport(const uint32_t* flags, uint32_t max_iters) {
     return {flags[3 * (max_iters + 1)]};
