@@ -2,18 +2,16 @@
 // One shader, seven passes chosen by the specialization constant kMode, one pipeline each
 // (host/stages/grow.cpp records them in this order, a compute-to-compute barrier after each
 // dispatch):
-//   0 init     per pixel: pixel_grown = pixel_fused; pixel_comp = pix on ground, kNone elsewhere;
-//              sizes = 0; the flags buffer to its start.
-//   1 sweep 0  per pixel: an unknown pixel with a ground neighbour it may step from becomes ground
-//              (Claim) and the growth spreads on from it (Spread); an unknown pixel that cannot
-//              grow yet goes on the list (scratch).
-//   2 list     one invocation: the list's workgroup count, and sweep 1's dispatch arguments (none
-//              when sweep 0 changed nothing: the fixed point).
-//   3 sweep k  k = 1 .. budget - 1, per list entry, dispatched indirectly from the flags buffer:
-//              the same for the listed pixels still unknown (odd sweeps walk the list backwards).
-//              A sweep that changed something sets the next sweep's workgroup count; so the
-//              sweeps after the first that changes nothing launch no workgroup and the loop ends
-//              on the GPU.
+//   0 reset    per flags word: the flags buffer to its start.
+//   1 init     per pixel: pixel_grown = pixel_fused; pixel_comp = pix on ground, kNone elsewhere;
+//              sizes = 0; the unknown pixels go on the list (scratch).
+//   2 list     one invocation: the list's workgroup count, which is sweep 0's.
+//   3 sweep k  k = 0 .. budget - 1, per list entry, dispatched indirectly from the flags buffer:
+//              a listed pixel still unknown with a ground neighbour it may step from becomes
+//              ground (Claim) and the growth spreads on from it (Spread); odd sweeps walk the list
+//              backwards. A sweep that changed something sets the next sweep's workgroup count;
+//              so the sweeps after the first that changes nothing launch no workgroup and the
+//              loop ends on the GPU.
 //   4 merge    per pixel: joins the trees of each ground pixel and its ground neighbours right,
 //              below-left, below and below-right (every 8-neighbour pair once, columns wrap; a
 //              diagonal pair is skipped where a path through a side neighbour joins it anyway).
@@ -25,22 +23,24 @@
 // any schedule that grows only pixels with an allowed step from a ground pixel and stops after a
 // sweep that changed nothing gives the reference's bytes. Here pixels change in place during a
 // sweep (atomic loads, stores and compare-and-swap on pixel_grown: no data race); a sweep that
-// changed nothing read a state nobody wrote, every unknown pixel (all on the list after sweep 0)
-// was tested against it, so that state is the fixed point. Spread walks on from each pixel an
+// changed nothing read a state nobody wrote, every unknown pixel (all are on the list) was tested
+// against it, so that state is the fixed point. Spread walks on from each pixel an
 // invocation grows (depth first, a private stack of kStack pixels; a pixel that does not fit is
 // still ground and its neighbours are tested by the next sweep), so a long chain of unknown pixels
 // costs one sweep, not one per pixel. (Earlier versions swept 8 x 32 tiles, one invocation each:
 // on lavapipe every buffer access of an invocation is a loop over the SIMD lanes, and serial
-// per-tile loops cost 50-65 ms of the 75 ms stage on a KITTI frame.)
+// per-tile loops cost 50-65 ms of the 75 ms stage on a KITTI frame; and as lavapipe runs every
+// branch under a lane mask, the growing code runs only over the list, 5 % of a KITTI image.)
 // Components: a union-find over pixel_comp (the parent of each ground pixel), in which a root is
 // hung only under a lower pixel and parents only decrease (unions and path halving by atomicMin),
 // so each component ends as one tree whose root is its lowest pixel: the reference's component
 // label in any schedule. All parent accesses are atomic.
-// Flags (binding 10), words: 0 the list's length, 1 sweep 0 changed something, 2 the list's
-// workgroup count; then budget indirect dispatch arguments (x, y, z) for sweeps 1 .. budget: entry
-// k is words 3k .. 3k + 2, its x set by a sweep k - 1 that changed something and 0 otherwise; word
-// 3 (budget + 1), the summary: the sweeps run up to and including the first that changed nothing
-// (the fixed point proved), 0 when the budget ran out before that (the outputs are not valid).
+// Flags (binding 10), words: 0 the list's length, 1 its workgroup count, 2 unused; then budget + 1
+// indirect dispatch arguments (x, y, z), entry k for sweep k at words 3 (k + 1) .. 3 (k + 1) + 2:
+// sweep 0's x set by the list pass, sweep k's (k > 0) by a sweep k - 1 that changed something,
+// else 0; word 3 (budget + 2), the summary: the sweeps run up to and including the first that
+// changed nothing (the fixed point proved), 0 when the budget ran out before that (the outputs
+// are not valid). An empty list: sweep 0 runs no workgroup and the summary says 1.
 // Step test (reference StepAllowed), each op rounded (`precise`): di = |ir - iq|, dz = |zr - zq|,
 // step = |rr - rq|, when the column changes step = step + rq * column_arc; allowed = grow_dz +
 // grow_grade * step; di <= grow_di && dz <= allowed.
@@ -79,16 +79,16 @@ const uint kPixUnknown = 2u;
 
 const uint kStack = 16u;  // Spread's depth-first stack
 
-const uint kListLength = 0u, kChanged0 = 1u, kListGroups = 2u;  // flags words
+const uint kListLength = 0u, kListGroups = 1u;  // flags words
 
 #define LoadAtomic(word) \
   atomicLoad(word, gl_ScopeDevice, gl_StorageSemanticsBuffer, gl_SemanticsRelaxed)
 #define StoreAtomic(word, value) \
   atomicStore(word, value, gl_ScopeDevice, gl_StorageSemanticsBuffer, gl_SemanticsRelaxed)
 
-// The x word of the dispatch arguments of sweep k (1 .. budget), and the summary word.
-uint ArgsWord(uint k) { return 3u * k; }
-uint SummaryWord() { return 3u * (pc.budget + 1u); }
+// The x word of the dispatch arguments of sweep k (0 .. budget), and the summary word.
+uint ArgsWord(uint k) { return 3u * (k + 1u); }
+uint SummaryWord() { return 3u * (pc.budget + 2u); }
 
 // The step test from ground pixel q (column cq) to unknown pixel r (column cr), the reference's
 // StepAllowed op for op.
@@ -224,31 +224,27 @@ void Merge(uint pix, uint u, uint v) {
 void main() {
   const uint mode = kMode;
   uint i = gl_GlobalInvocationID.x;
-  if (mode == 0u) {  // init
-    if (i <= SummaryWord())  // sweeps' dispatch arguments (0, 1, 1); the other words 0
-      flags[i] = i >= 3u && i < SummaryWord() && i % 3u != 0u ? 1u : 0u;
-    if (i < pc.count) {
-      uint c = pixel_fused[i];
-      pixel_grown[i] = c;
-      pixel_comp[i] = c == kPixGround ? i : kNone;
-      sizes[i] = 0u;
-    }
+  if (mode == 0u) {  // reset: dispatch arguments (0, 1, 1), the other words 0
+    if (i <= SummaryWord()) flags[i] = i >= 3u && i < SummaryWord() && i % 3u != 0u ? 1u : 0u;
     return;
   }
-  if (mode == 1u) {  // sweep 0
-    if (i >= pc.count || LoadAtomic(pixel_grown[i]) != kPixUnknown) return;
-    if (GrowPixel(i)) atomicOr(flags[kChanged0], 1u);
-    else list[atomicAdd(flags[kListLength], 1u)] = i;
+  if (mode == 1u) {  // init
+    if (i >= pc.count) return;
+    uint c = pixel_fused[i];
+    pixel_grown[i] = c;
+    pixel_comp[i] = c == kPixGround ? i : kNone;
+    sizes[i] = 0u;
+    if (c == kPixUnknown) list[atomicAdd(flags[kListLength], 1u)] = i;
     return;
   }
-  if (mode == 2u) {  // the list's workgroups, sweep 1's dispatch
+  if (mode == 2u) {  // the list's workgroups: sweep 0's
     if (i != 0u) return;
     uint groups = (flags[kListLength] + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
     flags[kListGroups] = groups;
-    flags[ArgsWord(1u)] = flags[kChanged0] != 0u ? groups : 0u;
+    flags[ArgsWord(0u)] = groups;
     return;
   }
-  if (mode == 3u) {  // sweep k >= 1
+  if (mode == 3u) {  // sweep k
     uint n = flags[kListLength];
     if (i >= n) return;
     uint r = list[(pc.sweep & 1u) != 0u ? n - 1u - i : i];

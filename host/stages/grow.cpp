@@ -21,10 +21,10 @@ struct Push {
   uint32_t sweep, count, budget;
 };
 enum Mode : uint32_t {
-  kInit = 0,
-  kSweep0 = 1,
+  kReset = 0,  // per flags word
+  kInit = 1,
   kList = 2,   // one invocation
-  kSweep = 3,  // sweeps 1 .. budget - 1, per list entry, indirect
+  kSweep = 3,  // sweeps 0 .. budget - 1, per list entry, indirect
   kMerge = 4,
   kFlatten = 5,
   kFinish = 6,
@@ -62,16 +62,16 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
     const Push push{0, pixels, budget};
     return kernel_.Record(cmd, invocations, &push, mode);
   };
-  LPIR_VK_RETURN_IF_ERROR(pass(kInit, std::max(pixels, FlagWords(budget))));
+  LPIR_VK_RETURN_IF_ERROR(pass(kReset, FlagWords(budget)));
   cmd.ComputeToCompute();
-  LPIR_VK_RETURN_IF_ERROR(pass(kSweep0, pixels));
+  LPIR_VK_RETURN_IF_ERROR(pass(kInit, pixels));
   cmd.ComputeToCompute();
   LPIR_VK_RETURN_IF_ERROR(pass(kList, 1));
-  // Sweeps 1 .. budget - 1 over the list (at most `pixels` entries: checked by the passes above).
-  for (uint32_t k = 1; k < budget; ++k) {
+  // Sweeps over the list (at most `pixels` entries: checked by the init pass).
+  for (uint32_t k = 0; k < budget; ++k) {
     cmd.ComputeToIndirect();
     const Push push{k, pixels, budget};
-    kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k), &push, kSweep);
+    kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k + 1), &push, kSweep);
   }
   for (uint32_t mode : {kMerge, kFlatten}) {
     cmd.ComputeToCompute();

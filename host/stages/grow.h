@@ -41,12 +41,12 @@ class GrowStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
 
-  // The flags buffer: three words of the list, max_iters indirect dispatch arguments
+  // The flags buffer: three words of the list, max_iters + 1 indirect dispatch arguments
   // (shaders/grow.comp says how the sweeps set them), then the summary word
-  // flags[3 (max_iters + 1)] (grow sweeps, 0 = not converged).
-  static uint32_t FlagWords(uint32_t max_iters) { return 3 * (max_iters + 1) + 1; }
+  // flags[3 (max_iters + 2)] (grow sweeps, 0 = not converged).
+  static uint32_t FlagWords(uint32_t max_iters) { return 3 * (max_iters + 2) + 1; }
   static GrowReport ReadReport(const uint32_t* flags, uint32_t max_iters) {
-    return {flags[3 * (max_iters + 1)]};
+    return {flags[3 * (max_iters + 2)]};
   }
 
   // `max_iters` (Params::grow_max_iters, at least 1): the growing sweeps recorded; the sweeps
