@@ -80,23 +80,23 @@ float exact_Div(float a, float b) {
   return exact_FromBits(steps >= (uint64_t(1) << 23) ? (sign | 0x800000u) : sign);
 }
 
-// floor(sqrt(v)) for v >= 0, exact (bit by bit, no float).
+// floor(sqrt(v)), exact for every v. The same value as exact.h's bit-by-bit loop, computed
+// another way (32 iterations of 64-bit work cost more than the rest of a pass on a CPU driver,
+// and a 64-bit division is one scalar instruction per lane there): the device's float square root
+// as a guess g (error under 2^12 for any square root within a few ulp, as Vulkan requires), one
+// Newton step g + (v - g^2) / 2g with the exact residual and a float quotient (within 2 of the
+// root), then integer checks that step to the exact value.
 uint64_t exact_Isqrt(uint64_t v) {
-  uint64_t result = uint64_t(0);
-  uint64_t bit = uint64_t(1) << 62;
-  while (bit > v) bit >>= 2;
-  while (bit != uint64_t(0)) {
-    if (v >= result + bit) {
-      v -= result + bit;
-      result = (result >> 1) + bit;
-    } else {
-      result >>= 1;
-    }
-    bit >>= 2;
-  }
-  return result;
+  if (v == uint64_t(0)) return uint64_t(0);
+  int64_t g = clamp(int64_t(sqrt(float(v))), int64_t(1), int64_t(0xFFFFFFFFu));
+  int64_t residual = int64_t(v - uint64_t(g * g));  // |residual| < 2^45
+  int64_t s = g + int64_t(float(residual) / (2.0 * float(g)));
+  s = clamp(s, int64_t(0), int64_t(0xFFFFFFFFu));  // floor(sqrt(v)) <= 2^32 - 1
+  uint64_t r = uint64_t(s);
+  while (r * r > v) --r;
+  while (r < uint64_t(0xFFFFFFFFu) && (r + uint64_t(1)) * (r + uint64_t(1)) <= v) ++r;
+  return r;
 }
-
 // Correctly rounded sqrt(a) for finite a >= 0 (subnormals flushed; sqrt(-0) = -0). Outside that
 // contract: sqrt(+Inf) = +Inf, a quiet NaN for negative or NaN a.
 float exact_Sqrt(float a) {
