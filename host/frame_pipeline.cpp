@@ -25,7 +25,7 @@ struct FramePipeline::Buffers {
   Buffer params, points, ring;
   Buffer column_dir, beam_bound, beam_origin, ring_bound2, ring_inner;  // tables
   Buffer flags, zt, r2, inten;                                           // 1 prepare
-  Buffer point_pixel, pixel_key, pixel_point;                            // 2 project
+  Buffer point_pixel, pixel_key, pixel_point, project_exact;             // 2 project
   Buffer point_cell, cell_zmin, cell_zmax, cell_count;                   // 3 grid reduce
   Buffer cell_seed_mode, cell_plane, coarse, coarse_scratch;             // 4 coarse segment
   Buffer pixel_filled, f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz,
@@ -117,6 +117,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       {&b.flags, point},            {&b.zt, point},              {&b.r2, point},
       {&b.inten, point},            {&b.point_pixel, point},     {&b.pixel_key, pixel},
       {&b.pixel_point, pixel},      {&b.point_cell, point},      {&b.cell_zmin, cell},
+      {&b.project_exact, ProjectStage::ExactListBytes(max_points)},
       {&b.cell_zmax, cell},         {&b.cell_count, cell},       {&b.cell_seed_mode, cell},
       {&b.cell_plane, 8 * cell},    {&b.coarse, point},
       {&b.coarse_scratch, CoarseSegmentStage::ScratchBytes(cells)},
@@ -153,7 +154,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   PrepareBuffers prepare{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten};
   ProjectBuffers project{&b.params,      &b.points,     &b.ring,        &b.flags,
                          &b.r2,          &b.column_dir, &b.beam_bound,  &b.beam_origin,
-                         &b.point_pixel, &b.pixel_key,  &b.pixel_point};
+                         &b.point_pixel, &b.pixel_key,  &b.pixel_point, &b.project_exact};
   GridReduceBuffers grid{&b.params,      &b.flags,      &b.r2,        &b.zt,       &b.point_pixel,
                          &b.ring_bound2, &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count};
   CoarseSegmentBuffers coarse{&b.params,     &b.points,         &b.zt,         &b.point_cell,

@@ -1,7 +1,7 @@
 // Stage 2, project (paper eq. 1): the GPU twin of reference_cpu/project.cpp, same bytes.
-// One invocation per point i < n; two dispatches of this shader (specialization constant kPass)
-// with a compute-to-compute barrier between them, pixel_key and pixel_point cleared to kNone
-// before the first (vkCmdFillBuffer).
+// Three passes of this shader (specialization constant kPass) in the order 0, 2, 1, with barriers
+// between them, pixel_key and pixel_point cleared to kNone and the exact list's header to
+// (0, 1, 1, 0) before the first (vkCmdFillBuffer, vkCmdUpdateBuffer).
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
 //     1 xyzi (vec4 per point, the raw cloud), 2 ring (int per point, or a dummy), 3 flags and
 //     4 r2 (stage 1's outputs), 5 column_dir (width (cos, sin) pairs), 6 beam_bound and
@@ -9,9 +9,16 @@
 // Out: 8 point_pixel (per point: v * width + u, kNone when invalid), 9 pixel_key (per pixel:
 //     exact_Key of the smallest r2 among its valid non-noise points, kNone when none), 10
 //     pixel_point (per pixel: the lowest point index among those whose key equals pixel_key).
-// Pass 0: column and row of every valid point, point_pixel, atomicMin of the key. Pass 1: among
-// valid non-noise points whose key equals the pixel's, atomicMin of the index. Both reductions
-// are integer minima, order-independent.
+// Scratch: 11 the exact list: words 0-2 the indirect dispatch arguments of pass 2, word 3 its
+//     length, then point indices.
+// Pass 0, one invocation per point: column and row of every valid point with the device's float
+// products (MulFast), point_pixel and atomicMin of the key; a point for which one of them may
+// differ from IEEE's (a subnormal operand, or a product under 2^-125 that the device may flush)
+// goes on the exact list instead. Pass 2, one invocation per listed point: the same with the
+// products by integer arithmetic (MulExact). Pass 1: among valid non-noise points whose key
+// equals the pixel's, atomicMin of the index. Both reductions are integer minima,
+// order-independent. (lavapipe runs every branch under a lane mask: with the exact products in
+// pass 0, their integer code cost every point ~4 ms on a KITTI frame; real scans list none.)
 // Column: the reference starts from the previous point's column; here every invocation starts
 // from GuessColumn's polynomial (exact_Div, exact_FloorToInt) and walks to the unique k with
 // AngleBelow(p, dir_k) and not AngleBelow(p, dir_{k+1}): the same k, as the predicate is a prefix
@@ -19,7 +26,8 @@
 // Exactness against the CPU (gradual underflow): the raw cloud is read, so a coordinate may be
 // subnormal, and products such as x * sin(phi) or h * |h| may round into the subnormal range.
 // A device may flush those (lavapipe does), so every float the predicates compare is produced by
-// Mul() below (IEEE binary32 product, round to nearest even, gradual underflow, by integer
+// Mul() below (the device's product where it is IEEE's, else the point is recomputed with
+// MulExact: IEEE binary32 product, round to nearest even, gradual underflow, by integer
 // arithmetic) and compared by its bits; `a - b > 0` of the reference is `a > b` for finite floats
 // (IEEE subtraction of two different finite floats is never zero), which Greater() decides.
 #version 450
@@ -41,6 +49,7 @@ layout(std430, set = 0, binding = 7) readonly buffer BeamOrigin { float beam_ori
 layout(std430, set = 0, binding = 8) buffer PointPixel { uint point_pixel[]; };
 layout(std430, set = 0, binding = 9) buffer PixelKey { uint pixel_key[]; };
 layout(std430, set = 0, binding = 10) buffer PixelPoint { uint pixel_point[]; };
+layout(std430, set = 0, binding = 11) buffer ExactList { uint exact_list[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 
@@ -51,6 +60,7 @@ layout(push_constant) uniform Push {
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
 const uint kPointNoise = 2u;
+const uint kListLength = 3u, kListStart = 4u;  // exact_list words (0-2: dispatch arguments)
 
 // --- float predicates by their bits (no device float op touches a subnormal) ---
 
@@ -66,7 +76,7 @@ bool Greater(uint a, uint b) {
 
 // The bits of a * b as IEEE binary32 rounds it (nearest even, gradual underflow, overflow to
 // Inf) for finite a and b, subnormals included.
-uint Mul(uint ua, uint ub) {
+uint MulExact(uint ua, uint ub) {
   uint sign = (ua ^ ub) & 0x80000000u;
   if (IsZero(ua) || IsZero(ub)) return sign;
   uint ea = (ua >> 23) & 0xFFu, eb = (ub >> 23) & 0xFFu;
@@ -94,6 +104,23 @@ uint Mul(uint ua, uint ub) {
   if (shift > 63) return sign;
   return sign | uint(exact_RoundShift_(q, shift, false));
 }
+
+bool g_inexact = false;  // pass 0: a MulFast product may not be IEEE's
+
+bool Subnormal(uint u) { return (u & 0x7F800000u) == 0u && (u & 0x7FFFFFu) != 0u; }
+
+// The device's product of finite a and b (Vulkan rounds it correctly, but may flush subnormal
+// operands and results): IEEE's unless an operand is subnormal or a non-zero product is under
+// 2^-125 in magnitude (one that rounds to 2^-126 may have been flushed); g_inexact says so.
+uint MulFast(uint ua, uint ub) {
+  precise float r = uintBitsToFloat(ua) * uintBitsToFloat(ub);
+  uint ur = floatBitsToUint(r);
+  bool tiny = !IsZero(ua) && !IsZero(ub) && (ur & 0x7F800000u) < 0x01000000u;  // exponent < 2
+  if (Subnormal(ua) || Subnormal(ub) || tiny) g_inexact = true;
+  return ur;
+}
+
+uint Mul(uint ua, uint ub) { return kPass == 2u ? MulExact(ua, ub) : MulFast(ua, ub); }
 
 // --- eq. 1, column ---
 
@@ -177,28 +204,43 @@ uint RowOf(float z, float r2f, uint beams) {
   return lo;
 }
 
+// Pass 0 (through MulFast) and pass 2 (MulExact) for valid point i: its pixel and key; in pass 0
+// a point whose products may not be IEEE's goes on the exact list instead.
+void PixelOf(uint i, uint f) {
+  vec4 point = xyzi[i];
+  uint u = ColumnOf(point.x, point.y, p.width);
+  uint v;
+  if (p.has_ring != 0u) {
+    uint r = uint(ring[i]);
+    v = p.ring_zero_is_top != 0u ? r : p.beams - 1u - r;
+  } else {
+    v = RowOf(point.z, r2[i], p.beams);
+  }
+  if (g_inexact) {
+    uint slot = atomicAdd(exact_list[kListLength], 1u);
+    exact_list[kListStart + slot] = i;
+    atomicMax(exact_list[0], slot / gl_WorkGroupSize.x + 1u);
+    return;
+  }
+  uint pix = v * p.width + u;
+  point_pixel[i] = pix;
+  if ((f & kPointNoise) != 0u) return;
+  atomicMin(pixel_key[pix], exact_Key(r2[i]));
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
+  if (kPass == 2u) {
+    if (i >= exact_list[kListLength]) return;
+    i = exact_list[kListStart + i];
+    PixelOf(i, flags[i]);
+    return;
+  }
   if (i >= pc.n) return;
   uint f = flags[i];
   if (kPass == 0u) {
-    if ((f & kPointValid) == 0u) {
-      point_pixel[i] = kNone;
-      return;
-    }
-    vec4 point = xyzi[i];
-    uint u = ColumnOf(point.x, point.y, p.width);
-    uint v;
-    if (p.has_ring != 0u) {
-      uint r = uint(ring[i]);
-      v = p.ring_zero_is_top != 0u ? r : p.beams - 1u - r;
-    } else {
-      v = RowOf(point.z, r2[i], p.beams);
-    }
-    uint pix = v * p.width + u;
-    point_pixel[i] = pix;
-    if ((f & kPointNoise) != 0u) return;
-    atomicMin(pixel_key[pix], exact_Key(r2[i]));
+    if ((f & kPointValid) == 0u) point_pixel[i] = kNone;
+    else PixelOf(i, f);
   } else {
     if ((f & kPointValid) == 0u || (f & kPointNoise) != 0u) return;
     uint pix = point_pixel[i];

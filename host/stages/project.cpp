@@ -25,24 +25,28 @@ Result<ProjectStage> ProjectStage::Create(const Device& device, const ProjectBuf
   desc.name = "project";
   desc.code = SpirvOf(kProjectSpv);
   desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
-  for (int i = 1; i <= 10; ++i) desc.bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  for (int i = 1; i <= 11; ++i) desc.bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
-  desc.passes = 2;
+  desc.passes = 3;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
                      {b.params, b.points, b.ring, b.flags, b.r2, b.column_dir, b.beam_bound,
-                      b.beam_origin, b.point_pixel, b.pixel_key, b.pixel_point}));
-  return ProjectStage(std::move(kernel), b.pixel_key, b.pixel_point);
+                      b.beam_origin, b.point_pixel, b.pixel_key, b.pixel_point, b.exact_list}));
+  return ProjectStage(std::move(kernel), b.pixel_key, b.pixel_point, b.exact_list);
 }
 
 Status ProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
   cmd.FillBuffer(*pixel_key_, 0xFFFFFFFFu);  // kNone
   cmd.FillBuffer(*pixel_point_, 0xFFFFFFFFu);
+  const uint32_t header[4] = {0, 1, 1, 0};  // pass 2's dispatch arguments, the list's length
+  cmd.UpdateBuffer(*exact_list_, header, sizeof(header));
   cmd.TransferToCompute();
   const Push push{n};
   LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, n, &push, 0));
+  cmd.ComputeToIndirect();
+  kernel_.RecordIndirect(cmd, *exact_list_, 0, &push, 2);
   cmd.ComputeToCompute();
   return kernel_.Record(cmd, n, &push, 1);
 }
@@ -84,6 +88,8 @@ Status RunProject(const Context& context, const Cloud& cloud, const Params& p, c
   LPIR_VK_ASSIGN_OR_RETURN(Buffer point_pixel, Buffer::Create(device, per_point, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_key, Buffer::Create(device, per_pixel, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_point, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer exact_list,
+                           Buffer::Create(device, ProjectStage::ExactListBytes(n), kind));
 
   LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
   LPIR_VK_RETURN_IF_ERROR(transfer.Upload(params_buffer, &params, sizeof(Params)));
@@ -107,6 +113,7 @@ Status RunProject(const Context& context, const Cloud& cloud, const Params& p, c
   bindings.point_pixel = &point_pixel;
   bindings.pixel_key = &pixel_key;
   bindings.pixel_point = &pixel_point;
+  bindings.exact_list = &exact_list;
   LPIR_VK_ASSIGN_OR_RETURN(ProjectStage stage, ProjectStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
       RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));

@@ -29,27 +29,37 @@ struct ProjectBuffers {
   const Buffer* point_pixel = nullptr;  // out: uint32 per point
   const Buffer* pixel_key = nullptr;    // out: uint32 per pixel (exactly width * beams of them:
   const Buffer* pixel_point = nullptr;  // out: uint32 per pixel  Record fills the whole buffers)
+  const Buffer* exact_list = nullptr;   // scratch: ProjectStage::ExactListBytes(n)
 };
 
 class ProjectStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
 
+  // The exact list for up to n points: four header words and an index per point.
+  static VkDeviceSize ExactListBytes(uint64_t n) { return 4 * (4 + n); }
+
   static Result<ProjectStage> Create(const Device& device, const ProjectBuffers& buffers);
 
-  // Records the clear of pixel_key and pixel_point to kNone, the pixel pass, a barrier and the
-  // winner pass over n points. No barrier before the clear or after the last dispatch: the caller
+  // Records the clear of pixel_key and pixel_point to kNone and of the exact list's header, the
+  // pixel pass, its exact pass over the listed points (indirect), and the winner pass over n
+  // points, with barriers between them. No barrier before the clear or after the last dispatch: the caller
   // orders them with the stages around (stage 1's writes must be visible to compute and the
   // clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
 
  private:
-  ProjectStage(Kernel kernel, const Buffer* pixel_key, const Buffer* pixel_point)
-      : kernel_(std::move(kernel)), pixel_key_(pixel_key), pixel_point_(pixel_point) {}
+  ProjectStage(Kernel kernel, const Buffer* pixel_key, const Buffer* pixel_point,
+               const Buffer* exact_list)
+      : kernel_(std::move(kernel)),
+        pixel_key_(pixel_key),
+        pixel_point_(pixel_point),
+        exact_list_(exact_list) {}
 
   Kernel kernel_;
   const Buffer* pixel_key_;
   const Buffer* pixel_point_;
+  const Buffer* exact_list_;
 };
 
 // Stage 2 on the GPU, the twin of lpir::Project(cloud, p, t, f): reads f.n, f.flags and f.r2
