@@ -72,24 +72,27 @@ bool AbsPositive(float x) {
   return m != 0u && m <= 0x7F800000u;
 }
 
+// (Two square roots in the code, not three: lavapipe runs both branches of every `if` under a
+// lane mask, so the measured pixel's root is the first of the empty pixel's two.)
 void MeasureAndFill(uint pix) {
   uint w = p.width;
   uint v = pix / w, u = pix - v * w;
   uint i = pixel_point[pix];
+  uint row = v * w;
+  uint il = i != kNone ? i : pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
+  uint ir = i != kNone ? kNone : pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
+  float rl = il != kNone ? exact_Sqrt(r2[il]) : 0.0;
   if (i != kNone) {
     pixel_filled[pix] = 1u;
-    f_range[pix] = exact_Sqrt(r2[i]);
+    f_range[pix] = rl;
     f_inten[pix] = inten[i];
     f_height[pix] = zt[i];
     return;
   }
-  uint row = v * w;
-  uint il = pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
-  uint ir = pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
   uint filled = 0u;
   precise float range = 0.0, in_map = 0.0, height = 0.0;
   if (il != kNone && ir != kNone) {
-    float rl = exact_Sqrt(r2[il]), rr = exact_Sqrt(r2[ir]);
+    float rr = exact_Sqrt(r2[ir]);
     precise float gap = abs(rl - rr);
     if (LessEq(gap, p.hole_gap)) {
       filled = 2u;
