@@ -207,18 +207,25 @@ bool Ground(uint pix) { return pixel_grown[pix] == kPixGround; }
 // below-right ground neighbours (columns wrap). Below-left is joined anyway through the left
 // neighbour (its right and below pairs) or through below (below-left's right pair) when either is
 // ground; below-right likewise through right or below. Images under three columns wide repeat
-// neighbours: a pair with itself is skipped, a repeated pair is harmless.
+// neighbours: a pair with itself is skipped, a repeated pair is harmless. The unions run in one
+// loop over the pairs to join, so that the union code appears once (lavapipe runs code under a
+// lane mask: four inline unions cost four on every pixel, the loop only as many as a lane needs).
 void Merge(uint pix, uint u, uint v) {
   uint w = p.width, h = p.beams, row = v * w;
   uint right = row + (u + 1u) % w, left = row + (u + w - 1u) % w;
-  if (right != pix && Ground(right)) Union(pix, right);
-  if (v + 1u >= h) return;
-  uint below = pix + w;
-  bool b = Ground(below);
-  if (b) Union(pix, below);
-  uint below_left = left + w, below_right = right + w;
-  if (!b && !Ground(left) && below_left != below && Ground(below_left)) Union(pix, below_left);
-  if (!b && !Ground(right) && below_right != below && Ground(below_right)) Union(pix, below_right);
+  uint below = pix + w, below_left = left + w, below_right = right + w;
+  bool has_below = v + 1u < h, b = has_below && Ground(below);
+  uint pairs = 0u;  // bits: right, below, below-left, below-right
+  if (right != pix && Ground(right)) pairs |= 1u;
+  if (b) pairs |= 2u;
+  if (has_below && !b && !Ground(left) && below_left != below && Ground(below_left)) pairs |= 4u;
+  if (has_below && !b && !Ground(right) && below_right != below && Ground(below_right))
+    pairs |= 8u;
+  while (pairs != 0u) {
+    int k = findLSB(pairs);
+    pairs &= pairs - 1u;
+    Union(pix, k == 0 ? right : k == 1 ? below : k == 2 ? below_left : below_right);
+  }
 }
 
 void main() {
