@@ -1,11 +1,12 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
-// One shader, seven passes chosen by the specialization constant kMode, one pipeline each
+// One shader, eight passes chosen by the specialization constant kMode, one pipeline each
 // (host/stages/grow.cpp records them in this order, a compute-to-compute barrier after each
 // dispatch):
 //   0 reset    per flags word: the flags buffer to its start.
 //   1 init     per pixel: pixel_grown = pixel_fused; pixel_comp = pix on ground, kNone elsewhere;
 //              sizes = 0; the unknown pixels go on the list (scratch).
 //   2 list     one invocation: the list's workgroup count, which is sweep 0's.
+//   7 steps    per list entry (indirect, sweep 0's count): the pixel's step mask (StepMask).
 //   3 sweep k  k = 0 .. budget - 1, per list entry, dispatched indirectly from the flags buffer:
 //              a listed pixel still unknown with a ground neighbour it may step from becomes
 //              ground (Claim) and the growth spreads on from it (Spread); odd sweeps walk the list
@@ -59,7 +60,7 @@ layout(std430, set = 0, binding = 3) readonly buffer Height { float f_height[]; 
 layout(std430, set = 0, binding = 4) readonly buffer Range { float f_range[]; };
 layout(std430, set = 0, binding = 5) buffer PixelGrown { uint pixel_grown[]; };
 layout(std430, set = 0, binding = 6) buffer PixelComp { uint pixel_comp[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer PixelLabel { uint pixel_label[]; };
+layout(std430, set = 0, binding = 7) buffer PixelLabel { uint pixel_label[]; };  // + step masks
 layout(std430, set = 0, binding = 8) buffer List { uint list[]; };  // unknown pixels after sweep 0
 layout(std430, set = 0, binding = 9) buffer Sizes { uint sizes[]; };
 layout(std430, set = 0, binding = 10) buffer Flags { uint flags[]; };
@@ -114,8 +115,31 @@ bool Claim(uint r) {
   return true;
 }
 
-// Grows on from the ground pixel x0 (just claimed): every unknown neighbour a ground pixel on the
-// stack may step to is claimed and pushed, depth first, until the stack runs dry.
+// The bit of a step mask for the neighbour at row offset dy (-1 .. 1) and column offset dx - 1
+// (dx 0 .. 2): a step mask (mode 7, kept in pixel_label until the finish pass overwrites it) has
+// that bit set when the step from that neighbour to the pixel is allowed, whatever the
+// neighbour's class; so a sweep reads one word instead of both pixels' features per step.
+uint StepBit(int dy, uint dx) { return 1u << (uint(dy + 1) * 3u + dx); }
+
+// The step mask of unknown pixel r (mode 7).
+uint StepMask(uint r) {
+  uint w = p.width, h = p.beams;
+  uint v = r / w, u = r - v * w, mask = 0u;
+  for (int dy = -1; dy <= 1; ++dy) {
+    int vv = int(v) + dy;
+    if (vv < 0 || vv >= int(h)) continue;
+    for (uint dx = 0u; dx < 3u; ++dx) {
+      if (dy == 0 && dx == 1u) continue;
+      uint uu = (u + w + dx - 1u) % w;  // columns wrap
+      if (StepAllowed(uint(vv) * w + uu, r, uu, u)) mask |= StepBit(dy, dx);
+    }
+  }
+  return mask;
+}
+
+// Grows on from the ground pixel x0 (just claimed): every unknown neighbour the pixel on the
+// stack may step to is claimed and pushed, depth first, until the stack runs dry. Seen from
+// neighbour y = x + (dy, dx - 1), x is at (-dy, 1 - dx): y's bit StepBit(-dy, 2 - dx).
 void Spread(uint x0) {
   uint w = p.width, h = p.beams;
   uint stack[kStack];
@@ -129,10 +153,9 @@ void Spread(uint x0) {
       if (vv < 0 || vv >= int(h)) continue;
       for (uint dx = 0u; dx < 3u; ++dx) {
         if (dy == 0 && dx == 1u) continue;
-        uint uu = (u + w + dx - 1u) % w;  // columns wrap
-        uint y = uint(vv) * w + uu;
-        if (LoadAtomic(pixel_grown[y]) == kPixUnknown && StepAllowed(x, y, u, uu) && Claim(y) &&
-            top < kStack)
+        uint y = uint(vv) * w + (u + w + dx - 1u) % w;  // columns wrap
+        if (LoadAtomic(pixel_grown[y]) == kPixUnknown &&
+            (pixel_label[y] & StepBit(-dy, 2u - dx)) != 0u && Claim(y) && top < kStack)
           stack[top++] = y;
       }
     }
@@ -142,15 +165,14 @@ void Spread(uint x0) {
 // Does the unknown pixel r have a ground neighbour that may step to it (columns wrap)?
 bool CanGrow(uint r) {
   uint w = p.width, h = p.beams;
-  uint v = r / w, u = r - v * w;
+  uint v = r / w, u = r - v * w, mask = pixel_label[r];
   for (int dy = -1; dy <= 1; ++dy) {
     int vv = int(v) + dy;
     if (vv < 0 || vv >= int(h)) continue;
     for (uint dx = 0u; dx < 3u; ++dx) {
       if (dy == 0 && dx == 1u) continue;
-      uint uu = (u + w + dx - 1u) % w;
-      uint q = uint(vv) * w + uu;
-      if (LoadAtomic(pixel_grown[q]) == kPixGround && StepAllowed(q, r, uu, u)) return true;
+      uint q = uint(vv) * w + (u + w + dx - 1u) % w;
+      if ((mask & StepBit(dy, dx)) != 0u && LoadAtomic(pixel_grown[q]) == kPixGround) return true;
     }
   }
   return false;
@@ -249,6 +271,10 @@ void main() {
     uint groups = (flags[kListLength] + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
     flags[kListGroups] = groups;
     flags[ArgsWord(0u)] = groups;
+    return;
+  }
+  if (mode == 7u) {  // the listed pixels' step masks
+    if (i < flags[kListLength]) pixel_label[list[i]] = StepMask(list[i]);
     return;
   }
   if (mode == 3u) {  // sweep k

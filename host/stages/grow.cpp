@@ -28,7 +28,8 @@ enum Mode : uint32_t {
   kMerge = 4,
   kFlatten = 5,
   kFinish = 6,
-  kModes = 7
+  kSteps = 7,  // per list entry, indirect (sweep 0's workgroup count)
+  kModes = 8
 };
 }  // namespace
 
@@ -67,6 +68,9 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
   LPIR_VK_RETURN_IF_ERROR(pass(kInit, pixels));
   cmd.ComputeToCompute();
   LPIR_VK_RETURN_IF_ERROR(pass(kList, 1));
+  cmd.ComputeToIndirect();
+  const Push steps{0, pixels, budget};
+  kernel_.RecordIndirect(cmd, *flags_, 4 * 3, &steps, kSteps);
   // Sweeps over the list (at most `pixels` entries: checked by the init pass).
   for (uint32_t k = 0; k < budget; ++k) {
     cmd.ComputeToIndirect();
