@@ -36,7 +36,7 @@ const char kHelp[] =
     "                     $LPIR_DATA_DIR): kitti/00/velodyne/*.bin; absent: simulated HDL-64E\n"
     "                     streets instead\n"
     "  --runs N           timed frames per scan and backend (default 20)\n"
-    "  --scaling-runs N   timed frames per sensor in the scaling table (default 5)\n"
+    "  --scaling-runs N   timed frames per sensor in the scaling table (default 15)\n"
     "  --frames N         frames per throughput measurement (default 24)\n"
     "  --device D         Vulkan device (index or name part); without a device, CPU rows only\n"
     "  --json             one JSON object instead of the table\n";
@@ -169,7 +169,7 @@ int RunBench(int argc, char** argv) {
     return 0;
   }
   const int runs = int(args.GetNumber("--runs", 20));
-  const int scaling_runs = int(args.GetNumber("--scaling-runs", 5));
+  const int scaling_runs = int(args.GetNumber("--scaling-runs", 15));
   const int frames = int(args.GetNumber("--frames", 24));
   if (runs < 1 || scaling_runs < 1 || frames < 1)
     throw std::invalid_argument("--runs, --scaling-runs and --frames must be at least 1");
@@ -243,26 +243,38 @@ int RunBench(int argc, char** argv) {
   say("scaling");
   std::vector<ScalingRow> scaling;
   {
+    // Every row's segmenters first, then the timed frames round-robin over the rows, so that a
+    // burst of load on the machine slows all rows alike instead of one row's whole block.
     const SensorProfile os1_128 = LoadSensorProfile("os1-128", SensorsDir());
     std::vector<SensorProfile> sensors = {LoadSensorProfile("vlp16", SensorsDir())};
     for (uint32_t beams : {32u, 64u, 128u, 256u}) sensors.push_back(Os1With(os1_128, beams));
+    std::vector<std::vector<Cloud>> scenes;
+    std::vector<std::unique_ptr<Segmenter>> cpus, gpus;
     for (const SensorProfile& sensor : sensors) {
       SimOptions o;
       o.seed = 1;
-      const std::vector<Cloud> scene = {Simulate(sensor, o).cloud};
+      scenes.push_back({Simulate(sensor, o).cloud});
       const std::vector<std::string> scene_name = {sensor.name + " simulated street"};
       SegmenterOptions co = cpu_options, vo = vk_options;
-      co.max_points = vo.max_points = std::max<size_t>(scene[0].size(), 1);
-      Segmenter sc(sensor, co), sref(sensor, co);
-      CheckAgainstReference(sc, sref, scene, scene_name);
-      ScalingRow row{sensor.name, sensor.beams, sensor.width, scene[0].size(), 0, -1};
-      row.cpu_ms = SpreadOf(TimeFrames(sc, scene, scaling_runs).wall).median;
+      co.max_points = vo.max_points = std::max<size_t>(scenes.back()[0].size(), 1);
+      Segmenter sref(sensor, co);
+      cpus.push_back(std::make_unique<Segmenter>(sensor, co));
+      CheckAgainstReference(*cpus.back(), sref, scenes.back(), scene_name);
       if (gpu) {
-        Segmenter sg(sensor, vo);
-        CheckAgainstReference(sg, sref, scene, scene_name);
-        row.vulkan_ms = SpreadOf(TimeFrames(sg, scene, scaling_runs).wall).median;
+        gpus.push_back(std::make_unique<Segmenter>(sensor, vo));
+        CheckAgainstReference(*gpus.back(), sref, scenes.back(), scene_name);
       }
-      scaling.push_back(row);
+      scaling.push_back({sensor.name, sensor.beams, sensor.width, scenes.back()[0].size(), 0, -1});
+    }
+    std::vector<std::vector<double>> cpu_ms(sensors.size()), gpu_ms(sensors.size());
+    for (int r = 0; r < scaling_runs; ++r)
+      for (size_t k = 0; k < sensors.size(); ++k) {
+        cpu_ms[k].push_back(TimeFrames(*cpus[k], scenes[k], 1).wall[0]);
+        if (gpu) gpu_ms[k].push_back(TimeFrames(*gpus[k], scenes[k], 1).wall[0]);
+      }
+    for (size_t k = 0; k < sensors.size(); ++k) {
+      scaling[k].cpu_ms = SpreadOf(cpu_ms[k]).median;
+      if (gpu) scaling[k].vulkan_ms = SpreadOf(gpu_ms[k]).median;
     }
   }
   const double rss = PeakRssMiB();
