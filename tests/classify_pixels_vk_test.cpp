@@ -189,6 +189,28 @@ TEST_F(ClassifyPixelsVkHand, ZeroAndSubnormalThresholds) {
   }
 }
 
+TEST_F(ClassifyPixelsVkHand, PixelCountsThatAreNotMultiplesOfFour) {
+  // The shader reads and writes four pixels at a time, then the last pixels % 4 one by one:
+  // images cut from the hand-made one (stage 6 looks at no neighbour) with 1, 3, 35, 39 and 6141
+  // pixels, and one of 4 and 8 (no tail).
+  const Params big = BigImage(DefaultParams());
+  size_t combos = 0;
+  const Frame f = HandMadeImage(big, 3, &combos);
+  const uint32_t sizes[][2] = {{1, 1}, {3, 1}, {5, 7}, {13, 3}, {2047, 3}, {4, 1}, {2, 4}};
+  for (const auto& size : sizes) {
+    Params p = big;
+    p.width = size[0], p.beams = size[1];
+    const size_t pixels = size_t(p.width) * p.beams;
+    Frame cut = f;
+    for (auto* v : {&cut.f_edge_l, &cut.f_edge_r, &cut.f_slope, &cut.f_varz, &cut.f_vari,
+                    &cut.f_range})
+      v->resize(pixels);
+    cut.pixel_filled.resize(pixels);
+    const std::string what = std::to_string(size[0]) + " x " + std::to_string(size[1]);
+    EXPECT_EQ(ExpectSameClassify(context(), p, cut, what.c_str()), pixels) << what;
+  }
+}
+
 // Stages 1-5 of the reference (RunReference, then stage 6 again from its stage 5 buffers).
 uint64_t ExpectSameOnCloud(const vk::Context& context, const Cloud& cloud, const Params& p,
                            const Tables& t, const char* what) {

@@ -22,6 +22,7 @@ Result<ClassifyPixelsStage> ClassifyPixelsStage::Create(const Device& device,
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
+  desc.passes = 2;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -31,7 +32,8 @@ Result<ClassifyPixelsStage> ClassifyPixelsStage::Create(const Device& device,
 }
 
 Status ClassifyPixelsStage::Record(CommandBuffer& cmd, uint32_t pixels) const {
-  return kernel_.Record(cmd, pixels, &pixels);
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, pixels / 4, &pixels, 0));  // quads
+  return kernel_.Record(cmd, pixels % 4, &pixels, 1);                    // the rest
 }
 
 Status RunClassifyPixels(const Context& context, const Params& p, Frame& f, double* gpu_ns) {

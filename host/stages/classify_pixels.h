@@ -36,7 +36,7 @@ class ClassifyPixelsStage {
   static Result<ClassifyPixelsStage> Create(const Device& device,
                                             const ClassifyPixelsBuffers& buffers);
 
-  // Records the dispatch over `pixels` pixels (no barrier: the caller orders it with the stages
+  // Records the dispatches over `pixels` pixels (no barrier: the caller orders it with the stages
   // around).
   Status Record(CommandBuffer& cmd, uint32_t pixels) const;
 
