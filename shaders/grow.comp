@@ -1,11 +1,12 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
-// One shader, eight passes chosen by the specialization constant kMode, one pipeline each
+// One shader, nine passes chosen by the specialization constant kMode, one pipeline each
 // (host/stages/grow.cpp records them in this order, a compute-to-compute barrier after each
 // dispatch):
 //   0 reset    per flags word: the flags buffer to its start.
-//   1 init     per pixel: pixel_grown = pixel_fused; pixel_comp = pix on ground, kNone elsewhere;
-//              sizes = 0; the unknown pixels go on the list (scratch).
-//   2 list     one invocation: the list's workgroup count, which is sweep 0's.
+//   1 init     per quad of pixels: pixel_grown = pixel_fused; pixel_comp = pix on ground, kNone
+//              elsewhere; sizes = 0; the unknown pixels go on the list (scratch).
+//   2 list     one invocation: init for the last pixels % 4, then the list's workgroup count,
+//              which is sweep 0's.
 //   7 steps    per list entry (indirect, sweep 0's count): the pixel's step mask (StepMask).
 //   3 sweep k  k = 0 .. budget - 1, per list entry, dispatched indirectly from the flags buffer:
 //              a listed pixel still unknown with a ground neighbour it may step from becomes
@@ -17,9 +18,9 @@
 //              below-left, below and below-right (every 8-neighbour pair once, columns wrap; a
 //              diagonal pair is skipped where a path through a side neighbour joins it anyway).
 //   5 flatten  per pixel: pixel_comp = the root of the pixel's tree; sizes[root] += 1.
-//   6 finish   per pixel: unknown -> non-ground in pixel_grown; pixel_label = pixel_grown, ground
-//              -> non-ground where the component has fewer than min_component pixels; invocation 0
-//              writes the summary word.
+//   6 finish   per quad of pixels: unknown -> non-ground in pixel_grown; pixel_label =
+//              pixel_grown, ground -> non-ground where the component has fewer than min_component
+//              pixels; invocation 0 writes the summary word. 8: the same for the last pixels % 4.
 // Growing is monotone and its result the least fixed point (SPEC 2, reference_cpu/grow.cpp), so
 // any schedule that grows only pixels with an allowed step from a ground pixel and stops after a
 // sweep that changed nothing gives the reference's bytes. Here pixels change in place during a
@@ -64,6 +65,13 @@ layout(std430, set = 0, binding = 7) buffer PixelLabel { uint pixel_label[]; }; 
 layout(std430, set = 0, binding = 8) buffer List { uint list[]; };  // unknown pixels after sweep 0
 layout(std430, set = 0, binding = 9) buffer Sizes { uint sizes[]; };
 layout(std430, set = 0, binding = 10) buffer Flags { uint flags[]; };
+// Four pixels at a time (init and finish: on a CPU driver each buffer access is a loop over the
+// SIMD lanes, and one uvec4 access costs about a third of four).
+layout(std430, set = 0, binding = 1) readonly buffer PixelFused4 { uvec4 pixel_fused4[]; };
+layout(std430, set = 0, binding = 5) buffer PixelGrown4 { uvec4 pixel_grown4[]; };
+layout(std430, set = 0, binding = 6) buffer PixelComp4 { uvec4 pixel_comp4[]; };
+layout(std430, set = 0, binding = 7) buffer PixelLabel4 { uvec4 pixel_label4[]; };
+layout(std430, set = 0, binding = 9) buffer Sizes4 { uvec4 sizes4[]; };
 
 layout(constant_id = 1) const uint kMode = 0u;
 
@@ -250,6 +258,21 @@ void Merge(uint pix, uint u, uint v) {
   }
 }
 
+// Init of pixel i (its own invocation in the list pass for the last pixels % 4).
+void InitPixel(uint i) {
+  uint c = pixel_fused[i];
+  pixel_grown[i] = c;
+  pixel_comp[i] = c == kPixGround ? i : kNone;
+  sizes[i] = 0u;
+  if (c == kPixUnknown) list[atomicAdd(flags[kListLength], 1u)] = i;
+}
+
+// The finish of one pixel, whose class g, component c: its pixel_grown and pixel_label words.
+uvec2 Finished(uint g, uint c) {
+  if (g == kPixUnknown) g = kPixNonGround;
+  return uvec2(g, g == kPixGround && sizes[c] < p.min_component ? kPixNonGround : g);
+}
+
 void main() {
   const uint mode = kMode;
   uint i = gl_GlobalInvocationID.x;
@@ -257,17 +280,25 @@ void main() {
     if (i <= SummaryWord()) flags[i] = i >= 3u && i < SummaryWord() && i % 3u != 0u ? 1u : 0u;
     return;
   }
-  if (mode == 1u) {  // init
-    if (i >= pc.count) return;
-    uint c = pixel_fused[i];
-    pixel_grown[i] = c;
-    pixel_comp[i] = c == kPixGround ? i : kNone;
-    sizes[i] = 0u;
-    if (c == kPixUnknown) list[atomicAdd(flags[kListLength], 1u)] = i;
+  if (mode == 1u) {  // init, pixels 4i .. 4i + 3
+    if (i >= pc.count / 4u) return;
+    uvec4 c = pixel_fused4[i];
+    pixel_grown4[i] = c;
+    uint first = 4u * i;
+    pixel_comp4[i] = mix(uvec4(kNone), uvec4(first, first + 1u, first + 2u, first + 3u),
+                         equal(c, uvec4(kPixGround)));
+    sizes4[i] = uvec4(0u);
+    uvec4 unknown = uvec4(equal(c, uvec4(kPixUnknown)));
+    uint n = unknown.x + unknown.y + unknown.z + unknown.w;
+    if (n == 0u) return;
+    uint slot = atomicAdd(flags[kListLength], n);
+    for (uint k = 0u; k < 4u; ++k)
+      if (unknown[k] != 0u) list[slot++] = first + k;
     return;
   }
-  if (mode == 2u) {  // the list's workgroups: sweep 0's
+  if (mode == 2u) {  // the last pixels % 4's init, then the list's workgroups: sweep 0's
     if (i != 0u) return;
+    for (uint pix = pc.count / 4u * 4u; pix < pc.count; ++pix) InitPixel(pix);
     uint groups = (flags[kListLength] + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
     flags[kListGroups] = groups;
     flags[ArgsWord(0u)] = groups;
@@ -285,7 +316,24 @@ void main() {
       atomicMax(flags[ArgsWord(pc.sweep + 1u)], flags[kListGroups]);
     return;
   }
-  if (mode == 6u && i == 0u) flags[SummaryWord()] = SweepsRun();
+  if (mode == 6u) {  // finish, pixels 4i .. 4i + 3
+    if (i == 0u) flags[SummaryWord()] = SweepsRun();
+    if (i >= pc.count / 4u) return;
+    uvec4 g = pixel_grown4[i], c = pixel_comp4[i];
+    uvec2 a = Finished(g.x, c.x), b = Finished(g.y, c.y), d = Finished(g.z, c.z),
+          e = Finished(g.w, c.w);
+    pixel_grown4[i] = uvec4(a.x, b.x, d.x, e.x);
+    pixel_label4[i] = uvec4(a.y, b.y, d.y, e.y);
+    return;
+  }
+  if (mode == 8u) {  // finish of the last pixels % 4
+    uint pix = pc.count / 4u * 4u + i;
+    if (pix >= pc.count) return;
+    uvec2 f = Finished(pixel_grown[pix], pixel_comp[pix]);
+    pixel_grown[pix] = f.x;
+    pixel_label[pix] = f.y;
+    return;
+  }
   if (i >= pc.count) return;
   if (mode == 4u) {  // merge
     if (!Ground(i)) return;
@@ -296,14 +344,5 @@ void main() {
     uint root = Find(i);
     StoreAtomic(pixel_comp[i], root);
     atomicAdd(sizes[root], 1u);
-  } else if (mode == 6u) {  // finish
-    uint g = pixel_grown[i];
-    if (g == kPixUnknown) {
-      g = kPixNonGround;
-      pixel_grown[i] = g;
-    }
-    uint label = g;
-    if (g == kPixGround && sizes[pixel_comp[i]] < p.min_component) label = kPixNonGround;
-    pixel_label[i] = label;
   }
 }

@@ -28,8 +28,9 @@ enum Mode : uint32_t {
   kMerge = 4,
   kFlatten = 5,
   kFinish = 6,
-  kSteps = 7,  // per list entry, indirect (sweep 0's workgroup count)
-  kModes = 8
+  kSteps = 7,       // per list entry, indirect (sweep 0's workgroup count)
+  kFinishTail = 8,  // the last pixels % 4 (kInit and kFinish: quads of pixels)
+  kModes = 9
 };
 }  // namespace
 
@@ -65,7 +66,7 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
   };
   LPIR_VK_RETURN_IF_ERROR(pass(kReset, FlagWords(budget)));
   cmd.ComputeToCompute();
-  LPIR_VK_RETURN_IF_ERROR(pass(kInit, pixels));
+  LPIR_VK_RETURN_IF_ERROR(pass(kInit, pixels / 4));
   cmd.ComputeToCompute();
   LPIR_VK_RETURN_IF_ERROR(pass(kList, 1));
   cmd.ComputeToIndirect();
@@ -83,7 +84,8 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
   }
   cmd.ComputeToCompute();
   // At least one invocation: invocation 0 writes the summary word.
-  return pass(kFinish, std::max(pixels, 1u));
+  LPIR_VK_RETURN_IF_ERROR(pass(kFinish, std::max(pixels / 4, 1u)));
+  return pass(kFinishTail, pixels % 4);
 }
 
 Status RunGrow(const Context& context, const Params& p, Frame& f, GrowReport* report,
