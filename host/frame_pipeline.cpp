@@ -274,7 +274,7 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   LPIR_VK_RETURN_IF_ERROR(s.classify_pixels.Record(cmd, pixels_));
   cmd.ComputeToCompute();
   time();
-  LPIR_VK_RETURN_IF_ERROR(s.fuse.Record(cmd, pixels_));
+  LPIR_VK_RETURN_IF_ERROR(s.fuse.Record(cmd, params_.width, params_.beams));
   cmd.ComputeToCompute();
   time();
   LPIR_VK_RETURN_IF_ERROR(s.grow.Record(cmd, params_.width, params_.beams));

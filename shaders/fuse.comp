@@ -1,5 +1,9 @@
 // Stage 7, fuse (paper III-D.2): the GPU twin of reference_cpu/fuse.cpp, same bytes.
-// One invocation per pixel pix < pixels (push constant), row v = pix / width.
+// Pass 1 (specialization constant kPass), for a width that is a multiple of 4: one invocation per
+// quad of pixels 4q .. 4q + 3 < pixels (push constant), every per-pixel buffer read and written
+// as vec4 / uvec4 (a quad never straddles rows, and its rows above are quads too; on a CPU driver
+// each buffer access is a loop over the SIMD lanes, and one vector access costs about a third of
+// four scalar ones). Pass 0, any width: one invocation per pixel, the same code on component x.
 // In: binding 0 Params (uniform), 1 pixel_class, 2 pixel_point (kNone: no point), 3 coarse (per
 //     point; any buffer of at least one element when there are no points), 4 pixel_filled,
 //     5 f_range, 6 f_height (floats). Out: 7 pixel_fused (kPix*).
@@ -11,7 +15,7 @@
 // empty ones too, as the reference does; an empty pixel is empty whatever they say).
 // Decision: agree = class == opinion, or class unknown and opinion ground; vote = agree ? opinion
 // : unknown; kept = occluded ? non-ground : vote; fused = class empty ? empty : kept.
-// No ties and no reductions: each pixel is its own invocation and reads only its inputs.
+// No ties and no reductions: each invocation writes only its own pixels.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -28,6 +32,18 @@ layout(std430, set = 0, binding = 5) readonly buffer Range { float f_range[]; };
 layout(std430, set = 0, binding = 6) readonly buffer Height { float f_height[]; };
 layout(std430, set = 0, binding = 7) writeonly buffer PixelFused { uint pixel_fused[]; };
 
+// The same buffers four pixels at a time (pass 1).
+layout(std430, set = 0, binding = 1) readonly buffer PixelClass4 { uvec4 pixel_class4[]; };
+layout(std430, set = 0, binding = 2) readonly buffer PixelPoint4 { uvec4 pixel_point4[]; };
+layout(std430, set = 0, binding = 4) readonly buffer PixelFilled4 { uvec4 pixel_filled4[]; };
+layout(std430, set = 0, binding = 5) readonly buffer Range4 { vec4 f_range4[]; };
+layout(std430, set = 0, binding = 6) readonly buffer Height4 { vec4 f_height4[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer PixelFused4 { uvec4 pixel_fused4[]; };
+
+layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+const bool kQuad = kPass == 1u;
+const uint kLanes = kQuad ? 4u : 1u;  // pixels per invocation
+
 layout(push_constant) uniform Push { uint pixels; } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
@@ -37,37 +53,48 @@ const uint kPixUnknown = 2u;
 const uint kPixEmpty = 3u;
 const uint kNoOpinion = kPixUnknown;
 
+// Element e of a buffer: a quad in pass 1, a pixel (in component x) in pass 0.
+uvec4 ClassAt(uint e) { return kQuad ? pixel_class4[e] : uvec4(pixel_class[e]); }
+uvec4 PointAt(uint e) { return kQuad ? pixel_point4[e] : uvec4(pixel_point[e]); }
+uvec4 FilledAt(uint e) { return kQuad ? pixel_filled4[e] : uvec4(pixel_filled[e]); }
+vec4 RangeAt(uint e) { return kQuad ? f_range4[e] : vec4(f_range[e]); }
+vec4 HeightAt(uint e) { return kQuad ? f_height4[e] : vec4(f_height[e]); }
+
 void main() {
-  uint pix = gl_GlobalInvocationID.x;
-  if (pix >= pc.pixels) return;
-  uint w = p.width;
-  uint v = pix / w;
+  uint e = gl_GlobalInvocationID.x;
+  if (e >= pc.pixels / kLanes) return;
+  uint w = p.width, row = w / kLanes;  // elements per row
+  uint v = e / row;
 
   // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
   uint rows_above = min(p.occ_rows, v);
-  uint occluded = 0u;
+  uvec4 occluded = uvec4(0u);
   if (rows_above != 0u) {
-    float r = f_range[pix];
-    precise float rr = r * r;
-    precise float grade = p.occ_grade * rr;
-    precise float near = r + p.occ_margin;
-    precise float reach = near + grade;
-    precise float top = f_height[pix] + p.occ_rise;
+    vec4 r = RangeAt(e);
+    precise vec4 rr = r * r;
+    precise vec4 grade = p.occ_grade * rr;
+    precise vec4 near = r + p.occ_margin;
+    precise vec4 reach = near + grade;
+    precise vec4 top = HeightAt(e) + p.occ_rise;
     for (uint k = 1u; k <= rows_above; ++k) {
-      uint above = pix - k * w;
-      occluded |= uint(pixel_filled[above] != 0u) & uint(f_range[above] < reach) &
-                  uint(f_height[above] > top);
+      uint above = e - k * row;
+      occluded |= uvec4(notEqual(FilledAt(above), uvec4(0u))) &
+                  uvec4(lessThan(RangeAt(above), reach)) &
+                  uvec4(greaterThan(HeightAt(above), top));
     }
   }
 
-  // The coarse label of the pixel's winning point; kNoOpinion without one.
-  uint i = pixel_point[pix];
-  uint opinion = kNoOpinion;
-  if (i != kNone) opinion = uint(coarse[i] != 0u);
+  // The coarse label of each pixel's winning point; kNoOpinion without one.
+  uvec4 i = PointAt(e), opinion = uvec4(kNoOpinion);
+  for (uint k = 0u; k < kLanes; ++k)
+    if (i[k] != kNone) opinion[k] = uint(coarse[i[k]] != 0u);
 
-  uint c = pixel_class[pix];
-  uint agree = uint(c == opinion) | (uint(c == kPixUnknown) & uint(opinion == kPixGround));
-  uint vote = agree != 0u ? opinion : kPixUnknown;
-  uint kept = occluded != 0u ? kPixNonGround : vote;
-  pixel_fused[pix] = c == kPixEmpty ? kPixEmpty : kept;
+  uvec4 c = ClassAt(e);
+  uvec4 agree = uvec4(equal(c, opinion)) |
+                (uvec4(equal(c, uvec4(kPixUnknown))) & uvec4(equal(opinion, uvec4(kPixGround))));
+  uvec4 vote = mix(uvec4(kPixUnknown), opinion, notEqual(agree, uvec4(0u)));
+  uvec4 kept = mix(vote, uvec4(kPixNonGround), notEqual(occluded, uvec4(0u)));
+  uvec4 fused = mix(kept, uvec4(kPixEmpty), equal(c, uvec4(kPixEmpty)));
+  if (kQuad) pixel_fused4[e] = fused;
+  else pixel_fused[e] = fused.x;
 }

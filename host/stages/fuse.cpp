@@ -25,6 +25,7 @@ Result<FuseStage> FuseStage::Create(const Device& device, const FuseBuffers& b) 
                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
+  desc.passes = 2;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -33,8 +34,10 @@ Result<FuseStage> FuseStage::Create(const Device& device, const FuseBuffers& b) 
   return FuseStage(std::move(kernel));
 }
 
-Status FuseStage::Record(CommandBuffer& cmd, uint32_t pixels) const {
-  return kernel_.Record(cmd, pixels, &pixels);
+Status FuseStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
+  const uint32_t pixels = width * beams;
+  if (width % 4 == 0) return kernel_.Record(cmd, pixels / 4, &pixels, 1);  // quads
+  return kernel_.Record(cmd, pixels, &pixels, 0);
 }
 
 Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns) {
@@ -90,8 +93,8 @@ Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns
   bindings.f_height = &f_height;
   bindings.pixel_fused = &pixel_fused;
   LPIR_VK_ASSIGN_OR_RETURN(FuseStage stage, FuseStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(pixels)); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));
 
   f.pixel_fused.resize(pixels);
   if (pixels) {

@@ -33,9 +33,10 @@ class FuseStage {
 
   static Result<FuseStage> Create(const Device& device, const FuseBuffers& buffers);
 
-  // Records the dispatch over `pixels` pixels (width * beams; no barrier: the caller orders it
-  // with the stages around).
-  Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+  // Records the dispatch over a width x beams image (the Params uploaded must say the same; four
+  // pixels an invocation when the width is a multiple of 4). No barrier: the caller orders it
+  // with the stages around.
+  Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
 
  private:
   explicit FuseStage(Kernel kernel) : kernel_(std::move(kernel)) {}
