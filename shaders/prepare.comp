@@ -36,13 +36,8 @@ const uint kPointNoise = 2u;
 
 bool Finite(float f) { return (floatBitsToUint(f) & 0x7F800000u) != 0x7F800000u; }
 
-void Write(uint i, uint f, float z, float r, float in_) {
-  flags[i] = f;
-  zt[i] = z;
-  r2[i] = r;
-  inten[i] = in_;
-}
-
+// One write of the point's four outputs, after every test (lavapipe runs the code of every
+// branch under a lane mask: a write in each early return cost six writes a point).
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.n) return;
@@ -50,30 +45,17 @@ void main() {
   // Subnormal inputs and outputs are flushed to zero, as in the reference.
   float x = exact_Ftz(point.x), y = exact_Ftz(point.y), z = exact_Ftz(point.z);
   float in_raw = exact_Ftz(point.w);
-  if (!Finite(x) || !Finite(y) || !Finite(z) || !Finite(in_raw)) {
-    Write(i, 0u, 0.0, 0.0, 0.0);
-    return;
-  }
-  if (((floatBitsToUint(x) | floatBitsToUint(y) | floatBitsToUint(z)) & 0x7FFFFFFFu) == 0u) {
-    Write(i, 0u, 0.0, 0.0, 0.0);
-    return;
-  }
-  if (p.has_ring != 0u && (ring[i] < 0 || uint(ring[i]) >= p.beams)) {
-    Write(i, 0u, 0.0, 0.0, 0.0);
-    return;
-  }
   precise float xx = x * x;
   precise float yy = y * y;
   precise float r = xx + yy;
-  if (!(r >= p.min_range2) || !(r <= p.max_range2)) {
-    Write(i, 0u, 0.0, 0.0, 0.0);
-    return;
-  }
   precise float zz = z * z;
-  if (!(zz <= p.max_range2)) {  // |z| beyond the sensor's range: garbage
-    Write(i, 0u, 0.0, 0.0, 0.0);
-    return;
-  }
+  // Invalid: a NaN or infinity, the origin, a ring outside the beams, a planar range outside
+  // [min_range, max_range], |z| beyond the sensor's range (garbage).
+  uint bits = floatBitsToUint(x) | floatBitsToUint(y) | floatBitsToUint(z);
+  bool valid = Finite(x) && Finite(y) && Finite(z) && Finite(in_raw) &&
+               (bits & 0x7FFFFFFFu) != 0u &&
+               (p.has_ring == 0u || (ring[i] >= 0 && uint(ring[i]) < p.beams)) &&
+               r >= p.min_range2 && r <= p.max_range2 && zz <= p.max_range2;
   precise float tx = p.k_xz * x;
   precise float ty = p.k_yz * y;
   precise float tilt = tx + ty;
@@ -82,5 +64,8 @@ void main() {
   float height_out = exact_Ftz(height), in_out = exact_Ftz(in_scaled);
   uint f = kPointValid;
   if (height_out < p.h_noise && in_out < p.i_noise) f |= kPointNoise;
-  Write(i, f, height_out, exact_Ftz(r), in_out);
+  flags[i] = valid ? f : 0u;
+  zt[i] = valid ? height_out : 0.0;
+  r2[i] = valid ? exact_Ftz(r) : 0.0;
+  inten[i] = valid ? in_out : 0.0;
 }
