@@ -44,23 +44,27 @@ const uint kWhyGround = 1u;
 const uint kWhyInvalid = 2u;
 const uint kWhyNoise = 3u;
 
+// One write of each output (lavapipe runs every branch under a lane mask: a write in the early
+// return would be paid by every point).
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.n) return;
   uint flag = flags[i];
-  if ((flag & (kPointValid | kPointNoise)) != kPointValid) {  // invalid, or noise
-    label[i] = 0u;
-    why[i] = (flag & kPointValid) != 0u ? kWhyNoise : kWhyInvalid;
-    return;
-  }
-  uint pix = point_pixel[i];
-  bool ground = pixel_label[pix] == kPixGround;
-  if (ground && pixel_point[pix] != i && coarse[i] == 0u) {
-    precise float range = exact_Sqrt(r2[i]);
-    precise float dr = abs(range - f_range[pix]);
-    precise float dz = abs(zt[i] - f_height[pix]);
-    ground = dr <= p.bp_range_gate && dz <= p.bp_height_gate;
+  bool counted = (flag & (kPointValid | kPointNoise)) == kPointValid;  // valid, not noise
+  bool ground = false;
+  if (counted) {
+    uint pix = point_pixel[i];
+    ground = pixel_label[pix] == kPixGround;
+    if (ground && pixel_point[pix] != i && coarse[i] == 0u) {
+      precise float range = exact_Sqrt(r2[i]);
+      precise float dr = abs(range - f_range[pix]);
+      precise float dz = abs(zt[i] - f_height[pix]);
+      ground = dr <= p.bp_range_gate && dz <= p.bp_height_gate;
+    }
   }
   label[i] = ground ? 1u : 0u;
-  why[i] = ground ? kWhyGround : kWhyNonGround;
+  why[i] = ground                       ? kWhyGround
+           : counted                    ? kWhyNonGround
+           : (flag & kPointValid) != 0u ? kWhyNoise
+                                        : kWhyInvalid;
 }
