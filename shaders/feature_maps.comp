@@ -131,16 +131,12 @@ Moments ColumnMoments(uint col, uint v) {
 }
 
 // Pass 1 for pixel pix = v * w + u, the 3x3 moments being the sum of its window's three columns.
+// An empty pixel gets 0 everywhere: computed like the others and replaced at the one write of
+// each output (lavapipe runs every branch under a lane mask: an early return with its own writes
+// cost five more stores a pixel).
 void Features(uint pix, uint v, uint u, Moments l, Moments c, Moments r) {
   uint w = p.width, h = p.beams;
-  if (pixel_filled[pix] == 0u) {
-    f_slope[pix] = 0.0;
-    f_edge_l[pix] = 0.0;
-    f_edge_r[pix] = 0.0;
-    f_varz[pix] = 0.0;
-    f_vari[pix] = 0.0;
-    return;
-  }
+  bool filled = pixel_filled[pix] != 0u;
   uint ul = u == 0u ? w - 1u : u - 1u, ur = u + 1u == w ? 0u : u + 1u;
   uint row = v * w;
   float z = f_height[pix], r_ = f_range[pix];
@@ -155,14 +151,14 @@ void Features(uint pix, uint v, uint u, Moments l, Moments c, Moments r) {
       if (AbsPositive(dr)) slope = exact_Div(dz, dr);
     }
   }
-  f_slope[pix] = slope;
+  f_slope[pix] = filled ? slope : 0.0;
 
   // Edges, columns wrapping.
   precise float el = 0.0, er = 0.0;
   if (pixel_filled[row + ul] != 0u) el = abs(z - f_height[row + ul]);
   if (pixel_filled[row + ur] != 0u) er = abs(f_height[row + ur] - z);
-  f_edge_l[pix] = el;
-  f_edge_r[pix] = er;
+  f_edge_l[pix] = filled ? el : 0.0;
+  f_edge_r[pix] = filled ? er : 0.0;
 
   // 3x3 moments of the quantised values: integers, so any summation order gives the same.
   int64_t n = l.n + c.n + r.n, sz = l.sz + c.sz + r.sz, szz = l.szz + c.szz + r.szz;
@@ -170,8 +166,8 @@ void Features(uint pix, uint v, uint u, Moments l, Moments c, Moments r) {
   float den = float(int(n * n));  // <= 81: exact
   precise float varz = exact_Div(exact_I64ToFloat(n * szz - sz * sz), den) * kQuantum2;
   precise float vari = exact_Div(exact_I64ToFloat(n * sii - si * si), den) * kQuantum2;
-  f_varz[pix] = varz;
-  f_vari[pix] = vari;
+  f_varz[pix] = filled ? varz : 0.0;
+  f_vari[pix] = filled ? vari : 0.0;
 }
 
 // Pass 1 over run `run` (kRun consecutive pixels of one row): the window's column moments slide
