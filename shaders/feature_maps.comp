@@ -72,8 +72,9 @@ bool AbsPositive(float x) {
   return m != 0u && m <= 0x7F800000u;
 }
 
-// (Two square roots in the code, not three: lavapipe runs both branches of every `if` under a
-// lane mask, so the measured pixel's root is the first of the empty pixel's two.)
+// (Two square roots in the code, not three, and one load of each value: lavapipe runs both
+// branches of every `if` under a lane mask, so the measured pixel's values are read where the
+// empty pixel's left neighbour's are.)
 void MeasureAndFill(uint pix) {
   uint w = p.width;
   uint v = pix / w, u = pix - v * w;
@@ -81,26 +82,30 @@ void MeasureAndFill(uint pix) {
   uint row = v * w;
   uint il = i != kNone ? i : pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
   uint ir = i != kNone ? kNone : pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
-  float rl = il != kNone ? exact_Sqrt(r2[il]) : 0.0;
-  if (i != kNone) {
-    pixel_filled[pix] = 1u;
-    f_range[pix] = rl;
-    f_inten[pix] = inten[i];
-    f_height[pix] = zt[i];
-    return;
+  float rl = 0.0, il_in = 0.0, il_z = 0.0;  // the measured point's, or the left neighbour's
+  if (il != kNone) {
+    rl = exact_Sqrt(r2[il]);
+    il_in = inten[il];
+    il_z = zt[il];
   }
   uint filled = 0u;
   precise float range = 0.0, in_map = 0.0, height = 0.0;
-  if (il != kNone && ir != kNone) {
+  if (i != kNone) {
+    filled = 1u;
+    range = rl;
+    in_map = il_in;
+    height = il_z;
+  } else if (il != kNone && ir != kNone) {
     float rr = exact_Sqrt(r2[ir]);
     precise float gap = abs(rl - rr);
     if (LessEq(gap, p.hole_gap)) {
       filled = 2u;
       range = (rl + rr) * 0.5;
-      in_map = (inten[il] + inten[ir]) * 0.5;
-      height = (zt[il] + zt[ir]) * 0.5;
+      in_map = (il_in + inten[ir]) * 0.5;
+      height = (il_z + zt[ir]) * 0.5;
     }
   }
+  // One write of each output (as in pass 1).
   pixel_filled[pix] = filled;
   f_range[pix] = range;
   f_inten[pix] = in_map;
