@@ -55,6 +55,12 @@ layout(std430, set = 0, binding = 8) buffer CellSeedMode { uint cell_seed_mode[]
 layout(std430, set = 0, binding = 9) buffer CellPlane { int cell_plane[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer Coarse { uint coarse[]; };
 layout(std430, set = 0, binding = 11) buffer CellScratch { uint scratch[]; };
+// Cell c's plane as two vectors, a = cell_plane[8c .. 8c + 3] (normal, mean x) and b =
+// cell_plane[8c + 4 .. 8c + 7] (mean y, mean z, threshold, seeds): two loads instead of eight (on a
+// CPU driver each buffer access is a loop over the SIMD lanes, and every branch runs).
+layout(std430, set = 0, binding = 9) readonly buffer CellPlane4 { ivec4 cell_plane4[]; };
+// The seed test (h, lambda): words kTestH, kTestLambda = components z, w of the cell's sixth uvec4.
+layout(std430, set = 0, binding = 11) readonly buffer CellScratch4 { uvec4 scratch4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 
@@ -172,8 +178,9 @@ bool IsSeed(uint i, uint c) {
     uint u = floatBitsToUint(zt[i]);
     return u != 0x7F800000u && (u & 0x7FFFFFFFu) <= 0x7F800000u;
   }
-  float h = uintBitsToFloat(scratch[Base(c) + kTestH]);
-  float lam = uintBitsToFloat(scratch[Base(c) + kTestLambda]);
+  uvec2 test = scratch4[(Base(c) + kTestH) / 4u].zw;  // kTestH = 22, kTestLambda = 23
+  float h = uintBitsToFloat(test.x);
+  float lam = uintBitsToFloat(test.y);
   precise float dz = zt[i] - h;
   return dz <= lam;
 }
@@ -301,13 +308,16 @@ bool Ground(uint c) {
   return z * z >= MinZ2();
 }
 
-// |n . q - n . mean| in mm * 2^14 (int64).
-int64_t Distance(uint i, uint c) {
-  uint b = 8u * c;
-  int64_t nx = int64_t(cell_plane[b]), ny = int64_t(cell_plane[b + 1u]),
-          nz = int64_t(cell_plane[b + 2u]);
-  int64_t offset = nx * int64_t(cell_plane[b + 3u]) + ny * int64_t(cell_plane[b + 4u]) +
-                   nz * int64_t(cell_plane[b + 5u]);
+// Ground() on the plane vectors a, b of a cell with seeds.
+bool GroundPlane(ivec4 a, ivec4 b) {
+  int64_t z = int64_t(a.z);
+  return b.w != 0 && z * z >= MinZ2();
+}
+
+// |n . q - n . mean| in mm * 2^14 (int64) of point i to the plane a, b.
+int64_t Distance(uint i, ivec4 a, ivec4 b) {
+  int64_t nx = int64_t(a.x), ny = int64_t(a.y), nz = int64_t(a.z);
+  int64_t offset = nx * int64_t(a.w) + ny * int64_t(b.x) + nz * int64_t(b.y);
   ivec3 q = Mm(i);
   int64_t d = nx * int64_t(q.x) + ny * int64_t(q.y) + nz * int64_t(q.z) - offset;
   return d < int64_t(0) ? -d : d;
@@ -358,13 +368,15 @@ void DistanceSums(uint first) {
   uint64_t sum = uint64_t(0);
   for (uint i = first; i < end; ++i) {
     uint c = point_cell[i];
-    if (c == kNone || !Ground(c) || !IsSeed(i, c)) continue;
+    if (c == kNone || cell_seed_mode[c] == 0u) continue;
+    ivec4 a = cell_plane4[2u * c], b = cell_plane4[2u * c + 1u];
+    if (!GroundPlane(a, b) || !IsSeed(i, c)) continue;
     if (c != cur) {
       if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
       cur = c;
       sum = uint64_t(0);
     }
-    sum += uint64_t(Distance(i, c));
+    sum += uint64_t(Distance(i, a, b));
   }
   if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
 }
@@ -381,14 +393,13 @@ void Classify(uint first) {
     uint c = point_cell[i];
     if (c != cur) {
       cur = c;
-      ground = c != kNone && Ground(c);
-      if (ground) {
-        uint b = 8u * c;
-        nx = int64_t(cell_plane[b]), ny = int64_t(cell_plane[b + 1u]);
-        nz = int64_t(cell_plane[b + 2u]);
-        offset = nx * int64_t(cell_plane[b + 3u]) + ny * int64_t(cell_plane[b + 4u]) +
-                 nz * int64_t(cell_plane[b + 5u]);
-        threshold = int64_t(cell_plane[b + 6u]);
+      ground = false;
+      if (c != kNone && cell_seed_mode[c] != 0u) {
+        ivec4 a = cell_plane4[2u * c], b = cell_plane4[2u * c + 1u];
+        ground = GroundPlane(a, b);
+        nx = int64_t(a.x), ny = int64_t(a.y), nz = int64_t(a.z);
+        offset = nx * int64_t(a.w) + ny * int64_t(b.x) + nz * int64_t(b.y);
+        threshold = int64_t(b.z);
       }
     }
     uint label = 0u;
