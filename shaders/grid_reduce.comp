@@ -53,14 +53,17 @@ bool Less(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) < Ord
 // reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
 const uint kChunk = 32u;  // points per invocation of pass 1 (host/stages/grid_reduce.h)
 
-uint RingOf(float r, uint rings) {
-  uint lo = 0u, hi = rings;
-  while (lo < hi) {
-    uint mid = (lo + hi) >> 1;
-    if (Less(r, ring_bound2[mid])) hi = mid;
-    else lo = mid + 1u;
-  }
-  return lo;
+// The reference searches by halves; here a guess from the rings' widths (ring_res_near over
+// rings_near rings, then ring_res_far: how reference_cpu/params.cpp lays out ring_bound2) walks to
+// the same index, as Less(r, ring_bound2[k]) only turns from false to true once along k. On
+// lavapipe every loop iteration costs its gather for all lanes: two tests instead of six.
+uint RingOf(float r2, uint rings) {
+  float r = sqrt(max(r2, 0.0)), near = p.ring_res_near * float(p.rings_near);
+  float guess = r < near ? r / p.ring_res_near : float(p.rings_near) + (r - near) / p.ring_res_far;
+  uint k = min(uint(clamp(guess, 0.0, float(rings))), rings);
+  while (k > 0u && Less(r2, ring_bound2[k - 1u])) --k;
+  while (k < rings && !Less(r2, ring_bound2[k])) ++k;
+  return k;
 }
 
 // Point i's cell, kNone for invalid and noise points and beyond the last ring.
