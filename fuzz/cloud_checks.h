@@ -1,14 +1,18 @@
 // Properties every cloud a reader returns must have, checked by the cloud fuzz targets: a ring
 // field empty or one entry per point, every ring >= 0; and a write/read round trip through the
 // project's own writer that gives the same cloud back (bit for bit in binary; in ASCII, NaN
-// comes back as a NaN, its payload not kept by its text form).
+// comes back as a NaN, its payload not kept by its text form). FuzzCloudFormat is the whole
+// target of a format with an ASCII and a binary form (PCD, PLY).
 #pragma once
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <string>
 
 #include "fuzz/fuzz_file.h"
+#include "host/io/io_error.h"
 #include "reference_cpu/cloud.h"
 
 namespace lpir::fuzz {
@@ -41,6 +45,25 @@ inline void CheckRoundTrip(
     write(out->path(), cloud, nullptr, binary);
     CheckSameCloud(cloud, read(out->path()), /*nan_matches_nan=*/!binary);
   }
+}
+
+// Any bytes either read with `read` as a well-formed cloud that survives the round trip through
+// `write` (binary and ASCII), or throw IoError; anything else is a finding.
+inline int FuzzCloudFormat(
+    const uint8_t* data, size_t size,
+    const std::function<Cloud(const std::string&)>& read,
+    const std::function<void(const std::string&, const Cloud&, const Labels*, bool)>& write) {
+  static FuzzFile in, out;
+  in.Write(data, size);
+  Cloud cloud;
+  try {
+    cloud = read(in.path());
+  } catch (const IoError&) {
+    return 0;
+  }
+  CheckCloudShape(cloud);
+  CheckRoundTrip(cloud, &out, write, read);
+  return 0;
 }
 
 }  // namespace lpir::fuzz

@@ -5,21 +5,8 @@
 #include <cstdint>
 
 #include "fuzz/cloud_checks.h"
-#include "fuzz/fuzz_file.h"
-#include "host/io/io_error.h"
 #include "host/io/pcd.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  using namespace lpir;
-  static fuzz::FuzzFile in, out;
-  in.Write(data, size);
-  Cloud cloud;
-  try {
-    cloud = ReadPcd(in.path());
-  } catch (const IoError&) {
-    return 0;
-  }
-  fuzz::CheckCloudShape(cloud);
-  fuzz::CheckRoundTrip(cloud, &out, WritePcd, ReadPcd);
-  return 0;
+  return lpir::fuzz::FuzzCloudFormat(data, size, lpir::ReadPcd, lpir::WritePcd);
 }
