@@ -301,17 +301,15 @@ void FitPlane(uint c) {
   if (z * z < MinZ2()) cell_plane[b + 6u] = -1;
 }
 
-// A cell whose plane may hold ground (after pass 2): seeds, and a normal not too steep.
-bool Ground(uint c) {
-  if (cell_seed_mode[c] == 0u || cell_plane[8u * c + 7u] == 0) return false;
-  int64_t z = int64_t(cell_plane[8u * c + 2u]);
-  return z * z >= MinZ2();
-}
-
-// Ground() on the plane vectors a, b of a cell with seeds.
+// A cell whose plane may hold ground (after pass 2): seeds, and a normal not too steep; on the
+// plane vectors a, b of a cell with seeds.
 bool GroundPlane(ivec4 a, ivec4 b) {
   int64_t z = int64_t(a.z);
   return b.w != 0 && z * z >= MinZ2();
+}
+
+bool Ground(uint c) {
+  return cell_seed_mode[c] != 0u && GroundPlane(cell_plane4[2u * c], cell_plane4[2u * c + 1u]);
 }
 
 // |n . q - n . mean| in mm * 2^14 (int64) of point i to the plane a, b.
