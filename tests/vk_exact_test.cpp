@@ -3,6 +3,7 @@
 // zeros, subnormals, huge values, powers of two, ties, the subnormal and overflow boundaries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdint>
@@ -270,43 +271,55 @@ std::string CaseText(const ExactCase& t) {
 
 class VkExact : public test::VkTest {};
 
-TEST_F(VkExact, EveryHelperMatchesTheCpuBitForBit) {
-  constexpr uint32_t kCases = 1u << 20;  // 1,048,576
-  std::vector<ExactCase> cases(kCases);
-  CaseMaker maker(20250801);
-  for (uint32_t k = 0; k < kCases; ++k) cases[k] = maker.Make(k);
-
-  const vk::Device& dev = device();
+// Runs test_exact.comp over the cases with a workgroup of `local_size` asked for: *out_words gets
+// its outputs (kExactOutputs words a case; the buffer is filled with 0xAB bytes before), *used the
+// workgroup size the pipeline got.
+void RunOnDevice(const vk::Device& dev, const std::vector<ExactCase>& cases, uint32_t local_size,
+                 std::vector<uint32_t>* out_words, uint32_t* used) {
+  const uint32_t n = uint32_t(cases.size());
   vk::Result<vk::Buffer> in =
-      vk::Buffer::Create(dev, sizeof(ExactCase) * kCases, vk::MemoryKind::kHostVisible);
+      vk::Buffer::Create(dev, sizeof(ExactCase) * n, vk::MemoryKind::kHostVisible);
   ASSERT_TRUE(in.ok()) << in.message();
-  vk::Result<vk::Buffer> out = vk::Buffer::Create(dev, sizeof(uint32_t) * kExactOutputs * kCases,
-                                                  vk::MemoryKind::kHostVisible);
+  const size_t out_bytes = sizeof(uint32_t) * kExactOutputs * size_t(n);
+  vk::Result<vk::Buffer> out = vk::Buffer::Create(dev, out_bytes, vk::MemoryKind::kHostVisible);
   ASSERT_TRUE(out.ok()) << out.message();
-  std::memcpy(in->mapped(), cases.data(), sizeof(ExactCase) * kCases);
+  std::memcpy(in->mapped(), cases.data(), sizeof(ExactCase) * n);
+  std::memset(out->mapped(), 0xAB, out_bytes);
 
   vk::PipelineDesc desc;
   desc.name = "test_exact";
   desc.code = vk::SpirvOf(kTestExactSpv);
   desc.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   desc.push_constant_bytes = sizeof(uint32_t);
+  desc.local_size_x = local_size;
   vk::Result<vk::Kernel> kernel = vk::Kernel::Create(dev, desc, {&in.value(), &out.value()});
   ASSERT_TRUE(kernel.ok()) << kernel.message();
+  if (used) *used = kernel->pipeline().local_size_x();
   vk::Result<vk::CommandBuffer> cmd = vk::CommandBuffer::Create(dev);
   ASSERT_TRUE(cmd.ok()) << cmd.message();
   vk::Result<vk::Fence> fence = vk::Fence::Create(dev);
   ASSERT_TRUE(fence.ok()) << fence.message();
 
   ASSERT_TRUE(cmd->Begin().ok());
-  const uint32_t n = kCases;
   vk::Status recorded = kernel->Record(cmd.value(), n, &n);
   ASSERT_TRUE(recorded.ok()) << recorded.message();
   cmd->ComputeToHost();
   ASSERT_TRUE(cmd->End().ok());
   vk::Status ran = cmd->SubmitAndWait(fence.value());
   ASSERT_TRUE(ran.ok()) << ran.message();
+  const uint32_t* words = static_cast<const uint32_t*>(out->mapped());
+  out_words->assign(words, words + kExactOutputs * size_t(n));
+}
 
-  const uint32_t* gpu = static_cast<const uint32_t*>(out->mapped());
+TEST_F(VkExact, EveryHelperMatchesTheCpuBitForBit) {
+  constexpr uint32_t kCases = 1u << 20;  // 1,048,576
+  std::vector<ExactCase> cases(kCases);
+  CaseMaker maker(20250801);
+  for (uint32_t k = 0; k < kCases; ++k) cases[k] = maker.Make(k);
+
+  std::vector<uint32_t> gpu_out;
+  ASSERT_NO_FATAL_FAILURE(RunOnDevice(device(), cases, 64, &gpu_out, nullptr));
+  const uint32_t* gpu = gpu_out.data();
   uint64_t compared = 0, mismatches = 0;
   uint64_t per_slot[kExactOutputs] = {};
   for (uint32_t k = 0; k < kCases; ++k) {
@@ -340,6 +353,25 @@ TEST_F(VkExact, EveryHelperMatchesTheCpuBitForBit) {
               static_cast<unsigned long long>(per_slot[0]),
               static_cast<unsigned long long>(mismatches));
   EXPECT_EQ(mismatches, 0u);
+}
+
+// A workgroup larger than the device allows is the device's largest, and the dispatch still
+// covers every invocation (a case count that is no multiple of it): the same words as with 64.
+TEST_F(VkExact, AnOversizedWorkgroupIsTheDevicesLargest) {
+  CaseMaker maker(7);
+  std::vector<ExactCase> cases(3001);
+  for (uint32_t k = 0; k < cases.size(); ++k) cases[k] = maker.Make(k);
+  const VkPhysicalDeviceLimits& limits = device().limits();
+  std::vector<uint32_t> small, large;
+  uint32_t used = 0;
+  ASSERT_NO_FATAL_FAILURE(RunOnDevice(device(), cases, 64, &small, nullptr));
+  ASSERT_NO_FATAL_FAILURE(RunOnDevice(device(), cases, 1u << 20, &large, &used));
+  EXPECT_EQ(used,
+            std::min(limits.maxComputeWorkGroupSize[0], limits.maxComputeWorkGroupInvocations));
+  ASSERT_EQ(small.size(), large.size());
+  size_t differ = 0;
+  for (size_t k = 0; k < small.size(); ++k) differ += small[k] != large[k];
+  EXPECT_EQ(differ, 0u) << differ << " of " << small.size() << " words differ";
 }
 
 // The rounding paths need the inputs above to reach them: check that they do (a silent change

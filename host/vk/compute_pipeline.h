@@ -34,7 +34,7 @@ struct PipelineDesc {
   Spirv code;
   std::vector<VkDescriptorType> bindings;  // set 0, binding i
   uint32_t push_constant_bytes = 0;        // 0: none (at most 128, the guaranteed minimum)
-  uint32_t local_size_x = 64;              // specialization constant 0
+  uint32_t local_size_x = 64;              // specialization constant 0 (at most the device's)
   uint32_t pass = 0;                       // specialization constant 1 (multi-pass stages)
   uint32_t passes = 1;                     // Kernel: one pipeline for each pass 0 .. passes - 1
 };
