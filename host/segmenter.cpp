@@ -65,6 +65,10 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
 Segmenter::~Segmenter() = default;  // the pipeline (waiting for its frames) before the context
 Segmenter::Segmenter(Segmenter&&) noexcept = default;
 
+bool Segmenter::on_cpu_driver() const {
+  return context_ && context_->device().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
 uint64_t Segmenter::device_bytes() const { return pipeline_ ? pipeline_->device_bytes() : 0; }
 
 void Segmenter::CheckCloud(const Cloud& cloud) const {

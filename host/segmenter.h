@@ -80,6 +80,9 @@ class Segmenter {
   // the Vulkan set-up failed: <reason>".
   Backend backend() const { return backend_; }
   const std::string& backend_note() const { return backend_note_; }
+  // The Vulkan device is a CPU driver (lavapipe): the CPU reference is faster there (README,
+  // Speed). False on the CPU backend.
+  bool on_cpu_driver() const;
   // Frames whose growing loop did not reach its fixed point within grow_max_iters sweeps on the
   // device, and were labelled by the CPU reference instead (same bytes, more time).
   size_t reference_fallbacks() const { return reference_fallbacks_; }

@@ -1,7 +1,8 @@
 // lpir-gseg segment on both backends, as a user runs it: `--backend vulkan` and `--backend cpu`
 // write identical .label files for every real scan in ../shared/data (KITTI HDL-64E, nuScenes and
 // PLY HDL-32E, Ouster OS1-64, VLP-32C), with the validation layer on and silent; `--timings`
-// prints every stage; without any Vulkan driver it falls back to the reference with one notice.
+// prints every stage; without any Vulkan driver it falls back to the reference with one notice;
+// on a CPU driver chosen by auto it says that --backend cpu is faster.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -142,6 +143,32 @@ TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
   EXPECT_NE(log.find("the Vulkan backend could not be set up"), std::string::npos) << log;
   EXPECT_NE(log.find("VK_ICD_FILENAMES=/nonexistent.json"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(out + "/vulkan/000964.label"));
+}
+
+// Auto on a machine whose only usable Vulkan device is a CPU driver (lavapipe): one notice that
+// --backend cpu is faster; none when the backend or the device was asked for, or on a GPU.
+TEST(CliBackend, ACpuDriverChosenByAutoSaysTheReferenceIsFaster) {
+  LPIR_REQUIRE_LAVAPIPE();
+  const std::string dir = test::TempDir();
+  std::string log;
+  ASSERT_EQ(test::RunCommand(test::CliPath() + " simulate --sensor vlp16 --seed 1 --out " + dir +
+                                 "/s.bin --labels " + dir + "/s.label",
+                             &log),
+            0)
+      << log;
+  const std::string segment =
+      test::CliPath() + " segment " + dir + "/s.bin --sensor vlp16 --out " + dir + "/out";
+  const std::string kNote = ", a CPU driver (no GPU here); --backend cpu gives the same labels";
+  ASSERT_EQ(test::RunCommand(segment, &log), 0) << log;
+  const bool cpu_driver = log.find("on Vulkan on llvmpipe") != std::string::npos;
+  EXPECT_EQ(Count(log, kNote), cpu_driver ? 1u : 0u) << log;
+  if (cpu_driver) {
+    EXPECT_NE(log.find("lpir-gseg segment: note: Vulkan on llvmpipe"), std::string::npos) << log;
+  }
+  for (const char* asked : {" --backend vulkan", " --device 0", " --backend cpu"}) {
+    ASSERT_EQ(test::RunCommand(segment + asked, &log), 0) << asked << "\n" << log;
+    EXPECT_EQ(Count(log, kNote), 0u) << asked << "\n" << log;
+  }
 }
 
 TEST(CliBackend, BadBackendOrDeviceIsAnError) {

@@ -140,6 +140,11 @@ int RunSegment(int argc, char** argv) {
   if (options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
     std::fprintf(stderr, "lpir-gseg segment: note: %s\n",
                  segmenter.backend_note().c_str());
+  if (options.backend == Backend::kAuto && options.device.empty() && segmenter.on_cpu_driver())
+    std::fprintf(stderr,
+                 "lpir-gseg segment: note: %s, a CPU driver (no GPU here); --backend cpu gives "
+                 "the same labels faster\n",
+                 segmenter.backend_note().c_str());
   fs::create_directories(out_dir);
   ReadOptions read_options;
   if (args.Has("--nuscenes")) read_options.bin_layout = BinLayout::kNuScenes5;
