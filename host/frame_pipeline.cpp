@@ -29,7 +29,7 @@ struct FramePipeline::Buffers {
   Buffer point_cell, cell_zmin, cell_zmax, cell_count;                   // 3 grid reduce
   Buffer cell_seed_mode, cell_plane, coarse, coarse_scratch;             // 4 coarse segment
   Buffer pixel_filled, f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz,
-      f_vari;                                                            // 5 feature maps
+      f_vari, feature_pack;                                              // 5 feature maps
   Buffer pixel_class, pixel_fused;                                       // 6 classify, 7 fuse
   Buffer pixel_grown, pixel_comp, pixel_label, grow_scratch, grow_sizes, grow_flags;  // 8 grow
   Buffer label, why;                                                     // 9 back-project
@@ -124,6 +124,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       {&b.pixel_filled, pixel},     {&b.f_range, pixel},         {&b.f_inten, pixel},
       {&b.f_height, pixel},         {&b.f_slope, pixel},         {&b.f_edge_l, pixel},
       {&b.f_edge_r, pixel},         {&b.f_varz, pixel},          {&b.f_vari, pixel},
+      {&b.feature_pack, FeatureMapsStage::PackBytes(pixels)},
       {&b.pixel_class, pixel},      {&b.pixel_fused, pixel},     {&b.pixel_grown, pixel},
       {&b.pixel_comp, pixel},       {&b.pixel_label, pixel},     {&b.grow_scratch, pixel},
       {&b.grow_sizes, pixel},
@@ -162,7 +163,8 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                               &b.cell_seed_mode, &b.cell_plane, &b.coarse,     &b.coarse_scratch};
   FeatureMapsBuffers features{&b.params,   &b.pixel_point, &b.r2,       &b.zt,     &b.inten,
                               &b.pixel_filled, &b.f_range, &b.f_inten,  &b.f_height,
-                              &b.f_slope,  &b.f_edge_l,    &b.f_edge_r, &b.f_varz, &b.f_vari};
+                              &b.f_slope,  &b.f_edge_l,    &b.f_edge_r, &b.f_varz, &b.f_vari,
+                              &b.feature_pack};
   ClassifyPixelsBuffers classify{&b.params,   &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
                                  &b.f_slope,  &b.f_varz,       &b.f_vari,   &b.pixel_class};
   FuseBuffers fuse{&b.params,       &b.pixel_class, &b.pixel_point, &b.coarse,

@@ -2,12 +2,15 @@
 // reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the
 // specialization constant kPass (one pipeline each), with a compute -> compute barrier between
 // them; pass 0 one invocation per pixel < pixels (push constant), pixel = v * width + u;
-// pass 1 one per run of kRun pixels of a row (its 3x3 window's column moments sliding along
-// the run).
+// pass 1 one per run of kRun pixels of a row (its 3x3 window's columns sliding along the run,
+// each column's three pixels loaded once).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
 //     2 r2, 3 zt, 4 inten (floats per point).
-// Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (written
-//     by pass 0, read by pass 1), 9 f_slope, 10 f_edge_l, 11 f_edge_r, 12 f_varz, 13 f_vari.
+// Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (pass 0),
+//     9 f_slope, 10 f_edge_l, 11 f_edge_r, 12 f_varz, 13 f_vari (pass 1).
+// Scratch: 14 pixel_pack, per pixel (filled, range, intensity, height bits), written by pass 0
+//     beside the four maps: pass 1 reads a pixel with one vector load instead of four (on a CPU
+//     driver each buffer access is a loop over the SIMD lanes, whatever its width).
 // Pass 0, measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height z_t of
 //   its winning point; an empty pixel whose left and right neighbours (columns wrap) are measured
 //   and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The neighbours'
@@ -35,15 +38,16 @@ layout(std430, set = 0, binding = 1) readonly buffer PixelPoint { uint pixel_poi
 layout(std430, set = 0, binding = 2) readonly buffer R2 { float r2[]; };
 layout(std430, set = 0, binding = 3) readonly buffer Zt { float zt[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Inten { float inten[]; };
-layout(std430, set = 0, binding = 5) buffer Filled { uint pixel_filled[]; };
-layout(std430, set = 0, binding = 6) buffer Range { float f_range[]; };
-layout(std430, set = 0, binding = 7) buffer InMap { float f_inten[]; };
-layout(std430, set = 0, binding = 8) buffer Height { float f_height[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer Filled { uint pixel_filled[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer Range { float f_range[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer InMap { float f_inten[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer Height { float f_height[]; };
 layout(std430, set = 0, binding = 9) writeonly buffer Slope { float f_slope[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer EdgeL { float f_edge_l[]; };
 layout(std430, set = 0, binding = 11) writeonly buffer EdgeR { float f_edge_r[]; };
 layout(std430, set = 0, binding = 12) writeonly buffer VarZ { float f_varz[]; };
 layout(std430, set = 0, binding = 13) writeonly buffer VarI { float f_vari[]; };
+layout(std430, set = 0, binding = 14) buffer PixelPack { uvec4 pixel_pack[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 
@@ -110,64 +114,80 @@ void MeasureAndFill(uint pix) {
   f_range[pix] = range;
   f_inten[pix] = in_map;
   f_height[pix] = height;
+  pixel_pack[pix] = uvec4(filled, floatBitsToUint(range), floatBitsToUint(in_map),
+                          floatBitsToUint(height));
 }
 
-// The int64 moments of one column's pixels in rows v - 1 .. v + 1 (clipped): filled count, sum
-// and sum of squares of the quantised heights and intensities (empty pixels hold 0).
+// A pixel as pass 0 packed it.
+bool IsFilled(uvec4 e) { return e.x != 0u; }
+float RangeOf(uvec4 e) { return uintBitsToFloat(e.y); }
+float IntensityOf(uvec4 e) { return uintBitsToFloat(e.z); }
+float HeightOf(uvec4 e) { return uintBitsToFloat(e.w); }
+
+// One column's pixels in rows v - 1 .. v + 1 (clipped): the int64 moments of the window (filled
+// count, sum and sum of squares of the quantised heights and intensities; empty pixels hold 0),
+// and the pixels of rows v and v + 1 (zero when v + 1 is past the last row), which are all the
+// features of row v need of this column besides the moments.
 struct Moments {
   int64_t n, sz, szz, si, sii;
 };
-Moments ColumnMoments(uint col, uint v) {
+struct Column {
+  Moments m;
+  uvec4 mid, below;
+};
+Column ColumnAt(uint col, uint v) {
   uint w = p.width, h = p.beams;
-  Moments m = Moments(int64_t(0), int64_t(0), int64_t(0), int64_t(0), int64_t(0));
+  Column c;
+  c.m = Moments(int64_t(0), int64_t(0), int64_t(0), int64_t(0), int64_t(0));
+  c.mid = uvec4(0u);
+  c.below = uvec4(0u);
   for (int dv = -1; dv <= 1; ++dv) {
     int vv = int(v) + dv;
     if (vv < 0 || vv >= int(h)) continue;
-    uint q = uint(vv) * w + col;
-    if (pixel_filled[q] != 0u) m.n += int64_t(1);
-    int64_t qz = exact_ToFixed(f_height[q], kScale);
-    int64_t qi = exact_ToFixed(f_inten[q], kScale);
-    m.sz += qz;
-    m.szz += qz * qz;
-    m.si += qi;
-    m.sii += qi * qi;
+    uvec4 e = pixel_pack[uint(vv) * w + col];
+    if (dv == 0) c.mid = e;
+    if (dv == 1) c.below = e;
+    if (IsFilled(e)) c.m.n += int64_t(1);
+    int64_t qz = exact_ToFixed(HeightOf(e), kScale);
+    int64_t qi = exact_ToFixed(IntensityOf(e), kScale);
+    c.m.sz += qz;
+    c.m.szz += qz * qz;
+    c.m.si += qi;
+    c.m.sii += qi * qi;
   }
-  return m;
+  return c;
 }
 
-// Pass 1 for pixel pix = v * w + u, the 3x3 moments being the sum of its window's three columns.
+// Pass 1 for pixel pix = v * w + u of columns l, c, r (u - 1, u, u + 1, wrapping), the 3x3
+// moments being the sum of the three columns'.
 // An empty pixel gets 0 everywhere: computed like the others and replaced at the one write of
 // each output (lavapipe runs every branch under a lane mask: an early return with its own writes
 // cost five more stores a pixel).
-void Features(uint pix, uint v, uint u, Moments l, Moments c, Moments r) {
-  uint w = p.width, h = p.beams;
-  bool filled = pixel_filled[pix] != 0u;
-  uint ul = u == 0u ? w - 1u : u - 1u, ur = u + 1u == w ? 0u : u + 1u;
-  uint row = v * w;
-  float z = f_height[pix], r_ = f_range[pix];
+void Features(uint pix, uint v, Column l, Column c, Column r) {
+  uint h = p.beams;
+  bool filled = IsFilled(c.mid);
+  float z = HeightOf(c.mid), r_ = RangeOf(c.mid);
 
   // Slope toward the next row down.
   float slope = -1.0;
-  if (v + 1u < h) {
-    uint below = pix + w;
-    if (pixel_filled[below] != 0u) {
-      precise float dz = abs(f_height[below] - z);
-      precise float dr = abs(f_range[below] - r_);
-      if (AbsPositive(dr)) slope = exact_Div(dz, dr);
-    }
+  if (v + 1u < h && IsFilled(c.below)) {
+    precise float dz = abs(HeightOf(c.below) - z);
+    precise float dr = abs(RangeOf(c.below) - r_);
+    if (AbsPositive(dr)) slope = exact_Div(dz, dr);
   }
   f_slope[pix] = filled ? slope : 0.0;
 
   // Edges, columns wrapping.
   precise float el = 0.0, er = 0.0;
-  if (pixel_filled[row + ul] != 0u) el = abs(z - f_height[row + ul]);
-  if (pixel_filled[row + ur] != 0u) er = abs(f_height[row + ur] - z);
+  if (IsFilled(l.mid)) el = abs(z - HeightOf(l.mid));
+  if (IsFilled(r.mid)) er = abs(HeightOf(r.mid) - z);
   f_edge_l[pix] = filled ? el : 0.0;
   f_edge_r[pix] = filled ? er : 0.0;
 
   // 3x3 moments of the quantised values: integers, so any summation order gives the same.
-  int64_t n = l.n + c.n + r.n, sz = l.sz + c.sz + r.sz, szz = l.szz + c.szz + r.szz;
-  int64_t si = l.si + c.si + r.si, sii = l.sii + c.sii + r.sii;
+  int64_t n = l.m.n + c.m.n + r.m.n, sz = l.m.sz + c.m.sz + r.m.sz;
+  int64_t szz = l.m.szz + c.m.szz + r.m.szz;
+  int64_t si = l.m.si + c.m.si + r.m.si, sii = l.m.sii + c.m.sii + r.m.sii;
   float den = float(int(n * n));  // <= 81: exact
   precise float varz = exact_Div(exact_I64ToFloat(n * szz - sz * sz), den) * kQuantum2;
   precise float vari = exact_Div(exact_I64ToFloat(n * sii - si * si), den) * kQuantum2;
@@ -182,11 +202,11 @@ void FeaturesRun(uint run) {
   uint runs_per_row = (w + kRun - 1u) / kRun;
   uint v = run / runs_per_row, u0 = (run % runs_per_row) * kRun;
   uint u1 = min(u0 + kRun, w);
-  Moments l = ColumnMoments(u0 == 0u ? w - 1u : u0 - 1u, v);  // columns wrap
-  Moments c = ColumnMoments(u0, v);
+  Column l = ColumnAt(u0 == 0u ? w - 1u : u0 - 1u, v);  // columns wrap
+  Column c = ColumnAt(u0, v);
   for (uint u = u0; u < u1; ++u) {
-    Moments r = ColumnMoments(u + 1u == w ? 0u : u + 1u, v);
-    Features(v * w + u, v, u, l, c, r);
+    Column r = ColumnAt(u + 1u == w ? 0u : u + 1u, v);
+    Features(v * w + u, v, l, c, r);
     l = c;
     c = r;
   }

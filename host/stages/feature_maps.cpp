@@ -30,7 +30,7 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   PipelineDesc desc;
   desc.name = "feature_maps";
   desc.code = SpirvOf(kFeatureMapsSpv);
-  desc.bindings.assign(14, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  desc.bindings.assign(15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
@@ -40,7 +40,7 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
       Kernel::Create(device, desc,
                      {b.params, b.pixel_point, b.r2, b.zt, b.inten, b.pixel_filled, b.f_range,
                       b.f_inten, b.f_height, b.f_slope, b.f_edge_l, b.f_edge_r, b.f_varz,
-                      b.f_vari}));
+                      b.f_vari, b.pixel_pack}));
   return FeatureMapsStage(std::move(kernel));
 }
 
@@ -76,6 +76,8 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
   std::vector<float>* maps_out[8] = {&f.f_range,  &f.f_inten,  &f.f_height, &f.f_slope,
                                      &f.f_edge_l, &f.f_edge_r, &f.f_varz,   &f.f_vari};
   LPIR_VK_ASSIGN_OR_RETURN(Buffer filled, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer pack,
+                           Buffer::Create(device, FeatureMapsStage::PackBytes(pixels), kind));
   std::vector<Buffer> maps;
   for (int k = 0; k < 8; ++k) {
     LPIR_VK_ASSIGN_OR_RETURN(Buffer map, Buffer::Create(device, per_pixel, kind));
@@ -106,6 +108,7 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
   bindings.f_edge_r = &maps[5];
   bindings.f_varz = &maps[6];
   bindings.f_vari = &maps[7];
+  bindings.pixel_pack = &pack;
   LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage stage, FeatureMapsStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
       RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));

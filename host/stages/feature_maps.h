@@ -33,12 +33,17 @@ struct FeatureMapsBuffers {
   const Buffer* f_edge_r = nullptr;
   const Buffer* f_varz = nullptr;
   const Buffer* f_vari = nullptr;
+  const Buffer* pixel_pack = nullptr;  // scratch: PackBytes(pixels), pass 0 -> pass 1
 };
 
 class FeatureMapsStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
   static constexpr uint32_t kRun = 32;  // pixels of a row per invocation of pass 1 (the shader's)
+
+  // The scratch buffer's size: a uvec4 per pixel (filled, and the bits of range, intensity and
+  // height), so that pass 1 reads a pixel with one load instead of four.
+  static VkDeviceSize PackBytes(uint64_t pixels) { return 16 * (pixels == 0 ? 1 : pixels); }
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
 
