@@ -44,7 +44,7 @@
 layout(local_size_x_id = 0) in;
 
 layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
-layout(std430, set = 0, binding = 1) readonly buffer Xyzi { float xyzi[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Xyzi { vec4 xyzi[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Zt { float zt[]; };
 layout(std430, set = 0, binding = 3) readonly buffer PointCell { uint point_cell[]; };
 layout(std430, set = 0, binding = 4) readonly buffer CellZmin { uint cell_zmin[]; };
@@ -186,7 +186,8 @@ bool IsSeed(uint i, uint c) {
 }
 
 ivec3 Mm(uint i) {
-  return ivec3(int(exact_ToFixed(xyzi[4u * i], kMm)), int(exact_ToFixed(xyzi[4u * i + 1u], kMm)),
+  vec2 xy = xyzi[i].xy;  // one load (a loop over the SIMD lanes on a CPU driver), not two
+  return ivec3(int(exact_ToFixed(xy.x, kMm)), int(exact_ToFixed(xy.y, kMm)),
                int(exact_ToFixed(zt[i], kMm)));
 }
 
