@@ -18,6 +18,7 @@
 
 #include "common/params.h"
 #include "common/exact.glsl"
+#include "common/compare.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -46,14 +47,6 @@ const uint kPixNonGround = 0u;  // reference_cpu/frame.h
 const uint kPixGround = 1u;
 const uint kPixUnknown = 2u;
 const uint kPixEmpty = 3u;
-
-bool IsNan(float f) { return (floatBitsToUint(f) & 0x7FFFFFFFu) > 0x7F800000u; }
-uint OrderKey(float f) {
-  uint u = floatBitsToUint(f);
-  return exact_Key(uintBitsToFloat((u & 0x7FFFFFFFu) == 0u ? 0u : u));
-}
-bool Less(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) < OrderKey(b); }
-bool LessEq(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) <= OrderKey(b); }
 
 int Vote(float value, float low, float high) {
   if (LessEq(value, low)) return -1;

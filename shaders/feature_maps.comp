@@ -30,6 +30,7 @@
 
 #include "common/params.h"
 #include "common/exact.glsl"
+#include "common/compare.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -63,13 +64,6 @@ const uint kRun = 32u;  // pass 1: pixels of one row per invocation (host/stages
 #define kScale uintBitsToFloat(0x461C4000u)     // 10000.0f
 #define kQuantum2 uintBitsToFloat(0x322BCC77u)  // 1e-8f
 
-// a <= b as IEEE compares them, on bits (-0 == +0, false when either is NaN).
-bool IsNan(float f) { return (floatBitsToUint(f) & 0x7FFFFFFFu) > 0x7F800000u; }
-uint OrderKey(float f) {
-  uint u = floatBitsToUint(f);
-  return exact_Key(uintBitsToFloat((u & 0x7FFFFFFFu) == 0u ? 0u : u));
-}
-bool LessEq(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) <= OrderKey(b); }
 // |x| > 0 as IEEE compares it: non-zero magnitude (subnormals included) and not NaN.
 bool AbsPositive(float x) {
   uint m = floatBitsToUint(x) & 0x7FFFFFFFu;

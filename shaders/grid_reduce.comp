@@ -19,6 +19,7 @@
 
 #include "common/params.h"
 #include "common/exact.glsl"
+#include "common/compare.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -41,14 +42,6 @@ layout(push_constant) uniform Push {
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
-
-// a < b as IEEE compares them, on bits: -0 == +0, false when either is NaN, subnormals exact.
-bool IsNan(float f) { return (floatBitsToUint(f) & 0x7FFFFFFFu) > 0x7F800000u; }
-uint OrderKey(float f) {
-  uint u = floatBitsToUint(f);
-  return exact_Key(uintBitsToFloat((u & 0x7FFFFFFFu) == 0u ? 0u : u));
-}
-bool Less(float a, float b) { return !IsNan(a) && !IsNan(b) && OrderKey(a) < OrderKey(b); }
 
 // reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
 const uint kChunk = 32u;  // points per invocation of pass 1 (host/stages/grid_reduce.h)
