@@ -1,10 +1,10 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
-// One shader, nine passes chosen by the specialization constant kMode, one pipeline each
+// One shader, ten passes chosen by the specialization constant kMode, one pipeline each
 // (host/stages/grow.cpp records them in this order, a compute-to-compute barrier after each
 // dispatch):
 //   0 reset    per flags word: the flags buffer to its start.
-//   1 init     per quad of pixels: pixel_grown = pixel_fused; pixel_comp = pix on ground, kNone
-//              elsewhere; sizes = 0; the unknown pixels go on the list (scratch).
+//   1 init     per quad of pixels: pixel_grown = pixel_fused; sizes = 0; the unknown pixels go
+//              on the list (scratch).
 //   2 list     one invocation: init for the last pixels % 4, then the list's workgroup count,
 //              which is sweep 0's.
 //   7 steps    per list entry (indirect, sweep 0's count): the pixel's step mask (StepMask).
@@ -14,13 +14,18 @@
 //              backwards. A sweep that changed something sets the next sweep's workgroup count;
 //              so the sweeps after the first that changes nothing launch no workgroup and the
 //              loop ends on the GPU.
-//   4 merge    per pixel: joins the trees of each ground pixel and its ground neighbours right,
-//              below-left, below and below-right (every 8-neighbour pair once, columns wrap; a
-//              diagonal pair is skipped where a path through a side neighbour joins it anyway).
-//   5 flatten  per pixel: pixel_comp = the root of the pixel's tree; sizes[root] += 1.
-//   6 finish   per quad of pixels: unknown -> non-ground in pixel_grown; pixel_label =
-//              pixel_grown, ground -> non-ground where the component has fewer than min_component
-//              pixels; invocation 0 writes the summary word. 8: the same for the last pixels % 4.
+//   9 runs     per quad of pixels (4i .. 4i + 3, the last one short): pixel_comp = the first
+//              pixel of the ground pixel's run within the quad and row, kNone off ground.
+//   4 merge    per 4 columns of a row: joins the trees of each ground pixel and its ground
+//              neighbours right, below, below-left and below-right (columns wrap), skipping the
+//              pairs that a path through other pairs joins anyway (Merge); the 4 columns'
+//              classes are two vector loads when the width is a multiple of 4.
+//   5 flatten  per quad of pixels: each ground pixel's root into scratch (the list is spent),
+//              sizes[root] += the run's length.
+//   6 finish   per quad of pixels: pixel_comp = the roots; unknown -> non-ground in pixel_grown;
+//              pixel_label = pixel_grown, ground -> non-ground where the component has fewer
+//              than min_component pixels; invocation 0 writes the summary word. 8: the same for
+//              the last pixels % 4.
 // Growing is monotone and its result the least fixed point (SPEC 2, reference_cpu/grow.cpp), so
 // any schedule that grows only pixels with an allowed step from a ground pixel and stops after a
 // sweep that changed nothing gives the reference's bytes. Here pixels change in place during a
@@ -36,7 +41,7 @@
 // Components: a union-find over pixel_comp (the parent of each ground pixel), in which a root is
 // hung only under a lower pixel and parents only decrease (unions and path halving by atomicMin),
 // so each component ends as one tree whose root is its lowest pixel: the reference's component
-// label in any schedule. All parent accesses are atomic.
+// label in any schedule. All parent accesses of the merge and flatten passes are atomic.
 // Flags (binding 10), words: 0 the list's length, 1 its workgroup count, 2 unused; then budget + 1
 // indirect dispatch arguments (x, y, z), entry k for sweep k at words 3 (k + 1) .. 3 (k + 1) + 2:
 // sweep 0's x set by the list pass, sweep k's (k > 0) by a sweep k - 1 that changed something,
@@ -72,6 +77,7 @@ layout(std430, set = 0, binding = 5) buffer PixelGrown4 { uvec4 pixel_grown4[]; 
 layout(std430, set = 0, binding = 6) buffer PixelComp4 { uvec4 pixel_comp4[]; };
 layout(std430, set = 0, binding = 7) buffer PixelLabel4 { uvec4 pixel_label4[]; };
 layout(std430, set = 0, binding = 9) buffer Sizes4 { uvec4 sizes4[]; };
+layout(std430, set = 0, binding = 8) buffer Roots4 { uvec4 roots4[]; };  // the list, after merge
 
 layout(constant_id = 1) const uint kMode = 0u;
 
@@ -92,8 +98,6 @@ const uint kListLength = 0u, kListGroups = 1u;  // flags words
 
 #define LoadAtomic(word) \
   atomicLoad(word, gl_ScopeDevice, gl_StorageSemanticsBuffer, gl_SemanticsRelaxed)
-#define StoreAtomic(word, value) \
-  atomicStore(word, value, gl_ScopeDevice, gl_StorageSemanticsBuffer, gl_SemanticsRelaxed)
 
 // The x word of the dispatch arguments of sweep k (0 .. budget), and the summary word.
 uint ArgsWord(uint k) { return 3u * (k + 1u); }
@@ -115,12 +119,9 @@ bool StepAllowed(uint q, uint r, uint cq, uint cr) {
   return di <= p.grow_di && dz <= allowed;
 }
 
-// Unknown pixel r -> ground, when no other invocation got there first; pixel_comp[r] = r (only
-// the winner writes it, nobody reads it before the merge pass).
+// Unknown pixel r -> ground, when no other invocation got there first.
 bool Claim(uint r) {
-  if (atomicCompSwap(pixel_grown[r], kPixUnknown, kPixGround) != kPixUnknown) return false;
-  pixel_comp[r] = r;
-  return true;
+  return atomicCompSwap(pixel_grown[r], kPixUnknown, kPixGround) == kPixUnknown;
 }
 
 // The bit of a step mask for the neighbour at row offset dy (-1 .. 1) and column offset dx - 1
@@ -233,28 +234,107 @@ void Union(uint a, uint b) {
 
 bool Ground(uint pix) { return pixel_grown[pix] == kPixGround; }
 
-// The merge pass for ground pixel (u, v): unions with its right, below, below-left and
-// below-right ground neighbours (columns wrap). Below-left is joined anyway through the left
-// neighbour (its right and below pairs) or through below (below-left's right pair) when either is
-// ground; below-right likewise through right or below. Images under three columns wide repeat
-// neighbours: a pair with itself is skipped, a repeated pair is harmless. The unions run in one
-// loop over the pairs to join, so that the union code appears once (lavapipe runs code under a
-// lane mask: four inline unions cost four on every pixel, the loop only as many as a lane needs).
-void Merge(uint pix, uint u, uint v) {
-  uint w = p.width, h = p.beams, row = v * w;
-  uint right = row + (u + 1u) % w, left = row + (u + w - 1u) % w;
-  uint below = pix + w, below_left = left + w, below_right = right + w;
-  bool has_below = v + 1u < h, b = has_below && Ground(below);
-  uint pairs = 0u;  // bits: right, below, below-left, below-right
-  if (right != pix && Ground(right)) pairs |= 1u;
-  if (b) pairs |= 2u;
-  if (has_below && !b && !Ground(left) && below_left != below && Ground(below_left)) pairs |= 4u;
-  if (has_below && !b && !Ground(right) && below_right != below && Ground(below_right))
-    pairs |= 8u;
+// The bits k (0 .. 3) of the ground pixels among four classes.
+uint GroundBits(uvec4 g) {
+  uvec4 bit = uvec4(equal(g, uvec4(kPixGround))) << uvec4(0u, 1u, 2u, 3u);
+  return bit.x | bit.y | bit.z | bit.w;
+}
+
+// Pixel first + k is a column 0 pixel.
+bool RowStart(uint first, uint k) { return (first + k) % p.width == 0u; }
+
+// Pixels first + k and first + k - 1 (0 < k < 4) are ground pixels side by side in one row.
+bool Joined(uint first, uvec4 g, uint k) {
+  return g[k] == kPixGround && g[k - 1u] == kPixGround && !RowStart(first, k);
+}
+
+// The runs pass for the pixels first .. first + 3 of classes g (kPixNonGround past the image):
+// each ground pixel's parent is the first pixel of its run among them (ground pixels side by
+// side in one row), kNone off ground. Parents only decrease, and each run is one tree before the
+// merge pass, which then joins only what lies across runs.
+uvec4 RunParents(uint first, uvec4 g) {
+  uvec4 parent = uvec4(kNone);
+  for (uint k = 0u; k < 4u; ++k)
+    if (g[k] == kPixGround) parent[k] = k > 0u && Joined(first, g, k) ? parent[k - 1u] : first + k;
+  return parent;
+}
+
+// The flatten pass for the same pixels: each ground pixel's root (kNone off ground) and the
+// component sizes, one Find and one size increment per run (in one loop over the runs: one copy
+// of Find's code).
+uvec4 Roots(uint first, uvec4 g) {
+  uint joined = 0u;  // bit k: pixel k continues the run of pixel k - 1
+  for (uint k = 1u; k < 4u; ++k)
+    if (Joined(first, g, k)) joined |= 1u << k;
+  uint starts = GroundBits(g) & ~joined;
+  uvec4 root = uvec4(kNone);
+  while (starts != 0u) {
+    uint k = uint(findLSB(starts));
+    starts &= starts - 1u;
+    uint end = uint(findLSB((~joined & ~((2u << k) - 1u)) | 16u));  // the run: k .. end - 1
+    uint r = Find(first + k);
+    atomicAdd(sizes[r], end - k);
+    uvec4 index = uvec4(0u, 1u, 2u, 3u);
+    root = mix(root, uvec4(r), bvec4(uvec4(greaterThanEqual(index, uvec4(k))) &
+                                     uvec4(lessThan(index, uvec4(end)))));
+  }
+  return root;
+}
+
+// The merge pass for the pixels k = 0 .. n - 1 at columns c0 + k of row v (n = min(4, width -
+// c0), c0 a multiple of 4): each ground pixel is joined with its right, below, below-left and
+// below-right ground neighbours (columns wrap), except where a path through other pairs joins
+// them anyway:
+//   right: the runs pass joined the next pixel of the same quad of pixel indices and row;
+//   below: through the left pair when both its pixels are ground (left, down, right: side by
+//     side pixels are always joined); column 0 never skips it, so every pair is reached;
+//   below-left: through the left neighbour (its right and below pairs) or through below
+//     (below-left's right pair) when either is ground; below-right likewise through right or
+//     below.
+// Images under two columns wide repeat neighbours: a pair with itself is skipped, a repeated
+// pair is harmless. The pairs are bit masks over k (the four pixels' classes from two vector
+// loads when the width is a multiple of 4); the unions run in one loop over the set bits, so the
+// union code appears once (lavapipe runs code under a lane mask: inline unions cost on every
+// quad, the loop only as many as a lane needs).
+void Merge(uint v, uint c0) {
+  uint w = p.width, row = v * w, first = row + c0, n = min(4u, w - c0);
+  bool has_below = v + 1u < p.beams;
+  uvec4 q = uvec4(kPixNonGround), b = uvec4(kPixNonGround);
+  if (w % 4u == 0u) {
+    q = pixel_grown4[first / 4u];
+    if (has_below) b = pixel_grown4[(first + w) / 4u];
+  } else {
+    for (uint k = 0u; k < n; ++k) {
+      q[k] = pixel_grown[first + k];
+      if (has_below) b[k] = pixel_grown[first + w + k];
+    }
+  }
+  uint self = GroundBits(q);
+  if (self == 0u) return;
+  // Bit k + 1 of the windows: pixel k (row, below); bit 0: the left neighbour of pixel 0, bit
+  // n + 1: the right neighbour of pixel n - 1.
+  uint left = row + (c0 + w - 1u) % w, right = row + (c0 + n) % w;
+  uint row_bits = uint(Ground(left)) | (self << 1) | (uint(Ground(right)) << (n + 1u));
+  uint below_bits = has_below ? uint(Ground(left + w)) | (GroundBits(b) << 1) |
+                                    (uint(Ground(right + w)) << (n + 1u))
+                              : 0u;
+  uint gl = row_bits & 15u, gr = (row_bits >> 2) & 15u;
+  uint gb = (below_bits >> 1) & 15u, gbl = below_bits & 15u, gbr = (below_bits >> 2) & 15u;
+  uint apart = 0u;  // pixels whose right neighbour the runs pass did not join
+  for (uint k = 0u; k < 4u; ++k)
+    if (c0 + k + 1u == w || ((first + k) & 3u) == 3u) apart |= 1u << k;
+  uint wide = w > 1u ? 15u : 0u;
+  uint column0 = c0 == 0u ? 1u : 0u;
+  uint pairs = (self & gr & apart & wide) |                // right
+               ((self & gb & (column0 | ~gl | ~gbl)) << 4) |  // below
+               ((self & ~gb & ~gl & gbl & wide) << 8) |       // below-left
+               ((self & ~gb & ~gr & gbr & wide) << 12);       // below-right
   while (pairs != 0u) {
-    int k = findLSB(pairs);
+    uint bit = uint(findLSB(pairs)), k = bit & 3u, kind = bit >> 2;
     pairs &= pairs - 1u;
-    Union(pix, k == 0 ? right : k == 1 ? below : k == 2 ? below_left : below_right);
+    uint u = c0 + k, pix = first + k;
+    uint right_k = row + (u + 1u) % w, left_k = row + (u + w - 1u) % w;
+    Union(pix, kind == 0u ? right_k : kind == 1u ? pix + w : kind == 2u ? left_k + w : right_k + w);
   }
 }
 
@@ -262,7 +342,6 @@ void Merge(uint pix, uint u, uint v) {
 void InitPixel(uint i) {
   uint c = pixel_fused[i];
   pixel_grown[i] = c;
-  pixel_comp[i] = c == kPixGround ? i : kNone;
   sizes[i] = 0u;
   if (c == kPixUnknown) list[atomicAdd(flags[kListLength], 1u)] = i;
 }
@@ -285,8 +364,6 @@ void main() {
     uvec4 c = pixel_fused4[i];
     pixel_grown4[i] = c;
     uint first = 4u * i;
-    pixel_comp4[i] = mix(uvec4(kNone), uvec4(first, first + 1u, first + 2u, first + 3u),
-                         equal(c, uvec4(kPixGround)));
     sizes4[i] = uvec4(0u);
     uvec4 unknown = uvec4(equal(c, uvec4(kPixUnknown)));
     uint n = unknown.x + unknown.y + unknown.z + unknown.w;
@@ -319,7 +396,8 @@ void main() {
   if (mode == 6u) {  // finish, pixels 4i .. 4i + 3
     if (i == 0u) flags[SummaryWord()] = SweepsRun();
     if (i >= pc.count / 4u) return;
-    uvec4 g = pixel_grown4[i], c = pixel_comp4[i];
+    uvec4 g = pixel_grown4[i], c = roots4[i];
+    pixel_comp4[i] = c;
     uvec2 a = Finished(g.x, c.x), b = Finished(g.y, c.y), d = Finished(g.z, c.z),
           e = Finished(g.w, c.w);
     pixel_grown4[i] = uvec4(a.x, b.x, d.x, e.x);
@@ -329,20 +407,35 @@ void main() {
   if (mode == 8u) {  // finish of the last pixels % 4
     uint pix = pc.count / 4u * 4u + i;
     if (pix >= pc.count) return;
-    uvec2 f = Finished(pixel_grown[pix], pixel_comp[pix]);
+    uint c = list[pix];
+    pixel_comp[pix] = c;
+    uvec2 f = Finished(pixel_grown[pix], c);
     pixel_grown[pix] = f.x;
     pixel_label[pix] = f.y;
     return;
   }
-  if (i >= pc.count) return;
-  if (mode == 4u) {  // merge
-    if (!Ground(i)) return;
-    uint v = i / p.width;
-    Merge(i, i - v * p.width, v);
-  } else if (mode == 5u) {  // flatten and count
-    if (!Ground(i)) return;
-    uint root = Find(i);
-    StoreAtomic(pixel_comp[i], root);
-    atomicAdd(sizes[root], 1u);
+  if (mode == 9u || mode == 5u) {  // runs; flatten and count: pixels 4i .. 4i + 3
+    uint first = 4u * i;
+    if (first >= pc.count) return;
+    uvec4 g = uvec4(kPixNonGround);
+    if (first + 4u <= pc.count) {
+      g = pixel_grown4[i];
+    } else {  // the last pixels % 4
+      for (uint k = 0u; first + k < pc.count; ++k) g[k] = pixel_grown[first + k];
+    }
+    uvec4 out4 = mode == 9u ? RunParents(first, g) : Roots(first, g);
+    if (first + 4u <= pc.count) {
+      if (mode == 9u) pixel_comp4[i] = out4;
+      else roots4[i] = out4;
+    } else {
+      for (uint k = 0u; first + k < pc.count; ++k)
+        if (mode == 9u) pixel_comp[first + k] = out4[k];
+        else list[first + k] = out4[k];
+    }
+    return;
+  }
+  if (mode == 4u) {  // merge, pixels 4j .. 4j + 3 of row v
+    uint per_row = (p.width + 3u) / 4u, v = i / per_row;
+    if (v < p.beams) Merge(v, 4u * (i - v * per_row));
   }
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "host/vk/transfer.h"
@@ -25,12 +26,13 @@ enum Mode : uint32_t {
   kInit = 1,
   kList = 2,   // one invocation
   kSweep = 3,  // sweeps 0 .. budget - 1, per list entry, indirect
-  kMerge = 4,
+  kMerge = 4,  // per row and 4 columns
   kFlatten = 5,
   kFinish = 6,
   kSteps = 7,       // per list entry, indirect (sweep 0's workgroup count)
   kFinishTail = 8,  // the last pixels % 4 (kInit and kFinish: quads of pixels)
-  kModes = 9
+  kRuns = 9,        // per quad of pixels, the last pixels % 4 included (as kFlatten)
+  kModes = 10
 };
 }  // namespace
 
@@ -78,9 +80,12 @@ Status GrowStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) con
     const Push push{k, pixels, budget};
     kernel_.RecordIndirect(cmd, *flags_, 4 * 3 * VkDeviceSize(k + 1), &push, kSweep);
   }
-  for (uint32_t mode : {kMerge, kFlatten}) {
+  const uint32_t quads = pixels / 4 + (pixels % 4 != 0);
+  const uint32_t row_quads = beams * ((width + 3) / 4);
+  for (auto [mode, invocations] :
+       {std::pair{kRuns, quads}, {kMerge, row_quads}, {kFlatten, quads}}) {
     cmd.ComputeToCompute();
-    LPIR_VK_RETURN_IF_ERROR(pass(mode, pixels));
+    LPIR_VK_RETURN_IF_ERROR(pass(mode, invocations));
   }
   cmd.ComputeToCompute();
   // At least one invocation: invocation 0 writes the summary word.

@@ -26,7 +26,7 @@ struct GrowBuffers {
   const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel (also the growing state)
   const Buffer* pixel_comp = nullptr;   // out: uint32 component label per pixel, kNone off ground
   const Buffer* pixel_label = nullptr;  // out: uint32 kPix* per pixel (step masks before that)
-  const Buffer* scratch = nullptr;      // uint32 per pixel: the unknown pixels left by sweep 0
+  const Buffer* scratch = nullptr;      // uint32 per pixel: the unknown pixels, then the roots
   const Buffer* sizes = nullptr;        // uint32 per pixel: component sizes
   const Buffer* flags = nullptr;        // GrowStage::FlagWords(max_iters) uint32 (see below)
 };
