@@ -11,7 +11,7 @@
 //     pixel_point (per pixel: the lowest point index among those whose key equals pixel_key).
 // Scratch: 11 the exact list: words 0-2 the indirect dispatch arguments of pass 2, word 3 its
 //     length, then point indices.
-// Pass 0, one invocation per point: column and row of every valid point with the device's float
+// Pass 0, one invocation per kChunk consecutive points: column and row of every valid point with the device's float
 // products (MulFast), point_pixel and atomicMin of the key; a point for which one of them may
 // differ from IEEE's (a subnormal operand, or a product under 2^-125 that the device may flush)
 // goes on the exact list instead. Pass 2, one invocation per listed point: the same with the
@@ -19,10 +19,13 @@
 // equals the pixel's, atomicMin of the index. Both reductions are integer minima,
 // order-independent. (lavapipe runs every branch under a lane mask: with the exact products in
 // pass 0, their integer code cost every point ~4 ms on a KITTI frame; real scans list none.)
-// Column: the reference starts from the previous point's column; here every invocation starts
-// from GuessColumn's polynomial (exact_Div, exact_FloorToInt) and walks to the unique k with
+// Column: the reference starts from the previous point's column; here every point starts from
+// GuessColumn's polynomial (exact_Div, exact_FloorToInt) and walks to the unique k with
 // AngleBelow(p, dir_k) and not AngleBelow(p, dir_{k+1}): the same k, as the predicate is a prefix
-// over k. Row: RowOf's binary search (the reference's RowNear hint finds the same row).
+// over k. (A guess one column off costs a KITTI frame some 3 ms more in walking on lavapipe than
+// the exact division costs.) Row: as the reference's RowNear, the previous point's row of the
+// chunk when it passes both boundary tests (two tests where the binary search takes six; scans
+// come ring by ring), else RowOf's binary search: the same row.
 // Exactness against the CPU (gradual underflow): the raw cloud is read, so a coordinate may be
 // subnormal, and products such as x * sin(phi) or h * |h| may round into the subnormal range.
 // A device may flush those (lavapipe does), so every float the predicates compare is produced by
@@ -61,6 +64,7 @@ const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
 const uint kPointNoise = 2u;
 const uint kListLength = 3u, kListStart = 4u;  // exact_list words (0-2: dispatch arguments)
+const uint kChunk = 32u;  // points per invocation of pass 0 (host/stages/project.h)
 
 // --- float predicates by their bits (no device float op touches a subnormal) ---
 
@@ -193,8 +197,7 @@ bool BoundAbove(float z, uint r2u, uint b) {
   return Greater(s, hh);
 }
 
-uint RowOf(float z, float r2f, uint beams) {
-  uint r2u = floatBitsToUint(r2f);
+uint RowOf(float z, uint r2u, uint beams) {
   uint lo = 0u, hi = beams - 1u;
   while (lo < hi) {
     uint mid = (lo + hi + 1u) >> 1;  // boundary index mid - 1
@@ -204,9 +207,22 @@ uint RowOf(float z, float r2f, uint beams) {
   return lo;
 }
 
+// RowOf with the row of an earlier point of the invocation's chunk as a hint (kNone: none), as
+// the reference's RowNear: the row is the unique v with boundary v - 1 above the point and
+// boundary v not, so a hint that passes both tests is RowOf's answer; else RowOf decides.
+uint RowNear(float z, float r2f, uint beams, uint hint) {
+  uint r2u = floatBitsToUint(r2f);
+  if (hint != kNone && (hint == 0u || BoundAbove(z, r2u, hint - 1u)) &&
+      !(hint + 1u < beams && BoundAbove(z, r2u, hint)))
+    return hint;
+  return RowOf(z, r2u, beams);
+}
+
 // Pass 0 (through MulFast) and pass 2 (MulExact) for valid point i: its pixel and key; in pass 0
-// a point whose products may not be IEEE's goes on the exact list instead.
-void PixelOf(uint i, uint f) {
+// a point whose products may not be IEEE's goes on the exact list instead. `row` is a hint for
+// RowNear (kNone: none), then the point's row when it has one.
+void PixelOf(uint i, uint f, inout uint row) {
+  g_inexact = false;
   vec4 point = xyzi[i];
   uint u = ColumnOf(point.x, point.y, p.width);
   uint v;
@@ -214,14 +230,16 @@ void PixelOf(uint i, uint f) {
     uint r = uint(ring[i]);
     v = p.ring_zero_is_top != 0u ? r : p.beams - 1u - r;
   } else {
-    v = RowOf(point.z, r2[i], p.beams);
+    v = RowNear(point.z, r2[i], p.beams, row);
   }
   if (g_inexact) {
+    row = kNone;
     uint slot = atomicAdd(exact_list[kListLength], 1u);
     exact_list[kListStart + slot] = i;
     atomicMax(exact_list[0], slot / gl_WorkGroupSize.x + 1u);
     return;
   }
+  row = v;
   uint pix = v * p.width + u;
   point_pixel[i] = pix;
   if ((f & kPointNoise) != 0u) return;
@@ -230,20 +248,25 @@ void PixelOf(uint i, uint f) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
+  uint row = kNone;
   if (kPass == 2u) {
     if (i >= exact_list[kListLength]) return;
     i = exact_list[kListStart + i];
-    PixelOf(i, flags[i]);
+    PixelOf(i, flags[i], row);
     return;
   }
-  if (i >= pc.n) return;
-  uint f = flags[i];
-  if (kPass == 0u) {
-    if ((f & kPointValid) == 0u) point_pixel[i] = kNone;
-    else PixelOf(i, f);
-  } else {
-    if ((f & kPointValid) == 0u || (f & kPointNoise) != 0u) return;
-    uint pix = point_pixel[i];
-    if (exact_Key(r2[i]) == pixel_key[pix]) atomicMin(pixel_point[pix], i);
+  if (kPass == 0u) {  // kChunk consecutive points, each row the next one's hint
+    uint end = min(pc.n, (i + 1u) * kChunk);
+    for (uint k = i * kChunk; k < end; ++k) {
+      uint f = flags[k];
+      if ((f & kPointValid) == 0u) point_pixel[k] = kNone;
+      else PixelOf(k, f, row);
+    }
+    return;
   }
+  if (i >= pc.n) return;  // pass 1
+  uint f = flags[i];
+  if ((f & kPointValid) == 0u || (f & kPointNoise) != 0u) return;
+  uint pix = point_pixel[i];
+  if (exact_Key(r2[i]) == pixel_key[pix]) atomicMin(pixel_point[pix], i);
 }

@@ -44,7 +44,7 @@ Status ProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
   cmd.UpdateBuffer(*exact_list_, header, sizeof(header));
   cmd.TransferToCompute();
   const Push push{n};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, n, &push, 0));
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, n / kChunk + (n % kChunk != 0), &push, 0));
   cmd.ComputeToIndirect();
   kernel_.RecordIndirect(cmd, *exact_list_, 0, &push, 2);
   cmd.ComputeToCompute();

@@ -35,6 +35,7 @@ struct ProjectBuffers {
 class ProjectStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
+  static constexpr uint32_t kChunk = 32;  // points per invocation of pass 0 (the shader's)
 
   // The exact list for up to n points: four header words and an index per point.
   static VkDeviceSize ExactListBytes(uint64_t n) { return 4 * (4 + n); }
