@@ -1,5 +1,7 @@
 // Stage 9, back-project (paper III-D.2): the GPU twin of reference_cpu/back_project.cpp, same
-// values. One invocation per point i < n (push constant).
+// values. One invocation per four points 4j .. 4j + 3 (n, the points, a push constant), read
+// and written as vectors (on a CPU driver every buffer access is a loop over the SIMD lanes, and
+// one uvec4 access costs about a third of four), the last n % 4 one by one.
 // In: binding 0 Params (uniform), 1 flags, 2 point_pixel, 3 pixel_point, 4 pixel_label (per
 //     pixel), 5 f_range, 6 f_height (per pixel, floats), 7 r2, 8 zt (per point, floats), 9 coarse
 //     (per point).
@@ -12,7 +14,7 @@
 // gates: dr = |exact_Sqrt(r2) - f_range[pix]| <= bp_range_gate and
 // dz = |zt - f_height[pix]| <= bp_height_gate (each a rounded float op, `precise`). The reference
 // evaluates the cheap conditions first; the boolean is the same in any order (no side effects).
-// No ties: each point is its own invocation.
+// No ties: every point has its own two output words.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -33,6 +35,13 @@ layout(std430, set = 0, binding = 8) readonly buffer Zt { float zt[]; };
 layout(std430, set = 0, binding = 9) readonly buffer Coarse { uint coarse[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer Label { uint label[]; };
 layout(std430, set = 0, binding = 11) writeonly buffer Why { uint why[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Flags4 { uvec4 flags4[]; };
+layout(std430, set = 0, binding = 2) readonly buffer PointPixel4 { uvec4 point_pixel4[]; };
+layout(std430, set = 0, binding = 7) readonly buffer R2x4 { vec4 r2_4[]; };
+layout(std430, set = 0, binding = 8) readonly buffer Zt4 { vec4 zt4[]; };
+layout(std430, set = 0, binding = 9) readonly buffer Coarse4 { uvec4 coarse4[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer Label4 { uvec4 label4[]; };
+layout(std430, set = 0, binding = 11) writeonly buffer Why4 { uvec4 why4[]; };
 
 layout(push_constant) uniform Push { uint n; } pc;
 
@@ -44,27 +53,62 @@ const uint kWhyGround = 1u;
 const uint kWhyInvalid = 2u;
 const uint kWhyNoise = 3u;
 
-// One write of each output (lavapipe runs every branch under a lane mask: a write in the early
+// Point i's label and why, from its flag, pixel, coarse label, r2 and zt. The outputs are written
+// once, after the branches (lavapipe runs every branch under a lane mask: a write in an early
 // return would be paid by every point).
-void main() {
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.n) return;
-  uint flag = flags[i];
+uvec2 Classify(uint i, uint flag, uint pix, uint coarse_i, float r2_i, float zt_i) {
   bool counted = (flag & (kPointValid | kPointNoise)) == kPointValid;  // valid, not noise
   bool ground = false;
   if (counted) {
-    uint pix = point_pixel[i];
     ground = pixel_label[pix] == kPixGround;
-    if (ground && pixel_point[pix] != i && coarse[i] == 0u) {
-      precise float range = exact_Sqrt(r2[i]);
+    if (ground && pixel_point[pix] != i && coarse_i == 0u) {
+      precise float range = exact_Sqrt(r2_i);
       precise float dr = abs(range - f_range[pix]);
-      precise float dz = abs(zt[i] - f_height[pix]);
+      precise float dz = abs(zt_i - f_height[pix]);
       ground = dr <= p.bp_range_gate && dz <= p.bp_height_gate;
     }
   }
-  label[i] = ground ? 1u : 0u;
-  why[i] = ground                       ? kWhyGround
-           : counted                    ? kWhyNonGround
-           : (flag & kPointValid) != 0u ? kWhyNoise
-                                        : kWhyInvalid;
+  uint reason = ground                       ? kWhyGround
+                : counted                    ? kWhyNonGround
+                : (flag & kPointValid) != 0u ? kWhyNoise
+                                             : kWhyInvalid;
+  return uvec2(ground ? 1u : 0u, reason);
+}
+
+void main() {
+  uint j = gl_GlobalInvocationID.x, first = 4u * j;
+  if (first >= pc.n) return;
+  bool whole = first + 4u <= pc.n;
+  uvec4 flag = uvec4(0u), pix = uvec4(0u), c = uvec4(0u);  // past n: invalid, never read
+  vec4 r = vec4(0.0), z = vec4(0.0);
+  if (whole) {
+    flag = flags4[j];
+    pix = point_pixel4[j];
+    c = coarse4[j];
+    r = r2_4[j];
+    z = zt4[j];
+  } else {
+    for (uint k = 0u; first + k < pc.n; ++k) {
+      uint i = first + k;
+      flag[k] = flags[i];
+      pix[k] = point_pixel[i];
+      c[k] = coarse[i];
+      r[k] = r2[i];
+      z[k] = zt[i];
+    }
+  }
+  uvec2 a = Classify(first, flag.x, pix.x, c.x, r.x, z.x);
+  uvec2 b = Classify(first + 1u, flag.y, pix.y, c.y, r.y, z.y);
+  uvec2 d = Classify(first + 2u, flag.z, pix.z, c.z, r.z, z.z);
+  uvec2 e = Classify(first + 3u, flag.w, pix.w, c.w, r.w, z.w);
+  uvec4 out_label = uvec4(a.x, b.x, d.x, e.x), out_why = uvec4(a.y, b.y, d.y, e.y);
+  if (whole) {
+    label4[j] = out_label;
+    why4[j] = out_why;
+  } else {
+    for (uint k = 0u; first + k < pc.n; ++k) {
+      label[first + k] = out_label[k];
+      why[first + k] = out_why[k];
+    }
+  }
 }

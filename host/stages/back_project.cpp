@@ -33,7 +33,7 @@ Result<BackProjectStage> BackProjectStage::Create(const Device& device,
 }
 
 Status BackProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
-  return kernel_.Record(cmd, n, &n);
+  return kernel_.Record(cmd, n / 4 + (n % 4 != 0), &n);  // four points an invocation
 }
 
 Status RunBackProject(const Context& context, const Params& p, Frame& f, BackProjectWords* words,
