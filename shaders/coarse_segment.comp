@@ -168,27 +168,33 @@ void SeedMode(uint c) {
 
 // ---- per-point helpers -----------------------------------------------------------------------
 
-// The CPU's seed test for point i of cell c (mode 0: never).
-// Mode 2 (CPU: z_t - +inf <= 0) by bits, so nothing depends on the device's infinities: a seed
-// unless z_t is +inf or NaN.
-bool IsSeed(uint i, uint c) {
-  uint mode = cell_seed_mode[c];
-  if (mode == 0u) return false;
-  if (mode == 2u) {
-    uint u = floatBitsToUint(zt[i]);
-    return u != 0x7F800000u && (u & 0x7FFFFFFFu) <= 0x7F800000u;
-  }
+// A cell's seed test, as pass 0 left it: the mode and (h, lambda). The point passes read it once
+// per run of points in one cell (on a CPU driver every buffer access is a loop over the SIMD
+// lanes: loads are most of a pass's cost).
+struct SeedTest {
+  uint mode;
+  float h, lam;
+};
+SeedTest SeedTestOf(uint c) {
   uvec2 test = scratch4[(Base(c) + kTestH) / 4u].zw;  // kTestH = 22, kTestLambda = 23
-  float h = uintBitsToFloat(test.x);
-  float lam = uintBitsToFloat(test.y);
-  precise float dz = zt[i] - h;
-  return dz <= lam;
+  return SeedTest(cell_seed_mode[c], uintBitsToFloat(test.x), uintBitsToFloat(test.y));
 }
 
-ivec3 Mm(uint i) {
-  vec2 xy = xyzi[i].xy;  // one load (a loop over the SIMD lanes on a CPU driver), not two
+// The CPU's seed test for a point with z_t = z of a cell with test t (mode 0: never).
+// Mode 2 (CPU: z_t - +inf <= 0) by bits, so nothing depends on the device's infinities: a seed
+// unless z_t is +inf or NaN.
+bool IsSeed(float z, SeedTest t) {
+  uint u = floatBitsToUint(z);
+  precise float dz = z - t.h;
+  return t.mode == 2u ? u != 0x7F800000u && (u & 0x7FFFFFFFu) <= 0x7F800000u
+                      : t.mode != 0u && dz <= t.lam;
+}
+
+// Point i's coordinates in mm (z: its z_t).
+ivec3 Mm(uint i, float z) {
+  vec2 xy = xyzi[i].xy;  // one load, not two
   return ivec3(int(exact_ToFixed(xy.x, kMm)), int(exact_ToFixed(xy.y, kMm)),
-               int(exact_ToFixed(zt[i], kMm)));
+               int(exact_ToFixed(z, kMm)));
 }
 
 // ---- pass 2: the plane -----------------------------------------------------------------------
@@ -313,11 +319,11 @@ bool Ground(uint c) {
   return cell_seed_mode[c] != 0u && GroundPlane(cell_plane4[2u * c], cell_plane4[2u * c + 1u]);
 }
 
-// |n . q - n . mean| in mm * 2^14 (int64) of point i to the plane a, b.
-int64_t Distance(uint i, ivec4 a, ivec4 b) {
+// |n . q - n . mean| in mm * 2^14 (int64) of point i (z_t = z) to the plane a, b.
+int64_t Distance(uint i, float z, ivec4 a, ivec4 b) {
   int64_t nx = int64_t(a.x), ny = int64_t(a.y), nz = int64_t(a.z);
   int64_t offset = nx * int64_t(a.w) + ny * int64_t(b.x) + nz * int64_t(b.y);
-  ivec3 q = Mm(i);
+  ivec3 q = Mm(i, z);
   int64_t d = nx * int64_t(q.x) + ny * int64_t(q.y) + nz * int64_t(q.z) - offset;
   return d < int64_t(0) ? -d : d;
 }
@@ -334,17 +340,24 @@ void FlushSeedSums(uint c, uint64_t s[10]) {
 // Pass 1 over points first .. first + kChunk - 1.
 void SeedSums(uint first) {
   uint end = min(first + kChunk, pc.count);
-  uint cur = kNone;
+  uint cur = kNone, seen = kNone;  // the cell of the sums s, the cell of the test t
+  SeedTest t = SeedTest(0u, 0.0, 0.0);
   uint64_t s[10];
   for (uint i = first; i < end; ++i) {
     uint c = point_cell[i];
-    if (c == kNone || !IsSeed(i, c)) continue;
+    if (c == kNone) continue;
+    if (c != seen) {
+      seen = c;
+      t = SeedTestOf(c);
+    }
+    float zf = zt[i];
+    if (!IsSeed(zf, t)) continue;
     if (c != cur) {
       if (cur != kNone) FlushSeedSums(cur, s);
       cur = c;
       for (uint k = 0u; k < 10u; ++k) s[k] = uint64_t(0);
     }
-    ivec3 q = Mm(i);
+    ivec3 q = Mm(i, zf);
     int64_t x = int64_t(q.x), y = int64_t(q.y), z = int64_t(q.z);
     s[0] += uint64_t(1);
     s[1] += uint64_t(x);
@@ -363,19 +376,29 @@ void SeedSums(uint first) {
 // Pass 3 over points first .. first + kChunk - 1.
 void DistanceSums(uint first) {
   uint end = min(first + kChunk, pc.count);
-  uint cur = kNone;
+  uint cur = kNone, seen = kNone;  // the cell of sum, the cell of t, a, b and ground
+  SeedTest t = SeedTest(0u, 0.0, 0.0);
+  ivec4 a = ivec4(0), b = ivec4(0);
+  bool ground = false;
   uint64_t sum = uint64_t(0);
   for (uint i = first; i < end; ++i) {
     uint c = point_cell[i];
-    if (c == kNone || cell_seed_mode[c] == 0u) continue;
-    ivec4 a = cell_plane4[2u * c], b = cell_plane4[2u * c + 1u];
-    if (!GroundPlane(a, b) || !IsSeed(i, c)) continue;
+    if (c == kNone) continue;
+    if (c != seen) {
+      seen = c;
+      t = SeedTestOf(c);
+      a = cell_plane4[2u * c];
+      b = cell_plane4[2u * c + 1u];
+      ground = t.mode != 0u && GroundPlane(a, b);
+    }
+    float z = zt[i];
+    if (!ground || !IsSeed(z, t)) continue;
     if (c != cur) {
       if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
       cur = c;
       sum = uint64_t(0);
     }
-    sum += uint64_t(Distance(i, a, b));
+    sum += uint64_t(Distance(i, z, a, b));
   }
   if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
 }
@@ -403,7 +426,7 @@ void Classify(uint first) {
     }
     uint label = 0u;
     if (ground) {
-      ivec3 q = Mm(i);
+      ivec3 q = Mm(i, zt[i]);
       int64_t d = nx * int64_t(q.x) + ny * int64_t(q.y) + nz * int64_t(q.z) - offset;
       label = (d < int64_t(0) ? -d : d) <= threshold ? 1u : 0u;
     }
