@@ -1,7 +1,8 @@
 // Stage 5, feature maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
 // reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the
 // specialization constant kPass (one pipeline each), with a compute -> compute barrier between
-// them; pass 0 one invocation per pixel < pixels (push constant), pixel = v * width + u;
+// them; pass 0 one invocation per pixel < pixels (push constant), pixel = v * width + u, or
+// instead, when the width is a multiple of 4, pass 2 one per quad of pixels (pixels / 4 of them);
 // pass 1 one per run of kRun pixels of a row (its 3x3 window's columns sliding along the run,
 // each column's three pixels loaded once).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
@@ -11,7 +12,7 @@
 // Scratch: 14 pixel_pack, per pixel (filled, range, intensity, height bits), written by pass 0
 //     beside the four maps: pass 1 reads a pixel with one vector load instead of four (on a CPU
 //     driver each buffer access is a loop over the SIMD lanes, whatever its width).
-// Pass 0, measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height z_t of
+// Pass 0 (or 2), measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height z_t of
 //   its winning point; an empty pixel whose left and right neighbours (columns wrap) are measured
 //   and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The neighbours'
 //   values are recomputed from pixel_point and the per-point buffers (read-only), so no
@@ -49,6 +50,12 @@ layout(std430, set = 0, binding = 11) writeonly buffer EdgeR { float f_edge_r[];
 layout(std430, set = 0, binding = 12) writeonly buffer VarZ { float f_varz[]; };
 layout(std430, set = 0, binding = 13) writeonly buffer VarI { float f_vari[]; };
 layout(std430, set = 0, binding = 14) buffer PixelPack { uvec4 pixel_pack[]; };
+// Pass 2's views, four pixels at a time.
+layout(std430, set = 0, binding = 1) readonly buffer PixelPoint4 { uvec4 pixel_point4[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer Filled4 { uvec4 pixel_filled4[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer Range4 { vec4 f_range4[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer InMap4 { vec4 f_inten4[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer Height4 { vec4 f_height4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 
@@ -70,16 +77,18 @@ bool AbsPositive(float x) {
   return m != 0u && m <= 0x7F800000u;
 }
 
+// A pixel's maps from its winning point i, or when it has none from the winning points `left`
+// and `right` of its neighbours (kNone: none).
 // (Two square roots in the code, not three, and one load of each value: lavapipe runs both
 // branches of every `if` under a lane mask, so the measured pixel's values are read where the
 // empty pixel's left neighbour's are.)
-void MeasureAndFill(uint pix) {
-  uint w = p.width;
-  uint v = pix / w, u = pix - v * w;
-  uint i = pixel_point[pix];
-  uint row = v * w;
-  uint il = i != kNone ? i : pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
-  uint ir = i != kNone ? kNone : pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
+struct Maps {
+  uint filled;
+  float range, in_map, height;
+};
+Maps Fill(uint i, uint left, uint right) {
+  uint il = i != kNone ? i : left;
+  uint ir = i != kNone ? kNone : right;
   float rl = 0.0, il_in = 0.0, il_z = 0.0;  // the measured point's, or the left neighbour's
   if (il != kNone) {
     rl = exact_Sqrt(r2[il]);
@@ -103,13 +112,49 @@ void MeasureAndFill(uint pix) {
       height = (il_z + zt[ir]) * 0.5;
     }
   }
+  return Maps(filled, range, in_map, height);
+}
+
+uvec4 Packed(Maps m) {
+  return uvec4(m.filled, floatBitsToUint(m.range), floatBitsToUint(m.in_map),
+               floatBitsToUint(m.height));
+}
+
+// Pass 0, any width: pixel pix.
+void MeasureAndFill(uint pix) {
+  uint w = p.width;
+  uint v = pix / w, u = pix - v * w, row = v * w;
+  uint i = pixel_point[pix];
+  uint left = i != kNone ? kNone : pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
+  uint right = i != kNone ? kNone : pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
+  Maps m = Fill(i, left, right);
   // One write of each output (as in pass 1).
-  pixel_filled[pix] = filled;
-  f_range[pix] = range;
-  f_inten[pix] = in_map;
-  f_height[pix] = height;
-  pixel_pack[pix] = uvec4(filled, floatBitsToUint(range), floatBitsToUint(in_map),
-                          floatBitsToUint(height));
+  pixel_filled[pix] = m.filled;
+  f_range[pix] = m.range;
+  f_inten[pix] = m.in_map;
+  f_height[pix] = m.height;
+  pixel_pack[pix] = Packed(m);
+}
+
+// Pass 2, a width that is a multiple of 4: pixels 4e .. 4e + 3 (one row), their winning points
+// one vector load, the maps four vector stores (on a CPU driver each buffer access is a loop over
+// the SIMD lanes, and one vector access costs about a third of four).
+void MeasureAndFillQuad(uint e) {
+  uint w = p.width, first = 4u * e;
+  uint v = first / w, u0 = first - v * w, row = v * w;
+  uvec4 i = pixel_point4[e];
+  uint left = pixel_point[row + (u0 == 0u ? w - 1u : u0 - 1u)];
+  uint right = pixel_point[row + (u0 + 4u == w ? 0u : u0 + 4u)];
+  Maps a = Fill(i.x, left, i.y), b = Fill(i.y, i.x, i.z), c = Fill(i.z, i.y, i.w),
+       d = Fill(i.w, i.z, right);
+  pixel_filled4[e] = uvec4(a.filled, b.filled, c.filled, d.filled);
+  f_range4[e] = vec4(a.range, b.range, c.range, d.range);
+  f_inten4[e] = vec4(a.in_map, b.in_map, c.in_map, d.in_map);
+  f_height4[e] = vec4(a.height, b.height, c.height, d.height);
+  pixel_pack[first] = Packed(a);
+  pixel_pack[first + 1u] = Packed(b);
+  pixel_pack[first + 2u] = Packed(c);
+  pixel_pack[first + 3u] = Packed(d);
 }
 
 // A pixel as pass 0 packed it.
@@ -208,7 +253,8 @@ void FeaturesRun(uint run) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.pixels) return;  // pass 1: i is a run, and pc.pixels the runs' count
+  if (i >= pc.pixels) return;  // pass 1: i is a run, pass 2 a quad, and pc.pixels their count
   if (kPass == 0u) MeasureAndFill(i);
+  else if (kPass == 2u) MeasureAndFillQuad(i);
   else FeaturesRun(i);
 }

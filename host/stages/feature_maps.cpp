@@ -34,7 +34,7 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
-  desc.passes = 2;
+  desc.passes = 3;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -46,8 +46,9 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
 
 Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
   const uint32_t pixels = width * beams, runs = (width + kRun - 1) / kRun * beams;
-  const Push measure{pixels}, features{runs};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, pixels, &measure, 0));
+  const Push measure{width % 4 == 0 ? pixels / 4 : pixels}, features{runs};
+  // Pass 2 measures four pixels an invocation where no quad straddles rows, pass 0 one.
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, measure.pixels, &measure, width % 4 == 0 ? 2 : 0));
   cmd.ComputeToCompute();
   return kernel_.Record(cmd, runs, &features, 1);
 }
