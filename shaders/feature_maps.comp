@@ -12,11 +12,11 @@
 // Scratch: 14 pixel_pack, per pixel (filled, range, intensity, height bits), written by pass 0
 //     beside the four maps: pass 1 reads a pixel with one vector load instead of four (on a CPU
 //     driver each buffer access is a loop over the SIMD lanes, whatever its width).
-// Pass 0 (or 2), measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height z_t of
-//   its winning point; an empty pixel whose left and right neighbours (columns wrap) are measured
-//   and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The neighbours'
-//   values are recomputed from pixel_point and the per-point buffers (read-only), so no
-//   invocation reads what another one writes in this pass.
+// Pass 0 (or 2), measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height
+//   z_t of its winning point; an empty pixel whose left and right neighbours (columns wrap) are
+//   measured and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The
+//   neighbours' values are recomputed from pixel_point and the per-point buffers (read-only), so
+//   no invocation reads what another one writes in this pass.
 // Pass 1, on measured and filled pixels (0 everywhere else): slope = Div(|z(v+1) - z|,
 //   |r(v+1) - r|), -1 when the pixel below is empty (or absent) or the ranges are equal; edge_l =
 //   |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when that neighbour is empty); var_z, var_i over the

@@ -11,14 +11,14 @@
 //     pixel_point (per pixel: the lowest point index among those whose key equals pixel_key).
 // Scratch: 11 the exact list: words 0-2 the indirect dispatch arguments of pass 2, word 3 its
 //     length, then point indices.
-// Pass 0, one invocation per kChunk consecutive points: column and row of every valid point with the device's float
-// products (MulFast), point_pixel and atomicMin of the key; a point for which one of them may
-// differ from IEEE's (a subnormal operand, or a product under 2^-125 that the device may flush)
-// goes on the exact list instead. Pass 2, one invocation per listed point: the same with the
-// products by integer arithmetic (MulExact). Pass 1: among valid non-noise points whose key
-// equals the pixel's, atomicMin of the index. Both reductions are integer minima,
-// order-independent. (lavapipe runs every branch under a lane mask: with the exact products in
-// pass 0, their integer code cost every point ~4 ms on a KITTI frame; real scans list none.)
+// Pass 0, one invocation per kChunk consecutive points: column and row of every valid point with
+// the device's float products (MulFast), point_pixel and atomicMin of the key; a point for which
+// one of them may differ from IEEE's (a subnormal operand, or a product under 2^-125 that the
+// device may flush) goes on the exact list instead. Pass 2, one invocation per listed point: the
+// same with the products by integer arithmetic (MulExact). Pass 1: among valid non-noise points
+// whose key equals the pixel's, atomicMin of the index. Both reductions are integer minima,
+// order-independent. (lavapipe runs every branch under a lane mask: with the exact products in pass
+// 0, their integer code cost every point ~4 ms on a KITTI frame; real scans list none.)
 // Column: the reference starts from the previous point's column; here every point starts from
 // GuessColumn's polynomial (exact_Div, exact_FloorToInt) and walks to the unique k with
 // AngleBelow(p, dir_k) and not AngleBelow(p, dir_{k+1}): the same k, as the predicate is a prefix
