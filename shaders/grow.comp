@@ -417,20 +417,21 @@ void main() {
   if (mode == 9u || mode == 5u) {  // runs; flatten and count: pixels 4i .. 4i + 3
     uint first = 4u * i;
     if (first >= pc.count) return;
-    uvec4 g = uvec4(kPixNonGround);
-    if (first + 4u <= pc.count) {
-      g = pixel_grown4[i];
-    } else {  // the last pixels % 4
+    bool whole = first + 4u <= pc.count;  // else the last pixels % 4, one by one
+    uvec4 g = uvec4(kPixNonGround);        // past the image: never ground
+    if (whole) g = pixel_grown4[i];
+    else
       for (uint k = 0u; first + k < pc.count; ++k) g[k] = pixel_grown[first + k];
-    }
-    uvec4 out4 = mode == 9u ? RunParents(first, g) : Roots(first, g);
-    if (first + 4u <= pc.count) {
-      if (mode == 9u) pixel_comp4[i] = out4;
-      else roots4[i] = out4;
+    if (mode == 9u) {
+      uvec4 parent = RunParents(first, g);
+      if (whole) pixel_comp4[i] = parent;
+      else
+        for (uint k = 0u; first + k < pc.count; ++k) pixel_comp[first + k] = parent[k];
     } else {
-      for (uint k = 0u; first + k < pc.count; ++k)
-        if (mode == 9u) pixel_comp[first + k] = out4[k];
-        else list[first + k] = out4[k];
+      uvec4 root = Roots(first, g);
+      if (whole) roots4[i] = root;
+      else
+        for (uint k = 0u; first + k < pc.count; ++k) list[first + k] = root[k];
     }
     return;
   }

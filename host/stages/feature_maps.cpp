@@ -46,9 +46,10 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
 
 Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
   const uint32_t pixels = width * beams, runs = (width + kRun - 1) / kRun * beams;
-  const Push measure{width % 4 == 0 ? pixels / 4 : pixels}, features{runs};
   // Pass 2 measures four pixels an invocation where no quad straddles rows, pass 0 one.
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, measure.pixels, &measure, width % 4 == 0 ? 2 : 0));
+  const bool quads = width % 4 == 0;
+  const Push measure{quads ? pixels / 4 : pixels}, features{runs};
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, measure.pixels, &measure, quads ? 2 : 0));
   cmd.ComputeToCompute();
   return kernel_.Record(cmd, runs, &features, 1);
 }

@@ -47,9 +47,10 @@ class FeatureMapsStage {
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
 
-  // Records the measure-and-fill pass over the width x beams image (one invocation per pixel), a
-  // compute -> compute barrier and the features pass (one invocation per kRun pixels of a row),
-  // with no barrier before or after (the caller orders it with the stages around).
+  // Records the measure-and-fill pass over the width x beams image (one invocation per four
+  // pixels when the width is a multiple of 4, else per pixel), a compute -> compute barrier and
+  // the features pass (one invocation per kRun pixels of a row), with no barrier before or after
+  // (the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
 
  private:
