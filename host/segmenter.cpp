@@ -84,6 +84,11 @@ void Segmenter::CheckCloud(const Cloud& cloud) const {
 const Frame& Segmenter::Segment(const Cloud& cloud, FrameTimes* times) {
   if (!pending_.empty())
     throw std::logic_error("Segment called with frames pending: Collect them first");
+  if (backend_ == Backend::kCpu) {  // straight into the frame returned: one set of buffers, reused
+    CheckCloud(cloud);
+    RunReference(cloud, params_, tables_, frame_, times);
+    return frame_;
+  }
   Submit(cloud);
   return Collect(times);
 }
