@@ -7,8 +7,8 @@
 // Subnormal inputs (x, y, z, intensity) and outputs (zt, r2, inten) are flushed to zero.
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
 // sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
-#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
@@ -17,13 +17,51 @@ namespace lpir {
 namespace {
 
 constexpr float kMaxIntensity = 10000.0f;  // shaders/prepare.comp: the same bound
+constexpr float kMinNormal = std::numeric_limits<float>::min();
 
-// |bits| - 1 is below 0x7FFFFF exactly for subnormals (zero wraps to the largest value), so the
-// minimum over several values tells whether any is subnormal, with one branch that real scans
-// never take.
-inline uint32_t SubKey(float f) { return (exact::Bits(f) & 0x7FFFFFFFu) - 1u; }
-inline bool AnySubnormal(uint32_t a, uint32_t b, uint32_t c, uint32_t d = ~0u) {
-  return std::min(std::min(a, b), std::min(c, d)) < 0x007FFFFFu;
+// The tests of exact::Ftz and std::isfinite in float operations, which the compiler vectorises:
+// a subnormal becomes the zero of its sign; f - f is 0 exactly when f is finite.
+inline float Flush(float f) { return std::fabs(f) < kMinNormal ? std::copysign(0.0f, f) : f; }
+inline bool Finite(float f) { return f - f == 0.0f; }
+
+// Every test of every point is computed and the outputs selected by the validity, without a
+// branch, so the compiler turns the loop into vector code. Ftz is the identity on all but
+// subnormals, so flushing every input and output is the rule above.
+template <bool kRing>
+void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
+  const uint32_t n = f.n;
+  const float* __restrict xyzi = cloud.xyzi.data();
+  const int32_t* __restrict ring = cloud.ring.data();
+  uint32_t* __restrict flags_out = f.flags.data();
+  float* __restrict zt_out = f.zt.data();
+  float* __restrict r2_out = f.r2.data();
+  float* __restrict inten_out = f.inten.data();
+  const int32_t beams = int32_t(p.beams);
+  const float min_range2 = p.min_range2, max_range2 = p.max_range2, k_xz = p.k_xz, k_yz = p.k_yz;
+  const float scale = p.intensity_scale, h_noise = p.h_noise, i_noise = p.i_noise;
+  for (size_t i = 0; i < n; ++i) {  // size_t: 4 * i must not wrap, or no vectors
+    const float x = Flush(xyzi[4 * i]), y = Flush(xyzi[4 * i + 1]);
+    const float z = Flush(xyzi[4 * i + 2]), in = Flush(xyzi[4 * i + 3]);
+    const float xx = x * x, yy = y * y;
+    const float r2 = xx + yy;
+    const float zz = z * z;
+    const float tx = k_xz * x, ty = k_yz * y;
+    const float tilt = tx + ty;
+    const float zt = Flush(z - tilt);  // eq. 3
+    const float scaled = in * scale;
+    const float low = scaled < -kMaxIntensity ? -kMaxIntensity : scaled;  // std::max(scaled, -k)
+    const float inten = Flush(kMaxIntensity < low ? kMaxIntensity : low);  // std::min(low, k)
+    // |z| beyond the sensor's range is garbage; NaN fails every comparison.
+    bool valid = Finite(x) & Finite(y) & Finite(z) & Finite(in) &
+                 !((x == 0.0f) & (y == 0.0f) & (z == 0.0f)) & (r2 >= min_range2) &
+                 (r2 <= max_range2) & (zz <= max_range2);
+    if constexpr (kRing) valid &= (ring[i] >= 0) & (ring[i] < beams);
+    const uint32_t noise = (zt < h_noise) & (inten < i_noise) ? kPointNoise : 0u;
+    flags_out[i] = valid ? kPointValid | noise : 0u;
+    zt_out[i] = valid ? zt : 0.0f;
+    r2_out[i] = valid ? Flush(r2) : 0.0f;
+    inten_out[i] = valid ? inten : 0.0f;
+  }
 }
 
 }  // namespace
@@ -35,39 +73,8 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   f.zt.resize(n);
   f.r2.resize(n);
   f.inten.resize(n);
-  const bool has_ring = !cloud.ring.empty();
-  for (uint32_t i = 0; i < n; ++i) {
-    f.flags[i] = 0u, f.zt[i] = 0.0f, f.r2[i] = 0.0f, f.inten[i] = 0.0f;  // until proven valid
-    float x = cloud.xyzi[4 * i], y = cloud.xyzi[4 * i + 1], z = cloud.xyzi[4 * i + 2];
-    float in = cloud.xyzi[4 * i + 3];
-    // Subnormal inputs and outputs are flushed to zero, so a device that flushes them agrees
-    // (Vulkan leaves denormal handling to the device). A valid point has r2 >= min_range2, so no
-    // intermediate underflow can reach an output otherwise.
-    if (AnySubnormal(SubKey(x), SubKey(y), SubKey(z), SubKey(in)))
-      x = exact::Ftz(x), y = exact::Ftz(y), z = exact::Ftz(z), in = exact::Ftz(in);
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) continue;
-    if (x == 0.0f && y == 0.0f && z == 0.0f) continue;
-    if (has_ring && (cloud.ring[i] < 0 || uint32_t(cloud.ring[i]) >= p.beams)) continue;
-    const float xx = x * x, yy = y * y;
-    const float r2 = xx + yy;
-    if (!(r2 >= p.min_range2) || !(r2 <= p.max_range2)) continue;
-    const float zz = z * z;
-    if (!(zz <= p.max_range2)) continue;  // |z| beyond the sensor's range: garbage
-    const float tx = p.k_xz * x, ty = p.k_yz * y;
-    const float tilt = tx + ty;
-    float zt = z - tilt;  // eq. 3
-    float inten = in * p.intensity_scale;
-    inten = std::min(std::max(inten, -kMaxIntensity), kMaxIntensity);
-    float r2_out = r2;
-    if (AnySubnormal(SubKey(zt), SubKey(r2), SubKey(inten)))
-      zt = exact::Ftz(zt), r2_out = exact::Ftz(r2), inten = exact::Ftz(inten);
-    uint32_t flags = kPointValid;
-    if (zt < p.h_noise && inten < p.i_noise) flags |= kPointNoise;
-    f.flags[i] = flags;
-    f.zt[i] = zt;
-    f.r2[i] = r2_out;
-    f.inten[i] = inten;
-  }
+  if (cloud.ring.empty()) PrepareAll<false>(cloud, p, f);
+  else PrepareAll<true>(cloud, p, f);
 }
 
 }  // namespace lpir
