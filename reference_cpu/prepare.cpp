@@ -22,7 +22,7 @@ constexpr float kMinNormal = std::numeric_limits<float>::min();
 // The tests of exact::Ftz and std::isfinite in float operations, which the compiler vectorises:
 // a subnormal becomes the zero of its sign; f - f is 0 exactly when f is finite.
 inline float Flush(float f) { return std::fabs(f) < kMinNormal ? std::copysign(0.0f, f) : f; }
-inline bool Finite(float f) { return f - f == 0.0f; }
+inline uint32_t Finite(float f) { return uint32_t(f - f == 0.0f); }
 
 // Every test of every point is computed and the outputs selected by the validity, without a
 // branch, so the compiler turns the loop into vector code. Ftz is the identity on all but
@@ -51,13 +51,15 @@ void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
     const float scaled = in * scale;
     const float low = scaled < -kMaxIntensity ? -kMaxIntensity : scaled;  // std::max(scaled, -k)
     const float inten = Flush(kMaxIntensity < low ? kMaxIntensity : low);  // std::min(low, k)
-    // |z| beyond the sensor's range is garbage; NaN fails every comparison.
-    bool valid = Finite(x) & Finite(y) & Finite(z) & Finite(in) &
-                 !((x == 0.0f) & (y == 0.0f) & (z == 0.0f)) & (r2 >= min_range2) &
-                 (r2 <= max_range2) & (zz <= max_range2);
-    if constexpr (kRing) valid &= (ring[i] >= 0) & (ring[i] < beams);
-    const uint32_t noise = (zt < h_noise) & (inten < i_noise) ? kPointNoise : 0u;
-    flags_out[i] = valid ? kPointValid | noise : 0u;
+    // 0 or 1 each, combined with & so that every test is evaluated (no branch); |z| beyond the
+    // sensor's range is garbage; NaN fails every comparison.
+    const uint32_t finite = Finite(x) & Finite(y) & Finite(z) & Finite(in);
+    const uint32_t origin = uint32_t(x == 0.0f) & uint32_t(y == 0.0f) & uint32_t(z == 0.0f);
+    uint32_t valid = finite & (origin ^ 1u) & uint32_t(r2 >= min_range2) &
+                     uint32_t(r2 <= max_range2) & uint32_t(zz <= max_range2);
+    if constexpr (kRing) valid &= uint32_t(ring[i] >= 0) & uint32_t(ring[i] < beams);
+    const uint32_t noise = uint32_t(zt < h_noise) & uint32_t(inten < i_noise);
+    flags_out[i] = valid ? kPointValid | noise * kPointNoise : 0u;
     zt_out[i] = valid ? zt : 0.0f;
     r2_out[i] = valid ? Flush(r2) : 0.0f;
     inten_out[i] = valid ? inten : 0.0f;
