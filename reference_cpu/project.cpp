@@ -17,6 +17,7 @@
 //   evidence); invalid points get neither.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
@@ -27,12 +28,15 @@ namespace {
 // True when the point's angle is in the upper half-plane (0, pi].
 inline bool Upper(float x, float y) { return y > 0.0f || (y == 0.0f && x < 0.0f); }
 
-// atan2(py, px) < atan2(by, bx), exactly as the shader evaluates it.
-inline bool AngleBelow(float px, float py, float bx, float by) {
-  const bool up = Upper(px, py), bup = Upper(bx, by);
+// atan2(py, px) < atan2(by, bx), exactly as the shader evaluates it; up and bup are the two
+// angles' half-planes (Upper).
+inline bool AngleBelow(float px, float py, bool up, float bx, float by, bool bup) {
   if (up != bup) return bup;
   const float a = px * by, b = py * bx;
   return a - b > 0.0f;
+}
+inline bool AngleBelow(float px, float py, float bx, float by) {
+  return AngleBelow(px, py, Upper(px, py), bx, by, Upper(bx, by));
 }
 
 }  // namespace
@@ -70,25 +74,34 @@ uint32_t ColumnOf(float x, float y, const float* dir, uint32_t width) {
 
 namespace {
 
-// P(k) of ColumnOf for k in [0, width]: true for k = 0 ("none"), false for k = width.
-inline bool Below(float x, float y, const float* dir, uint32_t width, uint32_t k) {
+// The column boundaries and their half-planes, read by Below.
+struct Columns {
+  const float* dir;
+  const uint8_t* upper;  // Upper of each boundary direction
+  uint32_t width;
+};
+
+// P(k) of ColumnOf for k in [0, width]: true for k = 0 ("none"), false for k = width. up is
+// Upper(x, y).
+inline bool Below(float x, float y, bool up, const Columns& c, uint32_t k) {
   if (k == 0) return true;
-  if (k >= width) return false;
-  return AngleBelow(x, y, dir[2 * k], dir[2 * k + 1]);
+  if (k >= c.width) return false;
+  return AngleBelow(x, y, up, c.dir[2 * k], c.dir[2 * k + 1], c.upper[k] != 0);
 }
 
 // ColumnOf when a likely column is known (the previous point's column plus its last step: scans
 // come in sweep order). The column is the unique k with P(k) and not P(k + 1), so confirming that
 // at the guess or a neighbour gives exactly ColumnOf's answer; otherwise ColumnOf decides.
-inline uint32_t ColumnNear(float x, float y, const float* dir, uint32_t width, uint32_t guess) {
-  const bool at = Below(x, y, dir, width, guess), next = Below(x, y, dir, width, guess + 1);
+inline uint32_t ColumnNear(float x, float y, const Columns& c, uint32_t guess) {
+  const bool up = Upper(x, y);
+  const bool at = Below(x, y, up, c, guess), next = Below(x, y, up, c, guess + 1);
   if (at && !next) return guess;
   if (next) {  // the column lies after the guess
-    if (!Below(x, y, dir, width, guess + 2)) return guess + 1;
-  } else if (Below(x, y, dir, width, guess - 1)) {  // before it (guess > 0 here: P(0) holds)
+    if (!Below(x, y, up, c, guess + 2)) return guess + 1;
+  } else if (Below(x, y, up, c, guess - 1)) {  // before it (guess > 0 here: P(0) holds)
     return guess - 1;
   }
-  return ColumnOf(x, y, dir, width);
+  return ColumnOf(x, y, c.dir, c.width);
 }
 
 }  // namespace
@@ -143,7 +156,11 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
   uint32_t* __restrict point_pixel = f.point_pixel.data();
   uint32_t* __restrict pixel_key = f.pixel_key.data();
   uint32_t* __restrict pixel_point = f.pixel_point.data();
-  const float* dir = t.column_dir.data();
+  thread_local std::vector<uint8_t> upper;  // scratch reused from frame to frame
+  upper.resize(width);
+  for (uint32_t k = 0; k < width; ++k)
+    upper[k] = Upper(t.column_dir[2 * k], t.column_dir[2 * k + 1]);
+  const Columns columns{t.column_dir.data(), upper.data(), width};
   const float* bound = t.beam_bound.data();
   const float* origin = t.beam_origin.data();
   const bool has_ring = !cloud.ring.empty();
@@ -156,7 +173,7 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
     }
     const float x = xyzi[4 * i], y = xyzi[4 * i + 1], z = xyzi[4 * i + 2];
     const int32_t guess = std::min(std::max(int32_t(column) + step, 0), int32_t(width) - 1);
-    const uint32_t u = ColumnNear(x, y, dir, width, uint32_t(guess));
+    const uint32_t u = ColumnNear(x, y, columns, uint32_t(guess));
     step = u > column ? 1 : (u < column ? -1 : 0);
     column = u;
     uint32_t v;
@@ -170,12 +187,10 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
     const uint32_t pix = v * width + u;
     point_pixel[i] = pix;
     if (flags[i] & kPointNoise) continue;
-    pixel_key[pix] = std::min(pixel_key[pix], exact::Key(r2[i]));
-  }
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t pix = point_pixel[i];
-    if (pix == kNone || (flags[i] & kPointNoise)) continue;
-    if (exact::Key(r2[i]) == pixel_key[pix]) pixel_point[pix] = std::min(pixel_point[pix], i);
+    // The points come in index order, so the first to reach a pixel's smallest key is the
+    // lowest index with it: one pass instead of the shader's atomic min, then its tie-break.
+    const uint32_t key = exact::Key(r2[i]);
+    if (key < pixel_key[pix]) pixel_key[pix] = key, pixel_point[pix] = i;
   }
 }
 
