@@ -1,12 +1,14 @@
 // Stage 1, prepare (paper III-B.1, eq. 3).
 // In: cloud xyzi (+ ring). Out per point: flags (kPointValid, kPointNoise), zt, r2, inten.
-// Valid: x, y, z, intensity finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2; z^2 <= max_range2; ring
-// (when present) inside [0, beams). Everything of an invalid point is written as 0.
+// Valid: x, y, z, intensity finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2;
+// z^2 <= max_range2; ring (when present) inside [0, beams). Everything of an invalid point is
+// written as 0.
 // inten is clamped to [-kMaxIntensity, kMaxIntensity] (1e4, far beyond any sensor's [0, 1]): stage
 // 5 quantises it to 1e-4 steps and squares it in int64, which a raw intensity of 1e30 overflowed.
 // Subnormal inputs (x, y, z, intensity) and outputs (zt, r2, inten) are flushed to zero.
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
-// sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise && inten < i_noise.
+// sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise &&
+// inten < i_noise.
 #include <cmath>
 #include <limits>
 
