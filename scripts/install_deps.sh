@@ -6,7 +6,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libpng-dev
   libgtest-dev libbenchmark-dev
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
   clang libclang-rt-14-dev  # the fuzz build (fuzz/): clang with libFuzzer and its sanitizers
