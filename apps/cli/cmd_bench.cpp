@@ -6,6 +6,8 @@
 // and the scaling of cost with points and image size from 16 to 256 beams (simulated streets:
 // VLP-16, then OS1-128's field of view with 32, 64, 128 and 256 beams).
 // Every timed configuration first checks that its labels equal the CPU reference's byte for byte.
+// The CPU and the device are timed in turns, a round of the scans each, so drifts of the
+// machine's speed fall on both alike.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -79,19 +81,27 @@ void CheckAgainstReference(Segmenter& s, Segmenter& reference, const std::vector
   }
 }
 
-Timed TimeFrames(Segmenter& s, const std::vector<Cloud>& clouds, int runs) {
-  Timed t;
-  for (int r = 0; r < runs; ++r)
-    for (const Cloud& cloud : clouds) {
-      FrameTimes ft;
-      const auto t0 = Clock::now();
-      s.Segment(cloud, &ft);
-      t.wall.push_back(Ms(t0, Clock::now()));
-      for (int k = 0; k < 9; ++k) t.stage[k].push_back(ft.stage_ms[k]);
-      t.upload.push_back(ft.upload_ms), t.download.push_back(ft.download_ms);
-      t.gpu_total.push_back(ft.total_ms);
-    }
-  return t;
+// One frame of `cloud` on `s`, its times appended to `t`.
+void TimeFrame(Segmenter& s, const Cloud& cloud, Timed& t) {
+  FrameTimes ft;
+  const auto t0 = Clock::now();
+  s.Segment(cloud, &ft);
+  t.wall.push_back(Ms(t0, Clock::now()));
+  for (int k = 0; k < 9; ++k) t.stage[k].push_back(ft.stage_ms[k]);
+  t.upload.push_back(ft.upload_ms), t.download.push_back(ft.download_ms);
+  t.gpu_total.push_back(ft.total_ms);
+}
+
+// `runs` rounds of every cloud on the CPU, then (when there is one) on the device: on a machine
+// whose speed drifts (a shared host) both see the same spells, and each backend still runs a
+// sequence, its buffers and caches warm as in use (rather than frame by frame in turns).
+void TimeFramesInTurns(Segmenter& cpu, Segmenter* gpu, const std::vector<Cloud>& clouds, int runs,
+                       Timed& c, Timed& g) {
+  for (int r = 0; r < runs; ++r) {
+    for (const Cloud& cloud : clouds) TimeFrame(cpu, cloud, c);
+    if (gpu)
+      for (const Cloud& cloud : clouds) TimeFrame(*gpu, cloud, g);
+  }
 }
 
 // Frames per second over `frames` frames (the clouds in turn) with `in_flight` frames in flight.
@@ -228,9 +238,8 @@ int RunBench(int argc, char** argv) {
   CheckAgainstReference(cpu, reference, clouds, names);
   if (gpu) CheckAgainstReference(*gpu, reference, clouds, names);
   say("timing frames");
-  const Timed c = TimeFrames(cpu, clouds, runs);
-  Timed g;
-  if (gpu) g = TimeFrames(*gpu, clouds, runs);
+  Timed c, g;
+  TimeFramesInTurns(cpu, gpu.get(), clouds, runs, c, g);
   const uint64_t device_bytes = gpu ? gpu->device_bytes() : 0;
 
   say("throughput");
@@ -270,15 +279,14 @@ int RunBench(int argc, char** argv) {
       }
       scaling.push_back({sensor.name, sensor.beams, sensor.width, scenes.back()[0].size(), 0, -1});
     }
-    std::vector<std::vector<double>> cpu_ms(sensors.size()), gpu_ms(sensors.size());
+    std::vector<Timed> cpu_t(sensors.size()), gpu_t(sensors.size());
     for (int r = 0; r < scaling_runs; ++r)
-      for (size_t k = 0; k < sensors.size(); ++k) {
-        cpu_ms[k].push_back(TimeFrames(*cpus[k], scenes[k], 1).wall[0]);
-        if (gpu) gpu_ms[k].push_back(TimeFrames(*gpus[k], scenes[k], 1).wall[0]);
-      }
+      for (size_t k = 0; k < sensors.size(); ++k)
+        TimeFramesInTurns(*cpus[k], gpu ? gpus[k].get() : nullptr, scenes[k], 1,
+                          cpu_t[k], gpu_t[k]);
     for (size_t k = 0; k < sensors.size(); ++k) {
-      scaling[k].cpu_ms = SpreadOf(cpu_ms[k]).median;
-      if (gpu) scaling[k].vulkan_ms = SpreadOf(gpu_ms[k]).median;
+      scaling[k].cpu_ms = SpreadOf(cpu_t[k].wall).median;
+      if (gpu) scaling[k].vulkan_ms = SpreadOf(gpu_t[k].wall).median;
     }
   }
 
