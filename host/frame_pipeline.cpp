@@ -32,7 +32,7 @@ struct FramePipeline::Buffers {
       f_vari, feature_pack;                                              // 5 feature maps
   Buffer pixel_class, pixel_fused;                                       // 6 classify, 7 fuse
   Buffer pixel_grown, pixel_comp, pixel_label, grow_scratch, grow_sizes, grow_flags;  // 8 grow
-  Buffer label, why;                                                     // 9 back-project
+  Buffer label_why;                                                      // 9 back-project
 };
 
 struct FramePipeline::Stages {
@@ -129,7 +129,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       {&b.pixel_comp, pixel},       {&b.pixel_label, pixel},     {&b.grow_scratch, pixel},
       {&b.grow_sizes, pixel},
       {&b.grow_flags, 4 * VkDeviceSize(GrowStage::FlagWords(params.grow_max_iters))},
-      {&b.label, point},            {&b.why, point}};
+      {&b.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
   for (const auto& s : sizes) LPIR_VK_RETURN_IF_ERROR(make(*s.buffer, s.bytes));
   LPIR_VK_RETURN_IF_ERROR(table(b.column_dir, tables.column_dir));
   LPIR_VK_RETURN_IF_ERROR(table(b.beam_bound, tables.beam_bound));
@@ -174,7 +174,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                    &b.grow_scratch, &b.grow_sizes, &b.grow_flags};
   BackProjectBuffers back{&b.params, &b.flags,  &b.point_pixel, &b.pixel_point,
                           &b.pixel_label, &b.f_range, &b.f_height, &b.r2,
-                          &b.zt,     &b.coarse, &b.label,       &b.why};
+                          &b.zt,     &b.coarse, &b.label_why};
   LPIR_VK_ASSIGN_OR_RETURN(PrepareStage s1, PrepareStage::Create(device, prepare));
   LPIR_VK_ASSIGN_OR_RETURN(ProjectStage s2, ProjectStage::Create(device, project));
   LPIR_VK_ASSIGN_OR_RETURN(GridReduceStage s3, GridReduceStage::Create(device, grid));
@@ -285,10 +285,7 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   LPIR_VK_RETURN_IF_ERROR(s.back_project.Record(cmd, n));
   cmd.ComputeToTransfer();
   time();
-  if (n) {
-    cmd.CopyBuffer(b.label, slot.download, 4 * VkDeviceSize(n));
-    cmd.CopyBuffer(b.why, slot.download, 4 * VkDeviceSize(n), 0, point);
-  }
+  if (n) cmd.CopyBuffer(b.label_why, slot.download, BackProjectStage::LabelWhyBytes(n));
   const VkDeviceSize summary = 4 * VkDeviceSize(GrowStage::FlagWords(params_.grow_max_iters) - 1);
   cmd.CopyBuffer(b.grow_flags, slot.download, 4, summary, 2 * point);
   cmd.TransferToHost();
@@ -311,15 +308,15 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
   const uint32_t n = slot.n;
   const VkDeviceSize point = 4 * VkDeviceSize(max_points_);
   const auto* download = static_cast<const char*>(slot.download.mapped());
-  const auto* label = reinterpret_cast<const uint32_t*>(download);
-  const auto* why = reinterpret_cast<const uint32_t*>(download + point);
+  const auto* label_why = reinterpret_cast<const uint8_t*>(download);
   const auto* summary = reinterpret_cast<const uint32_t*>(download + 2 * point);
   out.n = n;
+  out.label_why.assign(label_why, label_why + n);
   out.label.resize(n);
   out.why.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
-    out.label[i] = uint8_t(label[i]);
-    out.why[i] = uint8_t(why[i]);
+    out.label[i] = LabelOf(label_why[i]);
+    out.why[i] = WhyOf(label_why[i]);
   }
   const GrowReport grow{summary[0]};
   if (grow_report) *grow_report = grow;

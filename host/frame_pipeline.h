@@ -37,7 +37,8 @@ class FramePipeline {
   // over max_points or with a ring field of another length.
   Status Submit(uint32_t slot, const Cloud& cloud);
 
-  // Waits for slot `slot`'s frame and frees the slot. Fills out.n, out.label and out.why; with
+  // Waits for slot `slot`'s frame and frees the slot. Fills out.n, out.label_why (downloaded)
+  // and out.label, out.why (unpacked from it); with
   // `all_buffers`, every other buffer of the frame too (read back after the wait, so only for
   // the frame submitted last: the slots share the device buffers; asked of an earlier frame, an
   // error that leaves the slot as it was). `times` (optional) gets the
@@ -69,7 +70,7 @@ class FramePipeline {
     CommandBuffer cmd;
     Fence fence;
     Buffer upload;    // host-visible: points (16 bytes each), then rings (4 bytes each)
-    Buffer download;  // host-visible: label words, why words, the grow summary word
+    Buffer download;  // host-visible: label_why bytes (four points a word), the grow summary word
     std::vector<TimestampQueries> queries;  // one pool of kQueries, or none without timestamps
     bool busy = false, has_ring = false;
     uint32_t n = 0;

@@ -1,6 +1,7 @@
 // Stage 9, back-project (paper III-D.2, last step).
 // In: flags, point_pixel, pixel_point, pixel_label, f_range, f_height, r2, zt, coarse.
-// Out per point: label (1 ground, 0 non-ground), why (kWhy*).
+// Out per point: label (1 ground, 0 non-ground), why (kWhy*), label_why (both in one byte,
+// PackLabelWhy).
 // Invalid and noise points are non-ground. The point that won its pixel takes the pixel's label; a
 // point that lost it takes the pixel's label when it lies within bp_range_gate (planar range,
 // Sqrt) and bp_height_gate (z_t) of the winner; otherwise it is ground only when both its own
@@ -25,6 +26,7 @@ void BackProject(const Params& p, Frame& f) {
   const uint32_t n = f.n;
   f.label.resize(n);
   f.why.resize(n);
+  f.label_why.resize(n);
   const uint32_t* __restrict flags = f.flags.data();
   const uint32_t* __restrict point_pixel = f.point_pixel.data();
   const uint32_t* __restrict pixel_point = f.pixel_point.data();
@@ -36,12 +38,14 @@ void BackProject(const Params& p, Frame& f) {
   const uint32_t* __restrict coarse = f.coarse.data();
   uint8_t* __restrict label = f.label.data();
   uint8_t* __restrict why = f.why.data();
+  uint8_t* __restrict label_why = f.label_why.data();
   const float range_gate = p.bp_range_gate, height_gate = p.bp_height_gate;
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t flag = flags[i];
     if ((flag & (kPointValid | kPointNoise)) != kPointValid) {  // invalid, or noise
       label[i] = 0;
       why[i] = (flag & kPointValid) ? kWhyNoise : kWhyInvalid;
+      label_why[i] = PackLabelWhy(0, why[i]);
       continue;
     }
     const uint32_t pix = point_pixel[i];
@@ -56,6 +60,7 @@ void BackProject(const Params& p, Frame& f) {
     }
     label[i] = ground ? 1 : 0;
     why[i] = ground ? kWhyGround : kWhyNonGround;
+    label_why[i] = PackLabelWhy(label[i], why[i]);
   }
 }
 

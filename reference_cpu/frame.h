@@ -21,6 +21,11 @@ constexpr uint32_t kPixEmpty = 3u;
 // Why a point got its final label (for tools and pictures).
 constexpr uint8_t kWhyNonGround = 0, kWhyGround = 1, kWhyInvalid = 2, kWhyNoise = 3;
 
+// A point's label and why in one byte (Frame::label_why): bit 0 the label, bits 1-2 the why.
+constexpr uint8_t PackLabelWhy(uint8_t label, uint8_t why) { return uint8_t(label | why << 1); }
+constexpr uint8_t LabelOf(uint8_t label_why) { return label_why & 1u; }
+constexpr uint8_t WhyOf(uint8_t label_why) { return uint8_t(label_why >> 1); }
+
 struct Frame {
   uint32_t n = 0;  // points
 
@@ -59,8 +64,10 @@ struct Frame {
   std::vector<uint32_t> pixel_label;    // final, kPixGround or kPixNonGround (kPixEmpty when empty)
 
   // 9 back-project: per point.
-  std::vector<uint8_t> label;  // 1 ground, 0 non-ground
-  std::vector<uint8_t> why;    // kWhy*
+  std::vector<uint8_t> label;      // 1 ground, 0 non-ground
+  std::vector<uint8_t> why;        // kWhy*
+  std::vector<uint8_t> label_why;  // PackLabelWhy(label, why): the bytes the GPU writes, and all
+                                   // that a frame downloads (four points a word)
 };
 
 }  // namespace lpir

@@ -1,12 +1,14 @@
 // Stage 9, back-project (paper III-D.2): the GPU twin of reference_cpu/back_project.cpp, same
-// values. One invocation per four points 4j .. 4j + 3 (n, the points, a push constant), read
-// and written as vectors (on a CPU driver every buffer access is a loop over the SIMD lanes, and
-// one uvec4 access costs about a third of four), the last n % 4 one by one.
+// values. One invocation per four points 4j .. 4j + 3 (n, the points, a push constant), read as
+// vectors (on a CPU driver every buffer access is a loop over the SIMD lanes, and one uvec4
+// access costs about a third of four), the last n % 4 one by one, and written as one word.
 // In: binding 0 Params (uniform), 1 flags, 2 point_pixel, 3 pixel_point, 4 pixel_label (per
 //     pixel), 5 f_range, 6 f_height (per pixel, floats), 7 r2, 8 zt (per point, floats), 9 coarse
 //     (per point).
-// Out per point, one uint32 each (the reference's uint8 widened: host/vk/device enables no 8-bit
-// storage): 10 label (1 ground, 0 non-ground), 11 why (kWhy*).
+// Out: binding 10 label_why, one byte per point, label | why << 1 (label 1 ground, 0
+// non-ground; why kWhy*), four points to a uint32 word, point 4j + k in bits 8k .. 8k + 7 (the
+// reference's Frame::label_why bytes on a little-endian host; host/vk/device enables no 8-bit
+// storage, so the word is assembled in registers); the bytes of the last word past n are 0.
 // Invalid (no kPointValid): label 0, why kWhyInvalid; noise (valid and kPointNoise): label 0, why
 // kWhyNoise; no pixel is read for either (point_pixel is kNone for an invalid point).
 // Else pix = point_pixel[i], ground = pixel_label[pix] == kPixGround; a lost point
@@ -14,7 +16,7 @@
 // gates: dr = |exact_Sqrt(r2) - f_range[pix]| <= bp_range_gate and
 // dz = |zt - f_height[pix]| <= bp_height_gate (each a rounded float op, `precise`). The reference
 // evaluates the cheap conditions first; the boolean is the same in any order (no side effects).
-// No ties: every point has its own two output words.
+// No ties: every invocation writes its own output word, once.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -33,15 +35,12 @@ layout(std430, set = 0, binding = 6) readonly buffer Height { float f_height[]; 
 layout(std430, set = 0, binding = 7) readonly buffer R2 { float r2[]; };
 layout(std430, set = 0, binding = 8) readonly buffer Zt { float zt[]; };
 layout(std430, set = 0, binding = 9) readonly buffer Coarse { uint coarse[]; };
-layout(std430, set = 0, binding = 10) writeonly buffer Label { uint label[]; };
-layout(std430, set = 0, binding = 11) writeonly buffer Why { uint why[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer LabelWhy { uint label_why[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Flags4 { uvec4 flags4[]; };
 layout(std430, set = 0, binding = 2) readonly buffer PointPixel4 { uvec4 point_pixel4[]; };
 layout(std430, set = 0, binding = 7) readonly buffer R2x4 { vec4 r2_4[]; };
 layout(std430, set = 0, binding = 8) readonly buffer Zt4 { vec4 zt4[]; };
 layout(std430, set = 0, binding = 9) readonly buffer Coarse4 { uvec4 coarse4[]; };
-layout(std430, set = 0, binding = 10) writeonly buffer Label4 { uvec4 label4[]; };
-layout(std430, set = 0, binding = 11) writeonly buffer Why4 { uvec4 why4[]; };
 
 layout(push_constant) uniform Push { uint n; } pc;
 
@@ -53,10 +52,10 @@ const uint kWhyGround = 1u;
 const uint kWhyInvalid = 2u;
 const uint kWhyNoise = 3u;
 
-// Point i's label and why, from its flag, pixel, coarse label, r2 and zt. The outputs are written
-// once, after the branches (lavapipe runs every branch under a lane mask: a write in an early
-// return would be paid by every point).
-uvec2 Classify(uint i, uint flag, uint pix, uint coarse_i, float r2_i, float zt_i) {
+// Point i's byte, label | why << 1, from its flag, pixel, coarse label, r2 and zt. The output is
+// written once, after the branches (lavapipe runs every branch under a lane mask: a write in an
+// early return would be paid by every point).
+uint Classify(uint i, uint flag, uint pix, uint coarse_i, float r2_i, float zt_i) {
   bool counted = (flag & (kPointValid | kPointNoise)) == kPointValid;  // valid, not noise
   bool ground = false;
   if (counted) {
@@ -72,7 +71,7 @@ uvec2 Classify(uint i, uint flag, uint pix, uint coarse_i, float r2_i, float zt_
                 : counted                    ? kWhyNonGround
                 : (flag & kPointValid) != 0u ? kWhyNoise
                                              : kWhyInvalid;
-  return uvec2(ground ? 1u : 0u, reason);
+  return (ground ? 1u : 0u) | (reason << 1);
 }
 
 void main() {
@@ -97,18 +96,11 @@ void main() {
       z[k] = zt[i];
     }
   }
-  uvec2 a = Classify(first, flag.x, pix.x, c.x, r.x, z.x);
-  uvec2 b = Classify(first + 1u, flag.y, pix.y, c.y, r.y, z.y);
-  uvec2 d = Classify(first + 2u, flag.z, pix.z, c.z, r.z, z.z);
-  uvec2 e = Classify(first + 3u, flag.w, pix.w, c.w, r.w, z.w);
-  uvec4 out_label = uvec4(a.x, b.x, d.x, e.x), out_why = uvec4(a.y, b.y, d.y, e.y);
-  if (whole) {
-    label4[j] = out_label;
-    why4[j] = out_why;
-  } else {
-    for (uint k = 0u; first + k < pc.n; ++k) {
-      label[first + k] = out_label[k];
-      why[first + k] = out_why[k];
-    }
-  }
+  uint word = Classify(first, flag.x, pix.x, c.x, r.x, z.x) |
+              Classify(first + 1u, flag.y, pix.y, c.y, r.y, z.y) << 8 |
+              Classify(first + 2u, flag.z, pix.z, c.z, r.z, z.z) << 16 |
+              Classify(first + 3u, flag.w, pix.w, c.w, r.w, z.w) << 24;
+  // Past n the points read as invalid (byte 4): those bytes are cleared.
+  uint left = pc.n - first;
+  label_why[j] = left >= 4u ? word : word & ((1u << (8u * left)) - 1u);
 }

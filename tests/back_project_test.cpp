@@ -162,5 +162,26 @@ TEST(BackProject, EveryPointGetsOneLabelAndOneReason) {
   }
 }
 
+// label_why packs bit 0 the label and bits 1-2 the why: non-ground 0, ground 3, invalid 4, noise
+// 6 (what the GPU writes and a frame downloads, one byte a point).
+TEST(BackProject, LabelWhyPacksLabelAndReasonInOneByte) {
+  Scene s(3);
+  s.Win(0, kPixGround, 10.0f, -1.7f, true);
+  s.Win(1, kPixNonGround, 11.0f, -1.0f, false);
+  const uint32_t invalid = s.AddPoint(0u, 0, 0, 0, false);
+  const uint32_t noise = s.AddPoint(kPointValid | kPointNoise, 2, 30.0f, -3.0f, false);
+  s.Run();
+  ASSERT_EQ(s.f.label_why.size(), s.f.n);
+  EXPECT_EQ(s.f.label_why[0], 3u);  // the winner of the ground pixel
+  EXPECT_EQ(s.f.label_why[1], 0u);  // the winner of the non-ground pixel
+  EXPECT_EQ(s.f.label_why[invalid], 4u);
+  EXPECT_EQ(s.f.label_why[noise], 6u);
+  for (uint32_t i = 0; i < s.f.n; ++i) {
+    EXPECT_EQ(s.f.label_why[i], PackLabelWhy(s.f.label[i], s.f.why[i])) << "point " << i;
+    EXPECT_EQ(LabelOf(s.f.label_why[i]), s.f.label[i]) << "point " << i;
+    EXPECT_EQ(WhyOf(s.f.label_why[i]), s.f.why[i]) << "point " << i;
+  }
+}
+
 }  // namespace
 }  // namespace lpir

@@ -1,7 +1,8 @@
 // Stage 9, back-project, on Vulkan (shaders/back_project.comp) against the CPU reference
-// (reference_cpu/back_project.cpp): label and why of every point. The GPU writes one uint32 per
-// point (host/vk/device enables no 8-bit storage); the test compares those words with the
-// reference's bytes widened to uint32, byte for byte, and then the narrowed Frame bytes too.
+// (reference_cpu/back_project.cpp): label and why of every point. The GPU writes one byte per
+// point, label | why << 1, four points a word; the test compares those bytes with the
+// reference's label_why byte for byte (the last word's padding must be 0), then the unpacked
+// label and why too.
 // Inputs from the whole CPU pipeline (RunReference) on random clouds, the simulated HDL-64E
 // scenes and the real scans when ../shared/data is present; each also with the gates set exactly
 // to measured dr / dz values of lost points (and one ulp below), so that equality is exercised;
@@ -66,50 +67,51 @@ struct Counts {
 };
 Counts g_total;
 
-// One output: the GPU's words against the reference's bytes widened.
-size_t CompareWords(const char* buffer, const std::vector<uint8_t>& cpu,
-                    const std::vector<uint32_t>& gpu, const Params& p, const Frame& in,
-                    const Cloud* cloud, const std::string& what) {
-  EXPECT_EQ(gpu.size(), cpu.size()) << what << ": " << buffer;
-  if (gpu.size() != cpu.size()) return 0;
-  const std::vector<uint32_t> wide(cpu.begin(), cpu.end());
-  const size_t n = wide.size();
+// The GPU's label_why bytes (n rounded up to a word) against the reference's n bytes, and the
+// padding past n against 0.
+size_t CompareBytes(const std::vector<uint8_t>& cpu, const std::vector<uint8_t>& gpu,
+                    const Params& p, const Frame& in, const Cloud* cloud, const std::string& what) {
+  const size_t n = cpu.size();
+  EXPECT_EQ(gpu.size(), vk::BackProjectStage::LabelWhyBytes(n)) << what << ": label_why bytes";
+  if (gpu.size() != vk::BackProjectStage::LabelWhyBytes(n)) return 0;
   size_t first = n, count = 0;
   for (size_t i = 0; i < n; ++i)
-    if (std::memcmp(&wide[i], &gpu[i], 4) != 0) {
+    if (cpu[i] != gpu[i]) {
       if (first == n) first = i;
       ++count;
     }
+  for (size_t i = n; i < gpu.size(); ++i) EXPECT_EQ(gpu[i], 0) << what << ": padding byte " << i;
   g_total.compared += n;
   g_total.mismatches += count;
-  EXPECT_EQ(count, 0u) << "back_project (" << what << "): buffer " << buffer
-                       << " differs at element " << first << " (" << count << " of " << n
-                       << " differ): CPU " << (first < n ? ValueText(wide[first]) : "")
-                       << ", GPU " << (first < n ? ValueText(gpu[first]) : "") << "; "
+  EXPECT_EQ(count, 0u) << "back_project (" << what << "): buffer label_why differs at element "
+                       << first << " (" << count << " of " << n << " differ): CPU "
+                       << (first < n ? ValueText(cpu[first]) : "") << ", GPU "
+                       << (first < n ? ValueText(gpu[first]) : "") << "; "
                        << (first < n ? PointText(p, in, cloud, uint32_t(first)) : "");
   return n;
 }
 
-// Runs lpir::BackProject and vk::RunBackProject on the same inputs and compares label and why.
-// Returns the number of values compared (2 per point).
+// Runs lpir::BackProject and vk::RunBackProject on the same inputs and compares label_why, then
+// the unpacked label and why. Returns the number of bytes compared (1 per point).
 uint64_t ExpectSameBackProject(const vk::Context& context, const Params& p, const Frame& in,
                                const Cloud* cloud, const std::string& what) {
   Frame cpu = in, gpu = in;
-  cpu.label.clear(), cpu.why.clear();
-  gpu.label.assign(in.n, 0xEE), gpu.why.assign(in.n, 0xEE);
+  cpu.label.clear(), cpu.why.clear(), cpu.label_why.clear();
+  gpu.label.assign(in.n, 0xEE), gpu.why.assign(in.n, 0xEE), gpu.label_why.assign(in.n, 0xEE);
   BackProject(p, cpu);
   vk::BackProjectWords words;
-  words.label.assign(in.n, 0xDEADBEEFu);
+  words.label_why.assign(in.n, 0xEE);
   double gpu_ns = 0;
   const vk::Status status = vk::RunBackProject(context, p, gpu, &words, &gpu_ns);
   EXPECT_TRUE(status.ok()) << what << ": " << status.message();
   if (!status.ok()) return 0;
-  uint64_t compared = CompareWords("label", cpu.label, words.label, p, in, cloud, what);
-  compared += CompareWords("why", cpu.why, words.why, p, in, cloud, what);
-  EXPECT_EQ(gpu.label, cpu.label) << what << ": narrowed label";
-  EXPECT_EQ(gpu.why, cpu.why) << what << ": narrowed why";
+  const uint64_t compared = CompareBytes(cpu.label_why, words.label_why, p, in, cloud, what);
+  EXPECT_EQ(gpu.label_why, cpu.label_why) << what << ": Frame label_why";
+  EXPECT_EQ(gpu.label, cpu.label) << what << ": unpacked label";
+  EXPECT_EQ(gpu.why, cpu.why) << what << ": unpacked why";
   size_t why[4] = {0, 0, 0, 0}, lost_gated = 0;
   for (uint32_t i = 0; i < in.n; ++i) {
+    EXPECT_EQ(cpu.label_why[i], PackLabelWhy(cpu.label[i], cpu.why[i])) << what << ": point " << i;
     if (cpu.why[i] < 4) ++why[cpu.why[i]];
     if ((in.flags[i] & 3u) == kPointValid && in.pixel_label[in.point_pixel[i]] == kPixGround &&
         in.pixel_point[in.point_pixel[i]] != i && in.coarse[i] == 0)
@@ -117,7 +119,7 @@ uint64_t ExpectSameBackProject(const vk::Context& context, const Params& p, cons
   }
   std::printf(
       "[back_project] %s: %u points (non-ground %zu, ground %zu, invalid %zu, noise %zu; %zu "
-      "through the gates), gates %g / %g: %llu values compared, GPU %.3f ms\n",
+      "through the gates), gates %g / %g: %llu bytes compared, GPU %.3f ms\n",
       what.c_str(), in.n, why[0], why[1], why[2], why[3], lost_gated, double(p.bp_range_gate),
       double(p.bp_height_gate), static_cast<unsigned long long>(compared), gpu_ns / 1e6);
   return compared;
@@ -132,8 +134,9 @@ void ExpectSameBackProjectVariants(const vk::Context& context, const Params& p, 
     BackProject(p, again);
     EXPECT_EQ(again.label, f.label) << what << ": RunReference's label";
     EXPECT_EQ(again.why, f.why) << what << ": RunReference's why";
+    EXPECT_EQ(again.label_why, f.label_why) << what << ": RunReference's label_why";
   }
-  EXPECT_EQ(ExpectSameBackProject(context, p, f, cloud, what), 2ull * f.n);
+  EXPECT_EQ(ExpectSameBackProject(context, p, f, cloud, what), uint64_t(f.n));
   std::vector<float> dr, dz;
   for (uint32_t i = 0; i < f.n; ++i) {
     if ((f.flags[i] & 3u) != kPointValid) continue;
@@ -162,7 +165,7 @@ void ExpectSameBackProjectVariants(const vk::Context& context, const Params& p, 
     Params q = p;
     q.bp_range_gate = g.range;
     q.bp_height_gate = g.height;
-    EXPECT_EQ(ExpectSameBackProject(context, q, f, cloud, what + ", " + g.name), 2ull * f.n);
+    EXPECT_EQ(ExpectSameBackProject(context, q, f, cloud, what + ", " + g.name), uint64_t(f.n));
   }
 }
 
@@ -347,22 +350,23 @@ TEST_F(BackProjectVk, HandMadeEveryCase) {
   }
   EXPECT_GT(on_gate, 0u) << "no lost point lies exactly on a gate";
   std::printf("[back_project] hand-made: %zu gate equalities\n", on_gate);
-  EXPECT_EQ(ExpectSameBackProject(context(), p, f, nullptr, "hand-made"), 2ull * f.n);
+  EXPECT_EQ(ExpectSameBackProject(context(), p, f, nullptr, "hand-made"), uint64_t(f.n));
   Params q = p;
   q.bp_range_gate = 0.0f;
   q.bp_height_gate = 0.0f;
-  EXPECT_EQ(ExpectSameBackProject(context(), q, f, nullptr, "hand-made, zero gates"), 2ull * f.n);
+  EXPECT_EQ(ExpectSameBackProject(context(), q, f, nullptr, "hand-made, zero gates"),
+            uint64_t(f.n));
   const Params d = DefaultParams();
   q.bp_range_gate = d.bp_range_gate;
   q.bp_height_gate = d.bp_height_gate;
   EXPECT_EQ(ExpectSameBackProject(context(), q, f, nullptr, "hand-made, default gates"),
-            2ull * f.n);
+            uint64_t(f.n));
 }
 
 class TotalPrinter : public ::testing::Environment {
  public:
   void TearDown() override {
-    std::printf("[back_project] total: %llu values compared, %llu mismatches\n",
+    std::printf("[back_project] total: %llu bytes compared, %llu mismatches\n",
                 static_cast<unsigned long long>(g_total.compared),
                 static_cast<unsigned long long>(g_total.mismatches));
   }

@@ -109,6 +109,7 @@ inline uint64_t ExpectSameFrame(const Params& p, const Frame& cpu, const Frame& 
   same("grow", "pixel_label", px, cpu.pixel_label, gpu.pixel_label);
   same("back_project", "label", pt, cpu.label, gpu.label);
   same("back_project", "why", pt, cpu.why, gpu.why);
+  same("back_project", "label_why", pt, cpu.label_why, gpu.label_why);
   return bytes;
 }
 

@@ -252,6 +252,7 @@ TEST_F(FramePipelineVk, FramesInFlight) {
     EXPECT_EQ(gpu.n, cpu.n) << "frame " << k;
     EXPECT_EQ(gpu.label, cpu.label) << "frame " << k << ": labels";
     EXPECT_EQ(gpu.why, cpu.why) << "frame " << k << ": why";
+    EXPECT_EQ(gpu.label_why, cpu.label_why) << "frame " << k << ": label_why";
     if (all) test::ExpectSameFrame(s.params, cpu, gpu, &clouds[k], "frame " + std::to_string(k));
   };
   for (uint32_t k = 0; k < 3; ++k) ASSERT_TRUE(pipeline.Submit(k, clouds[k]).ok());
@@ -372,6 +373,10 @@ TEST(FrameCompare, MismatchReportNamesStageBufferElementAndPlace) {
   gpu.why[7] ^= 1;
   EXPECT_NONFATAL_FAILURE(test::ExpectSameFrame(s.params, cpu, gpu, &cloud, "corrupted"),
                           "stage back_project, buffer why differs first at element 7");
+  gpu = cpu;
+  gpu.label_why[9] ^= 2;
+  EXPECT_NONFATAL_FAILURE(test::ExpectSameFrame(s.params, cpu, gpu, &cloud, "corrupted"),
+                          "stage back_project, buffer label_why differs first at element 9");
 }
 
 TEST_F(FramePipelineVk, CreateRejectsBadArguments) {

@@ -3,7 +3,7 @@
 // identical, all at the origin, all NaN, Inf mixed in, coordinates of 1e30, every point on one
 // pixel, intensities outside the sensor's range (negative, huge, NaN, Inf, subnormal), rings past
 // the last beam, and a cloud larger than the configured maximum. Each must give a defined result,
-// the same bytes in all 30 buffers on both backends (tests/frame_compare.h): a label for every
+// the same bytes in all 31 buffers on both backends (tests/frame_compare.h): a label for every
 // point, ground (1) exactly when why is kWhyGround, and non-ground with why kWhyInvalid exactly
 // for the points stage 1 must reject (a non-finite value, the origin, a ring past the beams, a
 // planar range or |z| outside the profile's range), decided here independently of the pipeline.

@@ -230,7 +230,8 @@ std::vector<Buffer> Buffers(const Frame& f) {
           Of("pixel_comp", f.pixel_comp),
           Of("pixel_label", f.pixel_label),
           Of("label", f.label),
-          Of("why", f.why)};
+          Of("why", f.why),
+          Of("label_why", f.label_why)};
 }
 
 TEST(PipelineScenes, SegmentingTwiceGivesIdenticalBytes) {
@@ -243,7 +244,7 @@ TEST(PipelineScenes, SegmentingTwiceGivesIdenticalBytes) {
   const Frame& again = a.Segment(scan.cloud);
   const Frame& fresh = b.Segment(scan.cloud);
   const std::vector<Buffer> x = Buffers(first), y = Buffers(again), z = Buffers(fresh);
-  ASSERT_EQ(x.size(), 30u);
+  ASSERT_EQ(x.size(), 31u);
   for (size_t k = 0; k < x.size(); ++k) {
     SCOPED_TRACE(x[k].name);
     EXPECT_GT(x[k].bytes, 0u);

@@ -21,14 +21,14 @@ Result<BackProjectStage> BackProjectStage::Create(const Device& device,
   desc.name = "back_project";
   desc.code = SpirvOf(kBackProjectSpv);
   desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
-  for (int k = 0; k < 11; ++k) desc.bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  for (int k = 0; k < 10; ++k) desc.bindings.push_back(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
                      {b.params, b.flags, b.point_pixel, b.pixel_point, b.pixel_label, b.f_range,
-                      b.f_height, b.r2, b.zt, b.coarse, b.label, b.why}));
+                      b.f_height, b.r2, b.zt, b.coarse, b.label_why}));
   return BackProjectStage(std::move(kernel));
 }
 
@@ -71,8 +71,8 @@ Status RunBackProject(const Context& context, const Params& p, Frame& f, BackPro
   LPIR_VK_ASSIGN_OR_RETURN(Buffer r2, Buffer::Create(device, per_point, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer zt, Buffer::Create(device, per_point, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer coarse, Buffer::Create(device, per_point, kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer label, Buffer::Create(device, per_point, kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer why, Buffer::Create(device, per_point, kind));
+  const VkDeviceSize out_bytes = BackProjectStage::LabelWhyBytes(n);
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer label_why, Buffer::Create(device, out_bytes, kind));
 
   LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
   LPIR_VK_RETURN_IF_ERROR(transfer.Upload(params_buffer, &p, sizeof(Params)));
@@ -101,29 +101,25 @@ Status RunBackProject(const Context& context, const Params& p, Frame& f, BackPro
   bindings.r2 = &r2;
   bindings.zt = &zt;
   bindings.coarse = &coarse;
-  bindings.label = &label;
-  bindings.why = &why;
+  bindings.label_why = &label_why;
   LPIR_VK_ASSIGN_OR_RETURN(BackProjectStage stage, BackProjectStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
       RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
 
   BackProjectWords local;
   BackProjectWords& out = words ? *words : local;
-  out.label.assign(n, 0);
-  out.why.assign(n, 0);
-  if (n) {
-    LPIR_VK_RETURN_IF_ERROR(transfer.Download(label, out.label.data(), per_point));
-    LPIR_VK_RETURN_IF_ERROR(transfer.Download(why, out.why.data(), per_point));
-  }
+  out.label_why.assign(out_bytes, 0);
+  if (n) LPIR_VK_RETURN_IF_ERROR(transfer.Download(label_why, out.label_why.data(), out_bytes));
+  f.label_why.assign(out.label_why.begin(), out.label_why.begin() + n);
   f.label.resize(n);
   f.why.resize(n);
   for (uint64_t i = 0; i < n; ++i) {
-    if (out.label[i] > 0xFFu || out.why[i] > 0xFFu)
-      return BackProjectError("point " + std::to_string(i) + ": label " +
-                              std::to_string(out.label[i]) + ", why " +
-                              std::to_string(out.why[i]) + " do not fit in a byte");
-    f.label[i] = uint8_t(out.label[i]);
-    f.why[i] = uint8_t(out.why[i]);
+    const uint8_t byte = f.label_why[i];
+    if (WhyOf(byte) > kWhyNoise || LabelOf(byte) != (WhyOf(byte) == kWhyGround))
+      return BackProjectError("point " + std::to_string(i) + ": byte " + std::to_string(byte) +
+                              " is no label and why");
+    f.label[i] = LabelOf(byte);
+    f.why[i] = WhyOf(byte);
   }
   return Status();
 }

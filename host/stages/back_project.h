@@ -1,8 +1,9 @@
 // Stage 9, back-project, on Vulkan: shaders/back_project.comp behind the generic dispatcher.
 // BackProjectStage is the per-frame piece (bound once to the frame's buffers, recorded every
 // frame); RunBackProject is the one-shot twin of lpir::BackProject for tests and tools.
-// The outputs are one uint32 per point on the GPU (the reference's uint8 widened; the device is
-// created without the 8-bit storage feature): the frame narrows them after download.
+// The output is one byte per point, label | why << 1 (Frame::label_why), four points a uint32
+// word (the device is created without the 8-bit storage feature): a frame downloads n bytes
+// rounded up to a word and unpacks label and why on the host.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -31,13 +32,16 @@ struct BackProjectBuffers {
   const Buffer* r2 = nullptr;           // float per point
   const Buffer* zt = nullptr;           // float per point
   const Buffer* coarse = nullptr;       // uint32 per point
-  const Buffer* label = nullptr;        // out: uint32 per point, 1 ground, 0 non-ground
-  const Buffer* why = nullptr;          // out: uint32 per point, kWhy*
+  const Buffer* label_why = nullptr;    // out: a byte per point (PackLabelWhy), at least
+                                        // LabelWhyBytes(n) bytes
 };
 
 class BackProjectStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
+
+  // Bytes of the label_why output for n points: n rounded up to a whole word.
+  static constexpr uint64_t LabelWhyBytes(uint64_t n) { return (n + 3) / 4 * 4; }
 
   static Result<BackProjectStage> Create(const Device& device, const BackProjectBuffers& buffers);
 
@@ -50,17 +54,17 @@ class BackProjectStage {
   Kernel kernel_;
 };
 
-// The GPU's outputs as it wrote them, one uint32 per point.
+// The GPU's output as it wrote it: LabelWhyBytes(n) bytes, point i's byte at i.
 struct BackProjectWords {
-  std::vector<uint32_t> label;
-  std::vector<uint32_t> why;
+  std::vector<uint8_t> label_why;
 };
 
 // Stage 9 on the GPU, the twin of lpir::BackProject(p, f): allocates device-local buffers,
 // uploads f.flags, f.point_pixel, f.r2, f.zt, f.coarse (per point, f.n each) and f.pixel_point,
-// f.pixel_label, f.f_range, f.f_height (per pixel), runs, and fills f.label and f.why (nothing
-// else of f is touched); `words`, when given, gets the uint32 outputs before narrowing. An error
-// when an input has the wrong size or an output word does not fit in a byte. `gpu_ns`, when
+// f.pixel_label, f.f_range, f.f_height (per pixel), runs, and fills f.label_why (n bytes) and,
+// unpacked from it, f.label and f.why (nothing else of f is touched); `words`, when given, gets
+// the downloaded bytes, the padding of the last word included. An error when an input has the
+// wrong size or a byte is no PackLabelWhy of a label and a why. `gpu_ns`, when
 // given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps). Waits for the GPU.
 Status RunBackProject(const Context& context, const Params& p, Frame& f,
                       BackProjectWords* words = nullptr, double* gpu_ns = nullptr);
