@@ -31,6 +31,7 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
     vk::ContextOptions context_options;
     context_options.device = options.device;
     context_options.validation = options.validation;
+    context_options.gpu_only = options.backend == Backend::kAuto && options.device.empty();
     vk::Result<vk::Context> context = vk::Context::Create(context_options);
     std::string failure;
     if (context.ok()) {
@@ -51,9 +52,11 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
     if (!pipeline_) {
       if (options.backend == Backend::kVulkan || !options.device.empty())
         throw std::runtime_error("the Vulkan backend could not be set up: " + failure);
-      backend_note_ = (context.ok() || !context.error().no_device
-                           ? "CPU reference, the Vulkan set-up failed: "
-                           : "CPU reference, no Vulkan device: ") +
+      const bool cpu_driver_only = !context.ok() && context.error().cpu_driver_only;
+      const bool no_device = !context.ok() && context.error().no_device;
+      backend_note_ = (cpu_driver_only ? "CPU reference: "
+                       : no_device     ? "CPU reference, no Vulkan device: "
+                                       : "CPU reference, the Vulkan set-up failed: ") +
                       failure;
     }
   } else {

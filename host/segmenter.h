@@ -26,10 +26,11 @@ class FramePipeline;
 constexpr size_t kDefaultMaxPoints = size_t(1) << 20;
 
 enum class Backend {
-  kAuto,    // Vulkan when a device can be set up, else the CPU reference (backend_note says
+  kAuto,    // Vulkan on a GPU (no CPU driver such as lavapipe: the reference is faster on the
+            // same cores) when one can be set up, else the CPU reference (backend_note says
             // why); with SegmenterOptions::device named, as kVulkan
   kCpu,     // the CPU reference
-  kVulkan,  // Vulkan, or an error
+  kVulkan,  // Vulkan on any usable device, CPU drivers included, or an error
 };
 // "auto", "cpu" or "vulkan" (std::invalid_argument otherwise).
 Backend ParseBackend(const std::string& name);
@@ -76,12 +77,13 @@ class Segmenter {
   size_t frames_in_flight() const { return slots_; }
 
   // The backend in use (never kAuto), and one line saying which and why: "Vulkan on <device>",
-  // "CPU reference (asked for)", "CPU reference, no Vulkan device: <reason>", "CPU reference,
-  // the Vulkan set-up failed: <reason>".
+  // "CPU reference (asked for)", "CPU reference: the only Vulkan device is a CPU driver (<name>);
+  // --backend vulkan uses it", "CPU reference, no Vulkan device: <reason>", "CPU reference, the
+  // Vulkan set-up failed: <reason>".
   Backend backend() const { return backend_; }
   const std::string& backend_note() const { return backend_note_; }
-  // The Vulkan device is a CPU driver (lavapipe): the CPU reference is faster there (README,
-  // Speed). False on the CPU backend.
+  // The Vulkan device is a CPU driver (lavapipe; only kVulkan or a named device takes one: the
+  // CPU reference is faster there, README Speed). False on the CPU backend.
   bool on_cpu_driver() const;
   // Frames whose growing loop did not reach its fixed point within grow_max_iters sweeps on the
   // device, and were labelled by the CPU reference instead (same bytes, more time).

@@ -1,7 +1,7 @@
-// lpir::Segmenter's backends: the choice (auto takes the Vulkan device, cpu the reference, a
-// device that is not there an error), frames in flight in submission order, every buffer when
-// asked, the CPU reference finishing a frame whose growing loop ran out of sweeps, and the misuse
-// errors; each frame's bytes against the CPU backend's.
+// lpir::Segmenter's backends: the choice (auto a GPU, else the reference; vulkan any device, a
+// CPU driver included; cpu the reference; a device that is not there an error), frames in flight
+// in submission order, every buffer when asked, the CPU reference finishing a frame whose growing
+// loop ran out of sweeps, and the misuse errors; each frame's bytes against the CPU backend's.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -40,10 +40,32 @@ SegmenterOptions Options(Backend backend, uint32_t in_flight = 2, bool all = fal
 // The fixture makes the shared context first, so a machine without Vulkan skips these tests.
 class SegmenterVk : public test::VkTest {};
 
-TEST_F(SegmenterVk, AutoTakesTheVulkanDevice) {
+// Auto takes a GPU when there is one, else the reference with a note naming the CPU driver;
+// kVulkan and a named device take the CPU driver too.
+TEST_F(SegmenterVk, AutoTakesAGpuElseTheReferenceVulkanTakesAnyDevice) {
+  const vk::Result<vk::Device> gpu = vk::Device::Create(context().instance(), "", true);
   Segmenter s(Vlp16(), Options(Backend::kAuto));
-  EXPECT_EQ(s.backend(), Backend::kVulkan);
-  EXPECT_EQ(s.backend_note(), "Vulkan on " + device().name());
+  if (gpu.ok()) {
+    EXPECT_EQ(s.backend(), Backend::kVulkan);
+    EXPECT_EQ(s.backend_note(), "Vulkan on " + gpu.value().name());
+    EXPECT_FALSE(s.on_cpu_driver());
+  } else {
+    EXPECT_TRUE(gpu.error().cpu_driver_only) << gpu.error().message;
+    EXPECT_EQ(s.backend(), Backend::kCpu);
+    EXPECT_EQ(s.device_bytes(), 0u);
+    const std::string& note = s.backend_note();
+    EXPECT_EQ(note.rfind("CPU reference: the only ", 0), 0u) << note;
+    EXPECT_NE(note.find(" a CPU driver (" + device().name() + ")"), std::string::npos) << note;
+    EXPECT_EQ(note.substr(note.size() - 26), "; --backend vulkan uses it") << note;
+  }
+  Segmenter vulkan(Vlp16(), Options(Backend::kVulkan));
+  EXPECT_EQ(vulkan.backend(), Backend::kVulkan);
+  EXPECT_EQ(vulkan.backend_note(), "Vulkan on " + device().name());
+  SegmenterOptions named = Options(Backend::kAuto);
+  named.device = device().name();
+  Segmenter by_name(Vlp16(), named);
+  EXPECT_EQ(by_name.backend(), Backend::kVulkan);
+  EXPECT_EQ(by_name.backend_note(), "Vulkan on " + device().name());
   Segmenter cpu(Vlp16(), Options(Backend::kCpu));
   EXPECT_EQ(cpu.backend(), Backend::kCpu);
   EXPECT_EQ(cpu.backend_note(), "CPU reference (asked for)");

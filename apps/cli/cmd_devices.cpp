@@ -1,6 +1,7 @@
 // lpir-gseg devices: the Vulkan devices this machine offers, one line each (index, name, type,
-// API version, usable or why not), and the one `segment` would take without --device. Exit code
-// 1 when there is none.
+// API version, usable or why not), what `segment` takes without --device under --backend auto (a
+// GPU, else the CPU reference) and under --backend vulkan (any usable device). Exit code 1 when
+// no device is usable.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -35,8 +36,11 @@ int RunDevices(int argc, char** argv) {
     std::printf("none usable: %s\n", chosen.error().message.c_str());
     return 1;
   }
-  std::printf("default (segment --backend auto without --device): %s\n",
-              chosen.value().name().c_str());
+  const vk::Result<vk::Device> gpu = vk::Device::Create(instance.value(), "", /*gpu_only=*/true);
+  const std::string by_auto =
+      gpu.ok() ? gpu.value().name() : "the CPU reference: " + gpu.error().message;
+  std::printf("default (segment --backend auto without --device): %s\n", by_auto.c_str());
+  std::printf("segment --backend vulkan without --device: %s\n", chosen.value().name().c_str());
   return 0;
 }
 

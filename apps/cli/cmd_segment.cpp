@@ -39,9 +39,10 @@ const char kHelp[] =
     "  --images         also write pictures of every stage to DIR/images/\n"
     "  --gt PATH        ground truth .label file or folder (matched by stem) for the pictures\n"
     "  --max-points N   largest cloud accepted (default 1048576)\n"
-    "  --backend B      vulkan, cpu (the reference) or auto (default: Vulkan when a device can\n"
-    "                   be set up, else the reference; the first line says which). Both give the\n"
-    "                   same bytes\n"
+    "  --backend B      vulkan (any device, lavapipe included), cpu (the reference) or auto\n"
+    "                   (default: Vulkan on a GPU, else the reference with a note saying why;\n"
+    "                   a CPU driver such as lavapipe only with vulkan or --device). Both give\n"
+    "                   the same bytes\n"
     "  --device D       Vulkan device: index or part of its name (`lpir-gseg devices` lists them)\n"
     "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
     "                   the CPU) and their medians at the end\n"
@@ -139,11 +140,6 @@ int RunSegment(int argc, char** argv) {
   Segmenter segmenter(sensor, options);
   if (options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
     std::fprintf(stderr, "lpir-gseg segment: note: %s\n",
-                 segmenter.backend_note().c_str());
-  if (options.backend == Backend::kAuto && options.device.empty() && segmenter.on_cpu_driver())
-    std::fprintf(stderr,
-                 "lpir-gseg segment: note: %s, a CPU driver (no GPU here); --backend cpu gives "
-                 "the same labels faster\n",
                  segmenter.backend_note().c_str());
   fs::create_directories(out_dir);
   ReadOptions read_options;

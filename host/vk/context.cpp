@@ -20,7 +20,8 @@ Result<Context> Context::Create(const ContextOptions& options) {
   InstanceOptions instance_options;
   instance_options.validation = options.validation;
   LPIR_VK_ASSIGN_OR_RETURN(Instance instance, Instance::Create(instance_options));
-  LPIR_VK_ASSIGN_OR_RETURN(Device device, Device::Create(instance, options.device));
+  LPIR_VK_ASSIGN_OR_RETURN(Device device,
+                           Device::Create(instance, options.device, options.gpu_only));
   return Context(std::move(instance), std::move(device));
 }
 

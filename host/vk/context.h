@@ -13,6 +13,7 @@ namespace lpir::vk {
 struct ContextOptions {
   bool validation = false;  // the Khronos validation layer, messages printed and counted
   std::string device;       // "": first usable, discrete first; digits: index; else name part
+  bool gpu_only = false;    // with device "": no CPU driver (Device::Create, cpu_driver_only)
 
   // LPIR_VK_VALIDATION=1 turns validation on, LPIR_VK_DEVICE=<selector> picks the device.
   static ContextOptions FromEnvironment();

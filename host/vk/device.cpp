@@ -133,7 +133,8 @@ Result<std::vector<std::string>> Device::Describe(const Instance& instance) {
   return lines;
 }
 
-Result<Device> Device::Create(const Instance& instance, const std::string& selector) {
+Result<Device> Device::Create(const Instance& instance, const std::string& selector,
+                             bool gpu_only) {
   LPIR_VK_ASSIGN_OR_RETURN(std::vector<Candidate> candidates, Enumerate(instance));
   if (candidates.empty()) {
     Error e;
@@ -165,11 +166,30 @@ Result<Device> Device::Create(const Instance& instance, const std::string& selec
     std::stable_sort(order.begin(), order.end(), [](const Candidate* a, const Candidate* b) {
       return TypeRank(a->properties.deviceType) < TypeRank(b->properties.deviceType);
     });
-    for (const Candidate* c : order)
-      if (c->why_not.empty()) {
-        chosen = c;
-        break;
+    std::vector<const Candidate*> cpu_drivers;  // usable, left out by gpu_only
+    for (const Candidate* c : order) {
+      if (!c->why_not.empty()) continue;
+      if (gpu_only && selector.empty() &&
+          c->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+        cpu_drivers.push_back(c);
+        continue;
       }
+      chosen = c;
+      break;
+    }
+    if (!chosen && !cpu_drivers.empty()) {
+      std::string names;
+      for (const Candidate* c : cpu_drivers)
+        names += (names.empty() ? "" : ", ") + std::string(c->properties.deviceName);
+      const bool alone = cpu_drivers.size() == candidates.size();
+      Error e;
+      e.result = VK_ERROR_FEATURE_NOT_PRESENT;
+      e.cpu_driver_only = true;
+      e.message = std::string(alone ? "the only" : "the only usable") + " Vulkan device" +
+                  (cpu_drivers.size() > 1 ? "s are CPU drivers (" : " is a CPU driver (") +
+                  names + "); --backend vulkan uses " + (cpu_drivers.size() > 1 ? "them" : "it");
+      return e;
+    }
     if (!chosen)
       return SelectionError(selector.empty()
                                 ? std::string("no usable Vulkan device")

@@ -1,8 +1,10 @@
 // Device: the physical device lpir-gseg runs on and its logical device with one compute queue.
 // Choice: a selector of digits is an index into vkEnumeratePhysicalDevices; any other non-empty
 // selector is a case-insensitive substring of the device name; an empty one takes the first
-// usable device, discrete GPUs first, then integrated, virtual, CPU (lavapipe), other. Usable:
-// Vulkan 1.2, shaderInt64 (the exact helpers of shaders/common/exact.glsl), a compute queue.
+// usable device, discrete GPUs first, then integrated, virtual, CPU (lavapipe), other; with
+// gpu_only, the same without CPU drivers (Backend::kAuto: the CPU reference beats lavapipe on the
+// same cores, README Speed). Usable: Vulkan 1.2, shaderInt64 (the exact helpers of
+// shaders/common/exact.glsl), a compute queue.
 #pragma once
 #include <vulkan/vulkan.h>
 
@@ -18,8 +20,12 @@ namespace lpir::vk {
 class Device {
  public:
   // Errors name every device seen and why it was not taken; Error::no_device when the instance
-  // has no physical device at all.
-  static Result<Device> Create(const Instance& instance, const std::string& selector = "");
+  // has no physical device at all. `gpu_only` (only with an empty selector) leaves out
+  // VK_PHYSICAL_DEVICE_TYPE_CPU devices; when one of those is all there is to take, the error is
+  // Error::cpu_driver_only, one line: "the only Vulkan device is a CPU driver (<name>); --backend
+  // vulkan uses it".
+  static Result<Device> Create(const Instance& instance, const std::string& selector = "",
+                               bool gpu_only = false);
   // One line per physical device: index, name, type, API version, and "usable" or why not.
   static Result<std::vector<std::string>> Describe(const Instance& instance);
 

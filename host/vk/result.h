@@ -17,6 +17,8 @@ struct Error {
   VkResult result = VK_ERROR_UNKNOWN;  // VK_SUCCESS when no Vulkan call failed (a missing feature)
   // No Vulkan implementation or no physical device at all: tests skip instead of failing.
   bool no_device = false;
+  // A GPU was asked for (Device::Create's gpu_only) and every usable device is a CPU driver.
+  bool cpu_driver_only = false;
 };
 
 // "VK_ERROR_OUT_OF_DEVICE_MEMORY (-2)".
