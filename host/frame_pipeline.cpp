@@ -1,6 +1,7 @@
 // The frame pipeline: buffers, stages and the recording of one frame.
 #include "host/frame_pipeline.h"
 
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -19,7 +20,42 @@ namespace {
 
 Error PipelineError(const std::string& message) { return UsageError("frame pipeline", message); }
 
+// "1.6 GB", "80.0 MB", "4.1 kB" (decimal units, one decimal), "12 bytes".
+std::string BytesText(uint64_t bytes) {
+  const struct {
+    double unit;
+    const char* name;
+  } units[] = {{1e9, "GB"}, {1e6, "MB"}, {1e3, "kB"}};
+  for (const auto& u : units)
+    if (double(bytes) >= u.unit) {
+      char text[32];
+      std::snprintf(text, sizeof(text), "%.1f %s", double(bytes) / u.unit, u.name);
+      return text;
+    }
+  return std::to_string(bytes) + " bytes";
+}
+
 }  // namespace
+
+DeviceLimits DeviceLimits::Of(const Device& device) {
+  DeviceLimits limits;
+  limits.max_storage_buffer_range = device.limits().maxStorageBufferRange;
+  limits.max_uniform_buffer_range = device.limits().maxUniformBufferRange;
+  // The heaps of the memory types Buffer::Create takes (every type allowed: a buffer's own
+  // memoryTypeBits are only known once it exists).
+  const VkPhysicalDeviceMemoryProperties& memory = device.memory_properties();
+  const Result<uint32_t> local =
+      device.FindMemoryType(~0u, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+  const Result<uint32_t> host = device.FindMemoryType(
+      ~0u, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+      VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+  if (local.ok()) {
+    const uint32_t heap = memory.memoryTypes[local.value()].heapIndex;
+    limits.device_local_heap = memory.memoryHeaps[heap].size;
+    limits.staging_in_device_heap = host.ok() && memory.memoryTypes[host.value()].heapIndex == heap;
+  }
+  return limits;
+}
 
 struct FramePipeline::Buffers {
   Buffer params, points, ring;
@@ -75,7 +111,7 @@ FramePipeline& FramePipeline::operator=(FramePipeline&& other) noexcept {
 
 Result<FramePipeline> FramePipeline::Create(const Context& context, const Params& params,
                                             const Tables& tables, uint32_t max_points,
-                                            uint32_t slots) {
+                                            uint32_t slots, const DeviceLimits* limits) {
   const Device& device = context.device();
   if (max_points == 0 || max_points > UINT32_MAX / 16)
     return PipelineError("max_points must be between 1 and " + std::to_string(UINT32_MAX / 16));
@@ -130,6 +166,74 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       {&b.grow_sizes, pixel},
       {&b.grow_flags, 4 * VkDeviceSize(GrowStage::FlagWords(params.grow_max_iters))},
       {&b.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
+  {
+    // The device's limits, before anything is allocated: every storage buffer's size (what it
+    // scales with named in the error), Params, and the sum of all against the heap.
+    const DeviceLimits device_limits = limits ? *limits : DeviceLimits::Of(device);
+    const std::string points_need = "max_points " + std::to_string(max_points);
+    const std::string pixels_need = "an image of " + std::to_string(params.beams) + " x " +
+                                    std::to_string(params.width) + " pixels";
+    const std::string cells_need = "a grid of " + std::to_string(cells) + " cells";
+    const struct {
+      const Buffer* buffer;
+      const char* name;
+      const std::string* need;
+    } names[] = {
+        {&b.points, "points", &points_need},      {&b.ring, "ring", &points_need},
+        {&b.flags, "flags", &points_need},        {&b.zt, "zt", &points_need},
+        {&b.r2, "r2", &points_need},              {&b.inten, "inten", &points_need},
+        {&b.point_pixel, "point_pixel", &points_need},
+        {&b.project_exact, "project_exact", &points_need},
+        {&b.point_cell, "point_cell", &points_need},
+        {&b.coarse, "coarse", &points_need},      {&b.label_why, "label_why", &points_need},
+        {&b.pixel_key, "pixel_key", &pixels_need}, {&b.pixel_point, "pixel_point", &pixels_need},
+        {&b.feature_pack, "feature_pack", &pixels_need},
+        {&b.cell_plane, "cell_plane", &cells_need},
+        {&b.coarse_scratch, "coarse_scratch", &cells_need}};
+    const std::string other_need = points_need + " and " + pixels_need;
+    uint64_t total = 0;
+    for (const auto& s : sizes) {
+      total += s.bytes;
+      if (s.buffer == &b.params) {
+        if (s.bytes > device_limits.max_uniform_buffer_range)
+          return PipelineError("the parameters need a " + std::to_string(s.bytes) +
+                               "-byte uniform buffer; this device's maxUniformBufferRange is " +
+                               std::to_string(device_limits.max_uniform_buffer_range));
+        continue;
+      }
+      if (s.bytes <= device_limits.max_storage_buffer_range) continue;
+      const char* name = "a";
+      const std::string* need = &other_need;
+      for (const auto& n : names)
+        if (n.buffer == s.buffer) name = n.name, need = n.need;
+      return PipelineError(*need + " needs a " + BytesText(s.bytes) + " (" +
+                           std::to_string(s.bytes) + " bytes) " + name +
+                           " buffer; this device's maxStorageBufferRange is " +
+                           std::to_string(device_limits.max_storage_buffer_range));
+    }
+    const std::vector<float>* table_values[] = {&tables.column_dir, &tables.beam_bound,
+                                                &tables.beam_origin, &tables.ring_bound2,
+                                                &tables.ring_inner};
+    for (const std::vector<float>* values : table_values) {
+      const uint64_t bytes = 4 * uint64_t(values->size());
+      total += bytes;
+      if (bytes > device_limits.max_storage_buffer_range)
+        return PipelineError(pixels_need + " and " + cells_need + " need a " + BytesText(bytes) +
+                             " table; this device's maxStorageBufferRange is " +
+                             std::to_string(device_limits.max_storage_buffer_range));
+    }
+    // The slots' upload and download buffers, sized as allocated below.
+    const uint64_t staging = uint64_t(slots) * (5 * point + (2 * point + 4));
+    if (device_limits.staging_in_device_heap) total += staging;
+    if (total > device_limits.device_local_heap)
+      return PipelineError(points_need + " and " + pixels_need + " need " + BytesText(total) +
+                           " (" + std::to_string(total) + " bytes) of device memory" +
+                           (device_limits.staging_in_device_heap
+                                ? " (" + std::to_string(slots) + " staging slots included)"
+                                : std::string()) +
+                           "; this device's device-local memory heap holds " +
+                           std::to_string(device_limits.device_local_heap) + " bytes");
+  }
   for (const auto& s : sizes) LPIR_VK_RETURN_IF_ERROR(make(*s.buffer, s.bytes));
   LPIR_VK_RETURN_IF_ERROR(table(b.column_dir, tables.column_dir));
   LPIR_VK_RETURN_IF_ERROR(table(b.beam_bound, tables.beam_bound));
@@ -203,6 +307,17 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       slot.queries.push_back(std::move(q));
     }
     fp.slots_.push_back(std::move(slot));
+  }
+  // The largest frame's dispatches, recorded once and never submitted (Record begins the
+  // command buffer anew every frame): a stage over more workgroups than the device dispatches
+  // fails here, naming maxComputeWorkGroupCount[0].
+  {
+    Slot& first = fp.slots_.front();
+    first.n = max_points;
+    const Status status = fp.Record(first, /*has_ring=*/true);
+    first.n = 0;
+    if (!status.ok())
+      return PipelineError("max_points " + std::to_string(max_points) + ": " + status.message());
   }
   return fp;
 }

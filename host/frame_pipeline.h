@@ -25,12 +25,32 @@
 
 namespace lpir::vk {
 
+// What FramePipeline::Create checks its buffers and dispatches against, before allocating.
+struct DeviceLimits {
+  uint64_t max_storage_buffer_range = 0;  // VkPhysicalDeviceLimits::maxStorageBufferRange
+  uint64_t max_uniform_buffer_range = 0;  // VkPhysicalDeviceLimits::maxUniformBufferRange
+  uint64_t device_local_heap = 0;         // bytes of the heap device-local buffers come from
+  bool staging_in_device_heap = false;    // the host-visible staging buffers come from it too
+  // The device's own. maxComputeWorkGroupCount[0] is not here: every kernel checks its
+  // dispatches against the device's (Kernel::CheckGroups), and Create records a frame of
+  // max_points points to see them.
+  static DeviceLimits Of(const Device& device);
+};
+
 class FramePipeline {
  public:
   // Builds the nine stages over buffers for clouds of up to `max_points` points (at least 1) and
-  // uploads the tables. `slots`: frames that may be in flight at once (at least 1).
+  // uploads the tables. `slots`: frames that may be in flight at once (at least 1). Before
+  // allocating, checks every storage buffer against maxStorageBufferRange, Params against
+  // maxUniformBufferRange and the sum of the buffers against the device-local heap (`limits`:
+  // nullptr for the device's own, DeviceLimits::Of); after building the stages, records a frame
+  // of max_points points, so that a dispatch over more workgroups than
+  // maxComputeWorkGroupCount[0] is an error here and not at a later Submit. Each error names the
+  // limit, what needs more and the device's value: "max_points 100000000 needs a 1.6 GB points
+  // buffer; this device's maxStorageBufferRange is 134217728".
   static Result<FramePipeline> Create(const Context& context, const Params& params,
-                                      const Tables& tables, uint32_t max_points, uint32_t slots);
+                                      const Tables& tables, uint32_t max_points, uint32_t slots,
+                                      const DeviceLimits* limits = nullptr);
 
   // Copies `cloud` into slot `slot`'s staging buffer, records its frame and submits it. The slot
   // must be free: never submitted, or collected since. An error (nothing submitted) for a cloud

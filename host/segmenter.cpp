@@ -15,14 +15,20 @@ Backend ParseBackend(const std::string& name) {
   throw std::invalid_argument("unknown backend '" + name + "' (auto, cpu or vulkan)");
 }
 
+size_t DefaultMaxPoints(const SensorProfile& sensor) {
+  return size_t(sensor.beams) * sensor.width * 2;
+}
+
 Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& options)
     : sensor_(sensor),
       options_(options),
       params_(ParamsForSensor(sensor)),
       tables_(MakeTables(sensor, params_)) {
-  if (options.max_points == 0 || options.max_points > UINT32_MAX / 16)
+  if (options_.max_points == 0) options_.max_points = DefaultMaxPoints(sensor);
+  if (options_.max_points == 0 || options_.max_points > UINT32_MAX / 16)
     throw std::invalid_argument("max_points must be between 1 and " +
-                                std::to_string(UINT32_MAX / 16));
+                                std::to_string(UINT32_MAX / 16) + ", not " +
+                                std::to_string(options_.max_points));
   if (options.frames_in_flight == 0) throw std::invalid_argument("frames_in_flight is 0");
   // Every buffer is read back after its frame, before the next one may start.
   slots_ = options.all_buffers ? 1u : options.frames_in_flight;
@@ -37,7 +43,7 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
     if (context.ok()) {
       context_ = std::make_unique<vk::Context>(std::move(context).value());
       vk::Result<vk::FramePipeline> pipeline = vk::FramePipeline::Create(
-          *context_, params_, tables_, uint32_t(options.max_points), slots_);
+          *context_, params_, tables_, uint32_t(options_.max_points), slots_);
       if (pipeline.ok()) {
         pipeline_ = std::make_unique<vk::FramePipeline>(std::move(pipeline).value());
         backend_ = Backend::kVulkan;

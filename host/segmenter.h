@@ -23,7 +23,9 @@ class Context;
 class FramePipeline;
 }  // namespace vk
 
-constexpr size_t kDefaultMaxPoints = size_t(1) << 20;
+// The largest cloud a segmenter takes unless told: one point per pixel of the sensor's image, and
+// as many again for second returns (beams x width x 2).
+size_t DefaultMaxPoints(const SensorProfile& sensor);
 
 enum class Backend {
   kAuto,    // Vulkan on a GPU (no CPU driver such as lavapipe: the reference is faster on the
@@ -39,7 +41,7 @@ struct SegmenterOptions {
   Backend backend = Backend::kAuto;
   std::string device;  // Vulkan device: "" the first usable (discrete first), digits an index,
                        // else a part of its name (`lpir-gseg devices` lists them)
-  size_t max_points = kDefaultMaxPoints;  // a larger cloud is an error
+  size_t max_points = 0;  // a larger cloud is an error; 0: DefaultMaxPoints(sensor)
   uint32_t frames_in_flight = 2;          // Submit may run this many frames ahead of Collect
   // Every buffer of every stage in the returned Frame (pictures, debugging), not only label and
   // why. On Vulkan they are read back after each frame, so frames are not overlapped.
@@ -56,7 +58,8 @@ struct SegmenterOptions {
 class Segmenter {
  public:
   // Throws std::invalid_argument for an inconsistent profile or options, std::runtime_error when
-  // Backend::kVulkan was asked for and no device could be set up.
+  // Backend::kVulkan was asked for and no device could be set up (a device limit that max_points
+  // exceeds included: the message names it); kAuto falls back to the CPU reference then.
   explicit Segmenter(const SensorProfile& sensor, const SegmenterOptions& options = {});
   ~Segmenter();
   Segmenter(Segmenter&&) noexcept;
@@ -95,7 +98,7 @@ class Segmenter {
   const Params& params() const { return params_; }
   const Tables& tables() const { return tables_; }
   const SensorProfile& sensor() const { return sensor_; }
-  size_t max_points() const { return options_.max_points; }
+  size_t max_points() const { return options_.max_points; }  // DefaultMaxPoints resolved
 
  private:
   void CheckCloud(const Cloud& cloud) const;

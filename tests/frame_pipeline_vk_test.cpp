@@ -390,5 +390,80 @@ TEST_F(FramePipelineVk, CreateRejectsBadArguments) {
   EXPECT_NE(made.error().message.find("tables do not match"), std::string::npos);
 }
 
+// Every device limit Create checks, each error naming the limit, the value needed and the
+// device's: fake limits (each one just too small) for storage buffers, Params and the heap;
+// lavapipe's own maxStorageBufferRange and maxComputeWorkGroupCount[0] with a max_points over
+// them.
+TEST_F(FramePipelineVk, CreateChecksTheDeviceLimits) {
+  const SensorSetup s = MakeSetup(test::SmallSensor());
+  const vk::DeviceLimits real = vk::DeviceLimits::Of(device());
+  ASSERT_GT(real.max_storage_buffer_range, 0u);
+  ASSERT_GT(real.device_local_heap, 0u);
+  auto error = [&](uint32_t max_points, const vk::DeviceLimits* limits) {
+    const auto made = vk::FramePipeline::Create(context(), s.params, s.tables, max_points, 1,
+                                                limits);
+    return made.ok() ? std::string("(no error)") : made.error().message;
+  };
+  EXPECT_EQ(error(1000, &real), "(no error)");
+
+  vk::DeviceLimits fake = real;
+  fake.max_storage_buffer_range = 16000 - 1;  // the points buffer: 16 bytes a point
+  EXPECT_EQ(error(1000, &fake),
+            "frame pipeline: max_points 1000 needs a 16.0 kB (16000 bytes) points buffer; this "
+            "device's maxStorageBufferRange is 15999");
+  fake.max_storage_buffer_range = 16000;  // then the 16 x 256 pixels' pixel_key, 4 each
+  EXPECT_EQ(error(1000, &fake),
+            "frame pipeline: an image of 16 x 256 pixels needs a 16.4 kB (16384 bytes) "
+            "pixel_key buffer; this device's maxStorageBufferRange is 16000");
+
+  fake = real;
+  fake.max_uniform_buffer_range = sizeof(Params) - 1;
+  EXPECT_EQ(error(1000, &fake),
+            "frame pipeline: the parameters need a " + std::to_string(sizeof(Params)) +
+                "-byte uniform buffer; this device's maxUniformBufferRange is " +
+                std::to_string(sizeof(Params) - 1));
+
+  fake = real;
+  fake.device_local_heap = 1 << 20;
+  const std::string heap = error(100000, &fake);
+  EXPECT_NE(heap.find("frame pipeline: max_points 100000 and an image of 16 x 256 pixels need "),
+            std::string::npos)
+      << heap;
+  EXPECT_NE(heap.find(" of device memory"), std::string::npos) << heap;
+  EXPECT_NE(heap.find("; this device's device-local memory heap holds 1048576 bytes"),
+            std::string::npos)
+      << heap;
+  fake.device_local_heap = 1ull << 40;
+  EXPECT_EQ(error(1000, &fake), "(no error)");
+
+  // The device's own limits (lavapipe: 128 MiB storage buffers, 65535 workgroups of 64).
+  const uint64_t over_range = real.max_storage_buffer_range / 16 + 1;
+  if (over_range <= UINT32_MAX / 16) {
+    const std::string e = error(uint32_t(over_range), nullptr);
+    EXPECT_NE(e.find("frame pipeline: max_points " + std::to_string(over_range) + " needs a "),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find(" points buffer; this device's maxStorageBufferRange is " +
+                     std::to_string(real.max_storage_buffer_range)),
+              std::string::npos)
+        << e;
+  }
+  const uint64_t groups = device().limits().maxComputeWorkGroupCount[0];
+  const uint64_t over_groups = groups * 64 + 1;  // prepare: a point an invocation, 64 a group
+  if (16 * over_groups <= real.max_storage_buffer_range && over_groups <= UINT32_MAX / 16 &&
+      100 * over_groups < real.device_local_heap) {
+    const std::string e = error(uint32_t(over_groups), nullptr);
+    EXPECT_NE(e.find("frame pipeline: max_points " + std::to_string(over_groups) + ": "),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("; this device's maxComputeWorkGroupCount[0] is " + std::to_string(groups)),
+              std::string::npos)
+        << e;
+  } else {
+    std::printf("[frame_pipeline] maxComputeWorkGroupCount[0] %llu: not reachable here\n",
+                static_cast<unsigned long long>(groups));
+  }
+}
+
 }  // namespace
 }  // namespace lpir

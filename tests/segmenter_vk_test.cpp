@@ -176,8 +176,61 @@ TEST(Segmenter, BadOptionsAreErrors) {
   o.frames_in_flight = 0;
   EXPECT_THROW(Segmenter(Vlp16(), o), std::invalid_argument);
   o.frames_in_flight = 1;
-  o.max_points = 0;
+  o.max_points = size_t(UINT32_MAX / 16) + 1;
   EXPECT_THROW(Segmenter(Vlp16(), o), std::invalid_argument);
+}
+
+// Without max_points, the sensor's beams x width x 2 (a point a pixel, as many second returns);
+// max_points given overrides it; a cloud over it is a length_error that names both numbers.
+TEST(Segmenter, MaxPointsFollowsTheSensorProfile) {
+  for (const char* name : {"vlp16", "hdl64e", "os1-128"}) {
+    const SensorProfile sensor = LoadSensorProfile(name, test::SensorsDir());
+    Segmenter s(sensor, SegmenterOptions::For(Backend::kCpu));
+    EXPECT_EQ(s.max_points(), size_t(sensor.beams) * sensor.width * 2) << name;
+    EXPECT_EQ(DefaultMaxPoints(sensor), s.max_points()) << name;
+  }
+  EXPECT_EQ(DefaultMaxPoints(LoadSensorProfile("hdl64e", test::SensorsDir())), 262144u);
+  SegmenterOptions o = SegmenterOptions::For(Backend::kCpu);
+  o.max_points = 1000;
+  Segmenter small(Vlp16(), o);
+  EXPECT_EQ(small.max_points(), 1000u);
+  const SensorProfile sensor = Vlp16();
+  Segmenter s(sensor, SegmenterOptions::For(Backend::kCpu));
+  Cloud big;
+  while (big.size() <= s.max_points()) big.Push(5.0f, float(big.size() % 50), -1.7f, 0.3f);
+  try {
+    s.Segment(big);
+    ADD_FAILURE() << "no error for " << big.size() << " points";
+  } catch (const std::length_error& e) {
+    EXPECT_NE(std::string(e.what()).find(std::to_string(big.size()) + " points, more than the " +
+                                         "configured maximum of " +
+                                         std::to_string(s.max_points())),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A max_points over a device limit: --backend vulkan is an error naming the limit (lavapipe's
+// storage buffers hold 128 MiB, 8,388,608 points of 16 bytes).
+TEST_F(SegmenterVk, MaxPointsOverADeviceLimitIsAnErrorNamingIt) {
+  const uint64_t range = device().limits().maxStorageBufferRange;
+  if (range / 16 + 1 > UINT32_MAX / 16) GTEST_SKIP() << "maxStorageBufferRange " << range;
+  SegmenterOptions o = Options(Backend::kVulkan);
+  o.max_points = range / 16 + 1;
+  try {
+    Segmenter s(Vlp16(), o);
+    ADD_FAILURE() << "made a segmenter on " << s.backend_note();
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the Vulkan backend could not be set up: frame pipeline: max_points " +
+                        std::to_string(o.max_points) + " needs a "),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find(" points buffer; this device's maxStorageBufferRange is " +
+                        std::to_string(range)),
+              std::string::npos)
+        << what;
+  }
 }
 
 // Segment on the CPU writes into the frame it returns, so a sequence reuses one set of buffers: a

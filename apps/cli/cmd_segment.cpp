@@ -38,7 +38,8 @@ const char kHelp[] =
     "                   *.pcd.bin are read that way without it, other .bin files as KITTI\n"
     "  --images         also write pictures of every stage to DIR/images/\n"
     "  --gt PATH        ground truth .label file or folder (matched by stem) for the pictures\n"
-    "  --max-points N   largest cloud accepted (default 1048576)\n"
+    "  --max-points N   largest cloud accepted (default: the sensor's beams x width x 2, one\n"
+    "                   point a pixel and as many second returns; 262144 for hdl64e)\n"
     "  --backend B      vulkan (any device, lavapipe included), cpu (the reference) or auto\n"
     "                   (default: Vulkan on a GPU, else the reference with a note saying why;\n"
     "                   a CPU driver such as lavapipe only with vulkan or --device). Both give\n"
@@ -124,8 +125,8 @@ int RunSegment(int argc, char** argv) {
   const std::string format = args.Get("--format", "label");
   if (format != "label" && format != "pcd" && format != "ply")
     throw std::invalid_argument("--format must be label, pcd or ply, not '" + format + "'");
-  const double max_points = args.GetNumber("--max-points", double(kDefaultMaxPoints));
-  if (!(max_points >= 1) || max_points > 1e8)
+  const double max_points = args.GetNumber("--max-points", 0);  // 0: from the sensor profile
+  if (args.Has("--max-points") && (!(max_points >= 1) || max_points > 1e8))
     throw std::invalid_argument("--max-points must be between 1 and 1e8");
   const std::string out_dir = args.Require("--out");
   SegmenterOptions options;

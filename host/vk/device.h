@@ -41,6 +41,7 @@ class Device {
   uint32_t queue_family() const { return queue_family_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceLimits& limits() const { return properties_.limits; }
+  const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
   std::string name() const { return properties_.deviceName; }
   // Valid bits of the queue's timestamps (0: no timestamps on this queue).
   uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }

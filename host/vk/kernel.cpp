@@ -28,8 +28,9 @@ Status Kernel::CheckGroups(uint64_t invocations) const {
   Error e;
   e.result = VK_ERROR_UNKNOWN;
   e.message = pipelines_.front().name() + ": " + std::to_string(invocations) +
-              " invocations need " + std::to_string(groups) +
-              " workgroups, the device dispatches at most " + std::to_string(max_groups_);
+              " invocations need " + std::to_string(groups) + " workgroups of " +
+              std::to_string(local) + "; this device's maxComputeWorkGroupCount[0] is " +
+              std::to_string(max_groups_);
   return e;
 }
 
