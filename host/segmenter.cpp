@@ -16,7 +16,7 @@ Backend ParseBackend(const std::string& name) {
 }
 
 size_t DefaultMaxPoints(const SensorProfile& sensor) {
-  return size_t(sensor.beams) * sensor.width * 2;
+  return sensor.max_points ? sensor.max_points : size_t(sensor.beams) * sensor.width * 2;
 }
 
 Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& options)

@@ -23,8 +23,8 @@ class Context;
 class FramePipeline;
 }  // namespace vk
 
-// The largest cloud a segmenter takes unless told: one point per pixel of the sensor's image, and
-// as many again for second returns (beams x width x 2).
+// The largest cloud a segmenter takes unless told: the profile's max_points, else one point per
+// pixel of the sensor's image and as many again for second returns (beams x width x 2).
 size_t DefaultMaxPoints(const SensorProfile& sensor);
 
 enum class Backend {

@@ -16,6 +16,9 @@ struct SensorProfile {
   std::string name;                   // e.g. "hdl64e"
   unsigned beams = 64;                // image rows
   unsigned width = 2048;              // image columns (one per azimuth step, 360 degrees)
+  // Largest cloud a segmenter takes unless told (0: beams x width x 2, a point a pixel and as
+  // many second returns); for a sensor that fires more often a turn than the image has columns.
+  unsigned max_points = 0;
   std::vector<float> elevation_deg;   // beam elevations, degrees, row 0 (top) first, descending
   // Height of each beam's laser origin above the sensor frame's origin, m, row 0 first (empty:
   // all 0). The HDL-64E fires from 0.1-0.2 m above its centre, which bends near elevations.

@@ -180,8 +180,8 @@ TEST(Segmenter, BadOptionsAreErrors) {
   EXPECT_THROW(Segmenter(Vlp16(), o), std::invalid_argument);
 }
 
-// Without max_points, the sensor's beams x width x 2 (a point a pixel, as many second returns);
-// max_points given overrides it; a cloud over it is a length_error that names both numbers.
+// Without max_points, the profile's max_points, else the sensor's beams x width x 2 (a point a
+// pixel, as many second returns); max_points given overrides it; a cloud over it is a length_error that names both numbers.
 TEST(Segmenter, MaxPointsFollowsTheSensorProfile) {
   for (const char* name : {"vlp16", "hdl64e", "os1-128"}) {
     const SensorProfile sensor = LoadSensorProfile(name, test::SensorsDir());
@@ -190,6 +190,13 @@ TEST(Segmenter, MaxPointsFollowsTheSensorProfile) {
     EXPECT_EQ(DefaultMaxPoints(sensor), s.max_points()) << name;
   }
   EXPECT_EQ(DefaultMaxPoints(LoadSensorProfile("hdl64e", test::SensorsDir())), 262144u);
+  // The profile's own max_points where it has one (the 10 Hz HDL-32E PLY fires 2181 times a
+  // turn into 1024 columns: 69,792 points over 32 x 1024 x 2 = 65,536).
+  const SensorProfile hdl32e = LoadSensorProfile("hdl32e", test::SensorsDir());
+  ASSERT_NE(hdl32e.max_points, 0u);
+  EXPECT_GT(hdl32e.max_points, 69792u);
+  EXPECT_EQ(Segmenter(hdl32e, SegmenterOptions::For(Backend::kCpu)).max_points(),
+            hdl32e.max_points);
   SegmenterOptions o = SegmenterOptions::For(Backend::kCpu);
   o.max_points = 1000;
   Segmenter small(Vlp16(), o);

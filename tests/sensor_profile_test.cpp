@@ -115,6 +115,7 @@ TEST(SensorProfile, ParsesEveryKey) {
   EXPECT_FLOAT_EQ(p.min_range, 2.0f);
   EXPECT_FLOAT_EQ(p.max_range, 100.0f);
   EXPECT_EQ(p.k_xz, 0.0f);  // absent keys keep their defaults
+  EXPECT_EQ(p.max_points, 0u);
   ASSERT_EQ(p.overrides.size(), 2u);
   EXPECT_EQ(p.overrides[0].first, "slope_max");
   EXPECT_FLOAT_EQ(p.overrides[0].second, 0.06f);
@@ -148,6 +149,7 @@ TEST(SensorProfile, RoundTripsExactly) {
     EXPECT_EQ(b.name, a.name);
     EXPECT_EQ(b.beams, a.beams);
     EXPECT_EQ(b.width, a.width);
+    EXPECT_EQ(b.max_points, a.max_points);
     EXPECT_EQ(b.elevation_deg, a.elevation_deg);  // bit-exact floats
     EXPECT_EQ(b.ring_zero_is_top, a.ring_zero_is_top);
     EXPECT_EQ(b.intensity_scale, a.intensity_scale);
@@ -217,6 +219,9 @@ TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
       {"not descending", Edit(6, "  1.0 -3.0"), 5, "strictly descending"},
       {"ascending", Edit(5, "elevation_deg -3.0 -1.0"), 5, "strictly descending"},
       {"width not /64", Edit(4, "width 1800"), 4, "width 1800 must be a positive multiple of 64"},
+      {"max_points 0", Edit(4, "width 1024\nmax_points 0"), 5, "max_points must be 1..1e8"},
+      {"max_points huge", Edit(4, "width 1024\nmax_points 100000001"), 5,
+       "max_points must be 1..1e8"},
       {"unknown param", Edit(12, "param slope_maximum 0.06"), 12,
        "unknown parameter 'slope_maximum'"},
       {"param value rejected", Edit(13, "param min_component 2.5"), 13, "whole number"},

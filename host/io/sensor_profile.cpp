@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 const char* const kKeys[] = {"name",
                              "beams",
                              "width",
+                             "max_points",
                              "elevation_deg",
                              "beam_origin_z",
                              "ring_zero_is_top",
@@ -159,6 +160,9 @@ class Parser {
         p.width = Unsigned(line, key, v);
         if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
           Fail(line, "width " + v + " must be a positive multiple of 64 (at most 65536)");
+      } else if (key == "max_points") {
+        p.max_points = Unsigned(line, key, v);
+        if (p.max_points < 1 || p.max_points > 100000000) Fail(line, "max_points must be 1..1e8");
       } else if (key == "ring_zero_is_top") {
         if (v != "0" && v != "1") Fail(line, "ring_zero_is_top must be 0 or 1, got '" + v + "'");
         p.ring_zero_is_top = v == "1";
@@ -272,6 +276,7 @@ void WriteSensorProfile(const std::string& path, const SensorProfile& p) {
   s += "name " + p.name + "\n";
   s += "beams " + std::to_string(p.beams) + "\n";
   s += "width " + std::to_string(p.width) + "\n";
+  if (p.max_points) s += "max_points " + std::to_string(p.max_points) + "\n";
   s += "elevation_deg";
   for (size_t i = 0; i < p.elevation_deg.size(); ++i) {
     if (i > 0 && i % 8 == 0) s += "\n ";
