@@ -7,10 +7,16 @@
 // point, ground (1) exactly when why is kWhyGround, and non-ground with why kWhyInvalid exactly
 // for the points stage 1 must reject (a non-finite value, the origin, a ring past the beams, a
 // planar range or |z| outside the profile's range), decided here independently of the pipeline.
+// The subnormal cases (heights of about 1e-38 m, heights whose differences are subnormal,
+// subnormal coordinates) put the float arithmetic of every stage in the range where a device may
+// flush (Vulkan allows it): the bytes must still be the reference's, and the cloud must really
+// make the stages subtract heights into that range (SubnormalHeightsReachTheStages).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -102,6 +108,53 @@ Cloud WildIntensities() {
 Cloud RingsPastTheBeams() {
   Cloud cloud = Street();
   for (size_t i = 0; i < cloud.size(); ++i) cloud.ring.push_back(int32_t(i % 3 ? i % 16 : 16 + i));
+  return cloud;
+}
+
+bool Subnormal(float f) { return f != 0.0f && std::fabs(f) < std::numeric_limits<float>::min(); }
+
+// The street with rings (rows from the ring index, not from the elevation, which heights of
+// 1e-38 m would make 0 everywhere) and every height scaled by 1e-38: ground at about -1.7e-38,
+// obstacles up to about 3e-38, normal floats, and those below 1.18e-38 in magnitude subnormal
+// (stage 1 flushes them). Neighbouring heights differ by subnormal amounts.
+Cloud TinyHeights() {
+  SimOptions options;
+  options.seed = 6;
+  options.emit_rings = true;
+  Cloud cloud = Simulate(test::SmallSensor(), options).cloud;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    cloud.xyzi[4 * i + 2] = float(double(cloud.z(i)) * 1e-38);
+  return cloud;
+}
+
+// The street with rings, every height the smallest normal float (2^-126) plus (i % 61) steps of
+// the smallest subnormal (2^-149), negated on every third point: all normal, and every
+// difference of two neighbours' heights an exact subnormal (or 0, or about 2^-125).
+Cloud SubnormalHeightSteps() {
+  SimOptions options;
+  options.seed = 6;
+  options.emit_rings = true;
+  Cloud cloud = Simulate(test::SmallSensor(), options).cloud;
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const uint32_t bits = 0x00800000u + uint32_t(i % 61) + (i % 3 == 0 ? 0x80000000u : 0u);
+    std::memcpy(&cloud.xyzi[4 * i + 2], &bits, 4);
+  }
+  return cloud;
+}
+
+// The street with a subnormal or tiny coordinate in every 23rd point: x or y of +-1e-40 or
+// +-3e-39 (subnormal: stage 1 flushes it, stage 2 reads it raw for the column), x or y of
+// +-1e-20 (its square, 1e-40, is subnormal inside r2 = x*x + y*y); and every 50th point's z
+// +-1e-40 (flushed: a height of 0, 1.7 m above the road, so only a few). It labels no ground: the
+// street's ground (about 320 pixels) breaks up below min_component (300); pixel_grown still holds
+// the grown set.
+Cloud SubnormalCoordinates() {
+  const float tiny[] = {1e-40f, -3e-39f, 1e-20f, -1e-40f, 3e-39f, -1e-20f};
+  Cloud cloud = Street();
+  for (size_t i = 0; i < cloud.size(); i += 23)
+    cloud.xyzi[4 * i + (i / 138) % 2] = tiny[(i / 23) % 6];
+  for (size_t i = 1; i < cloud.size(); i += 50)
+    cloud.xyzi[4 * i + 2] = i % 100 == 1 ? 1e-40f : -1e-40f;
   return cloud;
 }
 
@@ -202,7 +255,10 @@ INSTANTIATE_TEST_SUITE_P(
         HostileCase{"coordinates_of_1e30", HugeCoordinates},
         HostileCase{"every_point_on_one_pixel", OnePixel},
         HostileCase{"wild_intensities", WildIntensities},
-        HostileCase{"rings_past_the_beams", RingsPastTheBeams}),
+        HostileCase{"rings_past_the_beams", RingsPastTheBeams},
+        HostileCase{"tiny_heights", TinyHeights},
+        HostileCase{"subnormal_height_steps", SubnormalHeightSteps},
+        HostileCase{"subnormal_coordinates", SubnormalCoordinates}),
     [](const ::testing::TestParamInfo<HostileCase>& info) { return std::string(info.param.name); });
 
 // The cases are what they claim to be: the hostile points are there, and valid points remain.
@@ -223,6 +279,44 @@ TEST(HostileClouds, CasesHoldWhatTheyClaim) {
     EXPECT_LT(invalid(c), c.size() / 2);
   }
   EXPECT_EQ(invalid(OnePixel()), 0u);
+  EXPECT_EQ(invalid(TinyHeights()), 0u);
+  EXPECT_EQ(invalid(SubnormalHeightSteps()), 0u);
+  const Cloud coordinates = SubnormalCoordinates();
+  size_t subnormal_inputs = 0;
+  for (float f : coordinates.xyzi) subnormal_inputs += Subnormal(f);
+  EXPECT_GT(subnormal_inputs, coordinates.size() / 40);
+  EXPECT_LT(invalid(coordinates), coordinates.size() / 2);
+}
+
+// The subnormal cases exercise what they claim: in the reference's frame, horizontally
+// neighbouring measured pixels whose heights (f_height) differ by a subnormal amount, the
+// difference that the edge features compute (stage 5). Prints how many subnormal values each
+// float buffer of the reference holds.
+TEST_F(HostileVk, SubnormalHeightsReachTheStages) {
+  for (Cloud (*make)() : {TinyHeights, SubnormalHeightSteps}) {
+    const Cloud cloud = make();
+    const Frame f = ExpectDefinedAndSame(cloud, make == TinyHeights ? "tiny heights" : "steps");
+    const Params& p = Cpu().params();
+    size_t subnormal_steps = 0;
+    for (uint32_t v = 0; v < p.beams; ++v)
+      for (uint32_t u = 0; u + 1 < p.width; ++u) {
+        const size_t a = v * p.width + u, b = a + 1;
+        if (f.pixel_filled[a] == 1 && f.pixel_filled[b] == 1)
+          subnormal_steps += Subnormal(f.f_height[b] - f.f_height[a]);
+      }
+    EXPECT_GT(subnormal_steps, 50u) << "the cloud no longer makes subnormal height differences";
+    std::string counts;
+    auto count = [&](const char* name, const std::vector<float>& buffer) {
+      size_t n = 0;
+      for (float x : buffer) n += Subnormal(x);
+      counts += std::string(" ") + name + " " + std::to_string(n);
+    };
+    count("zt", f.zt), count("r2", f.r2), count("inten", f.inten), count("f_range", f.f_range);
+    count("f_height", f.f_height), count("f_slope", f.f_slope), count("f_edge_l", f.f_edge_l);
+    count("f_edge_r", f.f_edge_r), count("f_varz", f.f_varz), count("f_vari", f.f_vari);
+    std::printf("[hostile] %zu subnormal height steps; subnormal values in the reference:%s\n",
+                subnormal_steps, counts.c_str());
+  }
 }
 
 // Every point of OnePixel lands on one pixel, so the nearest-point rule and its ties decide.
