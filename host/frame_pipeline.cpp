@@ -11,6 +11,7 @@
 #include "host/stages/feature_maps.h"
 #include "host/stages/fuse.h"
 #include "host/stages/grid_reduce.h"
+#include "host/stages/grow.h"
 #include "host/stages/prepare.h"
 #include "host/stages/project.h"
 #include "host/vk/transfer.h"
@@ -67,7 +68,7 @@ struct FramePipeline::Buffers {
   Buffer pixel_filled, f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz,
       f_vari, feature_pack;                                              // 5 feature maps
   Buffer pixel_class, pixel_fused;                                       // 6 classify, 7 fuse
-  Buffer pixel_grown, pixel_comp, pixel_label, grow_scratch, grow_sizes, grow_flags;  // 8 grow
+  Buffer pixel_grown, pixel_comp, pixel_label, grow_reach, grow_sizes;  // 8 grow
   Buffer label_why;                                                      // 9 back-project
 };
 
@@ -126,7 +127,6 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       tables.beam_origin.size() + 1 != params.beams || tables.ring_bound2.size() != rings ||
       tables.ring_inner.size() != rings)
     return PipelineError("the tables do not match the parameters (see MakeTables)");
-  if (params.grow_max_iters == 0) return PipelineError("grow_max_iters is 0");
 
   FramePipeline fp;
   fp.context_ = &context;
@@ -137,6 +137,9 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   fp.buffers_ = std::make_unique<Buffers>();
   Buffers& b = *fp.buffers_;
   const VkDeviceSize point = 4 * VkDeviceSize(max_points), pixel = 4 * pixels, cell = 4 * cells;
+  // Each slot's staging: the points (16 bytes each) and rings (4 each) up, label_why down.
+  const VkDeviceSize upload_bytes = 5 * point;
+  const VkDeviceSize download_bytes = BackProjectStage::LabelWhyBytes(max_points);
   auto make = [&](Buffer& buffer, VkDeviceSize bytes) -> Status {
     LPIR_VK_ASSIGN_OR_RETURN(buffer, Buffer::Create(device, bytes, MemoryKind::kDeviceLocal));
     fp.device_bytes_ += buffer.size();
@@ -162,9 +165,8 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       {&b.f_edge_r, pixel},         {&b.f_varz, pixel},          {&b.f_vari, pixel},
       {&b.feature_pack, FeatureMapsStage::PackBytes(pixels)},
       {&b.pixel_class, pixel},      {&b.pixel_fused, pixel},     {&b.pixel_grown, pixel},
-      {&b.pixel_comp, pixel},       {&b.pixel_label, pixel},     {&b.grow_scratch, pixel},
-      {&b.grow_sizes, pixel},
-      {&b.grow_flags, 4 * VkDeviceSize(GrowStage::FlagWords(params.grow_max_iters))},
+      {&b.pixel_comp, pixel},       {&b.pixel_label, pixel},
+      {&b.grow_reach, GrowStage::ReachBytes(pixels)},           {&b.grow_sizes, pixel},
       {&b.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
   {
     // The device's limits, before anything is allocated: every storage buffer's size (what it
@@ -188,6 +190,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
         {&b.coarse, "coarse", &points_need},      {&b.label_why, "label_why", &points_need},
         {&b.pixel_key, "pixel_key", &pixels_need}, {&b.pixel_point, "pixel_point", &pixels_need},
         {&b.feature_pack, "feature_pack", &pixels_need},
+        {&b.grow_reach, "grow_reach", &pixels_need},
         {&b.cell_plane, "cell_plane", &cells_need},
         {&b.coarse_scratch, "coarse_scratch", &cells_need}};
     const std::string other_need = points_need + " and " + pixels_need;
@@ -202,7 +205,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
         continue;
       }
       if (s.bytes <= device_limits.max_storage_buffer_range) continue;
-      const char* name = "a";
+      const char* name = "device";
       const std::string* need = &other_need;
       for (const auto& n : names)
         if (n.buffer == s.buffer) name = n.name, need = n.need;
@@ -222,8 +225,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                              " table; this device's maxStorageBufferRange is " +
                              std::to_string(device_limits.max_storage_buffer_range));
     }
-    // The slots' upload and download buffers, sized as allocated below.
-    const uint64_t staging = uint64_t(slots) * (5 * point + (2 * point + 4));
+    const uint64_t staging = uint64_t(slots) * (upload_bytes + download_bytes);
     if (device_limits.staging_in_device_heap) total += staging;
     if (total > device_limits.device_local_heap)
       return PipelineError(points_need + " and " + pixels_need + " need " + BytesText(total) +
@@ -275,7 +277,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                    &b.pixel_filled, &b.f_range,     &b.f_height,    &b.pixel_fused};
   GrowBuffers grow{&b.params,      &b.pixel_fused, &b.f_inten,      &b.f_height,
                    &b.f_range,     &b.pixel_grown, &b.pixel_comp,   &b.pixel_label,
-                   &b.grow_scratch, &b.grow_sizes, &b.grow_flags};
+                   &b.grow_reach,  &b.grow_sizes};
   BackProjectBuffers back{&b.params, &b.flags,  &b.point_pixel, &b.pixel_point,
                           &b.pixel_label, &b.f_range, &b.f_height, &b.r2,
                           &b.zt,     &b.coarse, &b.label_why};
@@ -286,7 +288,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage s5, FeatureMapsStage::Create(device, features));
   LPIR_VK_ASSIGN_OR_RETURN(ClassifyPixelsStage s6, ClassifyPixelsStage::Create(device, classify));
   LPIR_VK_ASSIGN_OR_RETURN(FuseStage s7, FuseStage::Create(device, fuse));
-  LPIR_VK_ASSIGN_OR_RETURN(GrowStage s8, GrowStage::Create(device, grow, params.grow_max_iters));
+  LPIR_VK_ASSIGN_OR_RETURN(GrowStage s8, GrowStage::Create(device, grow));
   LPIR_VK_ASSIGN_OR_RETURN(BackProjectStage s9, BackProjectStage::Create(device, back));
   fp.stages_.reset(new Stages{std::move(s1), std::move(s2), std::move(s3), std::move(s4),
                               std::move(s5), std::move(s6), std::move(s7), std::move(s8),
@@ -297,9 +299,9 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
     LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
     LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
     LPIR_VK_ASSIGN_OR_RETURN(Buffer upload,
-                             Buffer::Create(device, 5 * point, MemoryKind::kHostVisible));
+                             Buffer::Create(device, upload_bytes, MemoryKind::kHostVisible));
     LPIR_VK_ASSIGN_OR_RETURN(Buffer download,
-                             Buffer::Create(device, 2 * point + 4, MemoryKind::kHostVisible));
+                             Buffer::Create(device, download_bytes, MemoryKind::kHostVisible));
     fp.device_bytes_ += upload.size() + download.size();
     Slot slot{std::move(cmd), std::move(fence), std::move(upload), std::move(download), {}};
     if (timed) {
@@ -401,15 +403,12 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   cmd.ComputeToTransfer();
   time();
   if (n) cmd.CopyBuffer(b.label_why, slot.download, BackProjectStage::LabelWhyBytes(n));
-  const VkDeviceSize summary = 4 * VkDeviceSize(GrowStage::FlagWords(params_.grow_max_iters) - 1);
-  cmd.CopyBuffer(b.grow_flags, slot.download, 4, summary, 2 * point);
   cmd.TransferToHost();
   time();
   return cmd.End();
 }
 
-Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, FrameTimes* times,
-                              GrowReport* grow_report) {
+Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, FrameTimes* times) {
   if (index >= slots_.size() || !slots_[index].busy)
     return PipelineError("slot " + std::to_string(index) + " holds no submitted frame");
   Slot& slot = slots_[index];
@@ -421,10 +420,7 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
   LPIR_VK_RETURN_IF_ERROR(slot.fence.WaitAndReset());
   slot.busy = false;
   const uint32_t n = slot.n;
-  const VkDeviceSize point = 4 * VkDeviceSize(max_points_);
-  const auto* download = static_cast<const char*>(slot.download.mapped());
-  const auto* label_why = reinterpret_cast<const uint8_t*>(download);
-  const auto* summary = reinterpret_cast<const uint32_t*>(download + 2 * point);
+  const auto* label_why = static_cast<const uint8_t*>(slot.download.mapped());
   out.n = n;
   out.label_why.assign(label_why, label_why + n);
   out.label.resize(n);
@@ -433,8 +429,6 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
     out.label[i] = LabelOf(label_why[i]);
     out.why[i] = WhyOf(label_why[i]);
   }
-  const GrowReport grow{summary[0]};
-  if (grow_report) *grow_report = grow;
 
   if (times) {
     *times = FrameTimes{-1, {-1, -1, -1, -1, -1, -1, -1, -1, -1}, -1, -1};
@@ -488,24 +482,7 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
     read(b.pixel_label, out.pixel_label, px);
     LPIR_VK_RETURN_IF_ERROR(status);
   }
-  if (!grow.converged())
-    return PipelineError("grow reached no fixed point within grow_max_iters = " +
-                         std::to_string(params_.grow_max_iters) + " sweeps");
   return Status();
-}
-
-Cloud FramePipeline::StagedCloud(uint32_t index) const {
-  const Slot& slot = slots_.at(index);
-  const auto* upload = static_cast<const char*>(slot.upload.mapped());
-  Cloud cloud;
-  cloud.xyzi.resize(4 * size_t(slot.n));
-  if (slot.n) std::memcpy(cloud.xyzi.data(), upload, 16 * size_t(slot.n));
-  if (slot.has_ring) {
-    cloud.ring.resize(slot.n);
-    if (slot.n)
-      std::memcpy(cloud.ring.data(), upload + 16 * size_t(max_points_), 4 * size_t(slot.n));
-  }
-  return cloud;
 }
 
 }  // namespace lpir::vk

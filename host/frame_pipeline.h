@@ -1,6 +1,6 @@
 // FramePipeline: the whole method (stages 1-9) on one Vulkan device. A frame is one command
 // buffer: the cloud's upload, the nine stages back to back with barriers, the labels' download;
-// the growing loop ends on the GPU (indirect sweeps, host/stages/grow.h). Every device buffer is
+// the number of dispatches is the same for every frame. Every device buffer is
 // allocated once, for `max_points` points and the sensor's image and grid; a frame allocates
 // nothing. Several frames in flight: each slot owns its command buffer, fence, staging buffers
 // and timestamps, and the slots share the device buffers, ordered by a barrier at the head of
@@ -11,7 +11,6 @@
 #include <memory>
 #include <vector>
 
-#include "host/stages/grow.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -58,20 +57,11 @@ class FramePipeline {
   Status Submit(uint32_t slot, const Cloud& cloud);
 
   // Waits for slot `slot`'s frame and frees the slot. Fills out.n, out.label_why (downloaded)
-  // and out.label, out.why (unpacked from it); with
-  // `all_buffers`, every other buffer of the frame too (read back after the wait, so only for
-  // the frame submitted last: the slots share the device buffers; asked of an earlier frame, an
-  // error that leaves the slot as it was). `times` (optional) gets the
-  // frame's GPU times (timestamps), `grow` (optional) the growing loops' report, written once the
-  // frame has finished. An error when the growing loop did not reach its fixed point within
-  // Params::grow_max_iters sweeps (out.label is then not valid; StagedCloud gives the cloud back
-  // for the reference to label).
-  Status Collect(uint32_t slot, Frame& out, bool all_buffers = false, FrameTimes* times = nullptr,
-                 GrowReport* grow = nullptr);
-
-  // The cloud last submitted to slot `slot`, read back from its staging buffer (valid until the
-  // slot's next Submit).
-  Cloud StagedCloud(uint32_t slot) const;
+  // and out.label, out.why (unpacked from it); with `all_buffers`, every other buffer of the
+  // frame too (read back after the wait, so only for the frame submitted last: the slots share
+  // the device buffers; asked of an earlier frame, an error that leaves the slot as it was).
+  // `times` (optional) gets the frame's GPU times (timestamps).
+  Status Collect(uint32_t slot, Frame& out, bool all_buffers = false, FrameTimes* times = nullptr);
 
   uint32_t slots() const { return uint32_t(slots_.size()); }
   uint32_t max_points() const { return max_points_; }
@@ -90,7 +80,7 @@ class FramePipeline {
     CommandBuffer cmd;
     Fence fence;
     Buffer upload;    // host-visible: points (16 bytes each), then rings (4 bytes each)
-    Buffer download;  // host-visible: label_why bytes (four points a word), the grow summary word
+    Buffer download;  // host-visible: label_why bytes (four points a word)
     std::vector<TimestampQueries> queries;  // one pool of kQueries, or none without timestamps
     bool busy = false, has_ring = false;
     uint32_t n = 0;

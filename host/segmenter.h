@@ -88,9 +88,6 @@ class Segmenter {
   // The Vulkan device is a CPU driver (lavapipe; only kVulkan or a named device takes one: the
   // CPU reference is faster there, README Speed). False on the CPU backend.
   bool on_cpu_driver() const;
-  // Frames whose growing loop did not reach its fixed point within grow_max_iters sweeps on the
-  // device, and were labelled by the CPU reference instead (same bytes, more time).
-  size_t reference_fallbacks() const { return reference_fallbacks_; }
   // Device memory allocated for the frame buffers, in bytes: constant for the segmenter's life
   // (everything is allocated at construction); 0 on the CPU.
   uint64_t device_bytes() const;
@@ -116,7 +113,6 @@ class Segmenter {
   std::vector<FrameTimes> cpu_times_;             // and their times
   std::deque<uint32_t> pending_;                  // slots submitted, oldest first
   uint32_t next_slot_ = 0;
-  size_t reference_fallbacks_ = 0;
   Frame frame_;                                   // what Segment and Collect return
 };
 

@@ -1,25 +1,19 @@
 // Stage 8, grow (paper Alg. 1 and the ground connectivity constraint of IV-A).
 // In: pixel_fused, f_inten, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
 // Growing: ground pixels are the seeds; an unknown pixel becomes ground when one of its 8
-// neighbours (columns wrap around) is ground and the step between them changes intensity by at
-// most grow_di and height by at most grow_dz + grow_grade * step, where step = |dr| (+ r *
-// column_arc when the column changes) approximates the planar distance between the two points:
-// a wall's vertically adjacent pixels are close in height but not in distance; r is the range of
-// the ground pixel the step starts from (so with grow_grade > 0 the test is not symmetric). Each
-// step test depends only on the two pixels' fixed features and a pixel never leaves ground, so
-// growing is monotone and its result the least fixed point: every unknown pixel reached from a
-// seed by a chain of allowed steps through unknown pixels. Any schedule reaching the fixed point
-// (this depth-first search from the unknown pixels, the shader's Jacobi sweeps) gives the same set.
-// Unknown pixels left over are non-ground.
+// neighbours (columns wrap around) is ground and the step between them is allowed: intensity
+// changes by at most grow_di and height by at most grow_dz + grow_grade * step, where step = |dr|
+// (+ min(r_a, r_b) * column_arc when the column changes) approximates the planar distance
+// between the two points (a wall's vertically adjacent pixels are close in height but not in
+// distance). The test is symmetric in the two pixels, so the grown set is exactly the unknown
+// pixels whose component of the allowed-step graph (ground and unknown pixels, allowed steps
+// between 8-neighbours) holds a seed: what the shader computes with union-find in a fixed number
+// of passes, and what the depth-first search below reaches from the unknown pixels. Unknown
+// pixels left over are non-ground. Decision and measurements: docs/decisions/grow.md.
 // Connectivity: 8-connected components of ground pixels, each labelled by its lowest pixel index
 // (pixel_comp, kNone elsewhere); components of fewer than min_component pixels become non-ground
 // in pixel_label and keep their component label in pixel_comp (it records the components found).
 // pixel_label: kPixGround / kPixNonGround, kPixEmpty where no pixel was measured or filled.
-// Defaults: the search settles on grow_grade 0 once the occlusion veto of stage 7 stops growth at
-// the foot of walls (grow_grade 0.05 at the final defaults: 94.33 | 94.48 F1 vs 94.56 | 94.42);
-// the rule stays for sensors whose walls need it. Re-measured at the re-tuned defaults (rows from
-// the laser origins; 07/000964 | unknown/000056 DG F1 95.56 | 95.17): grow_grade 0.05 95.45 |
-// 94.96; min_component 64 (the old default) 95.47 | 95.11 against 300.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -59,14 +53,13 @@ inline uint64_t Word(const uint8_t* s) {
   return x;
 }
 
-// The step test of the contract from ground pixel q (features iq, zq, rq; arc = rq * column_arc)
-// to its neighbour r.
-inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float arc, float ir,
-                        float zr, float rr, bool column_changes) {
+// The step test of the contract between pixels q and r (features i, z, r): symmetric in them.
+inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float ir, float zr,
+                        float rr, bool column_changes) {
   const float di = std::fabs(ir - iq);
   const float dz = std::fabs(zr - zq);
   float step = std::fabs(rr - rq);
-  if (column_changes) step = step + arc;
+  if (column_changes) step = step + std::min(rq, rr) * p.column_arc;
   const float allowed = p.grow_dz + p.grow_grade * step;
   return di <= p.grow_di && dz <= allowed;
 }
@@ -114,7 +107,6 @@ void Grow(const Params& p, Frame& f) {
   const float* __restrict inten = f.f_inten.data();
   const float* __restrict height = f.f_height.data();
   const float* __restrict range = f.f_range.data();
-  const float column_arc = p.column_arc;
   state.resize(pixels);
   uint8_t* __restrict s = state.data();
   ToState(fused, s, pixels);
@@ -134,10 +126,9 @@ void Grow(const Params& p, Frame& f) {
       const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
       const bool left = ul != u, right = ur != u;
       const float iq = inten[q.pix], zq = height[q.pix], rq = range[q.pix];
-      const float arc = rq * column_arc;
       auto to = [&](uint32_t r, uint32_t rv, bool moved) {
         if (s[r] != kUnknown) return;
-        if (StepAllowed(p, iq, zq, rq, arc, inten[r], height[r], range[r], moved)) {
+        if (StepAllowed(p, iq, zq, rq, inten[r], height[r], range[r], moved)) {
           s[r] = kGround;
           stack.push_back({r, rv});
         }
@@ -162,8 +153,7 @@ void Grow(const Params& p, Frame& f) {
     const float ir = inten[r], zr = height[r], rr = range[r];
     auto from = [&](uint32_t q, bool moved) {
       if (s[q] != kGround) return false;
-      const float rq = range[q];
-      return StepAllowed(p, inten[q], height[q], rq, rq * column_arc, ir, zr, rr, moved);
+      return StepAllowed(p, inten[q], height[q], range[q], ir, zr, rr, moved);
     };
     bool grows = from(at + ul, left) || from(at + ur, right);
     if (!grows && v > 0) {

@@ -26,7 +26,7 @@ const Field kFields[] = {
     LPIR_F(t_slope_low),      LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),
     LPIR_F(t_stdz_high),      LPIR_F(t_stdi_low),       LPIR_F(t_stdi_high),
     LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),  LPIR_U(min_component),
-    LPIR_U(grow_max_iters),   LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
+    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
     LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
     LPIR_F(occ_grade),
 };
@@ -86,11 +86,6 @@ Params DefaultParams() {
   p.grow_grade = 0.0f;
   p.column_arc = float(2.0 * 3.14159265358979323846 / 2048.0);
   p.min_component = 300;
-  // Sweeps recorded for the GPU's growing loop: every pixel it grows spreads on depth first, so
-  // real scans need 2, the 16k-pixel serpentine of grow_vk_test 3, no test image more than 4;
-  // each empty sweep still costs a barrier and a dispatch (~3 us on lavapipe, a few on a GPU,
-  // whose whole frame should take 500). A frame that needs more falls back to the reference.
-  p.grow_max_iters = 16;
   p.bp_range_gate = 0.15f;
   p.bp_height_gate = 0.2f;
   p.occ_rows = 2;

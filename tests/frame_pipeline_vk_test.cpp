@@ -60,17 +60,16 @@ uint64_t ExpectSameWholeFrame(vk::FramePipeline& pipeline, const SensorSetup& s,
   EXPECT_TRUE(submitted.ok()) << what << ": " << submitted.message();
   if (!submitted.ok()) return 0;
   FrameTimes times;
-  vk::GrowReport grow;
-  const vk::Status collected = pipeline.Collect(0, gpu, /*all_buffers=*/true, &times, &grow);
+  const vk::Status collected = pipeline.Collect(0, gpu, /*all_buffers=*/true, &times);
   EXPECT_TRUE(collected.ok()) << what << ": " << collected.message();
   if (!collected.ok()) return 0;
   const uint64_t bytes = test::ExpectSameFrame(s.params, cpu, gpu, &cloud, what);
   size_t ground = 0;
   for (uint8_t l : cpu.label) ground += l;
-  std::printf("[frame_pipeline] %s: %zu points (%zu ground), %llu bytes compared; %u grow "
-              "sweeps; GPU %.2f ms (upload %.2f, download %.2f)\n",
+  std::printf("[frame_pipeline] %s: %zu points (%zu ground), %llu bytes compared; GPU %.2f ms "
+              "(upload %.2f, download %.2f)\n",
               what.c_str(), cloud.size(), ground, static_cast<unsigned long long>(bytes),
-              grow.grow_sweeps, times.total_ms, times.upload_ms, times.download_ms);
+              times.total_ms, times.upload_ms, times.download_ms);
   return bytes;
 }
 
@@ -324,29 +323,6 @@ TEST_F(FramePipelineVk, DestroyedWithFramesInFlight) {
   Frame f;
   ASSERT_TRUE(other.Collect(1, f).ok());
   EXPECT_EQ(f.n, 4000u);
-}
-
-TEST_F(FramePipelineVk, GrowBudgetTooSmallIsAnError) {
-  SensorSetup s = MakeSetup("hdl64e");
-  s.params.grow_max_iters = 1;  // growing needs more than one sweep on a street
-  vk::FramePipeline pipeline = MakePipeline(context(), s, 200000, 1);
-  SimOptions o;
-  o.seed = 1;
-  o.emit_rings = true;
-  const Cloud cloud = Simulate(s.sensor, o).cloud;
-  ASSERT_TRUE(pipeline.Submit(0, cloud).ok());
-  Frame f;
-  vk::GrowReport grow{1};
-  const vk::Status status = pipeline.Collect(0, f, false, nullptr, &grow);
-  ASSERT_FALSE(status.ok());
-  EXPECT_FALSE(grow.converged());
-  EXPECT_NE(status.message().find("grow reached no fixed point"), std::string::npos)
-      << status.message();
-  // The cloud comes back from the staging buffer, for the reference to label.
-  const Cloud staged = pipeline.StagedCloud(0);
-  EXPECT_EQ(staged.xyzi, cloud.xyzi);
-  EXPECT_EQ(staged.ring, cloud.ring);
-  ASSERT_FALSE(cloud.ring.empty());
 }
 
 // What a mismatch prints: stage, buffer, first differing element, both values in decimal and

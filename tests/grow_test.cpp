@@ -40,12 +40,12 @@ struct Image {
   uint32_t Grown(uint32_t v, uint32_t u) const { return f.pixel_grown[Pix(v, u)]; }
 };
 
-// The height change one step from ground pixel q to its neighbour r may make (contract: grow_dz
-// + grow_grade * (|dr| + r * column_arc when the column changes), r the range of the ground pixel
-// the step starts from).
+// The height change one step between neighbours q and r may make (contract: grow_dz +
+// grow_grade * (|dr| + min(r_q, r_r) * column_arc when the column changes): symmetric).
 float Allowed(const Params& p, const Frame& f, uint32_t q, uint32_t r) {
   float step = std::fabs(f.f_range[r] - f.f_range[q]);
-  if (r % p.width != q % p.width) step = step + f.f_range[q] * p.column_arc;
+  if (r % p.width != q % p.width)
+    step = step + std::min(f.f_range[q], f.f_range[r]) * p.column_arc;
   return p.grow_dz + p.grow_grade * step;
 }
 
@@ -137,6 +137,29 @@ TEST(Grow, GradeTermCountsTheStepLength) {
   im.Run();
   EXPECT_EQ(im.Grown(0, 1), kPixNonGround);
   EXPECT_EQ(im.Grown(0, 11), kPixGround);
+}
+
+TEST(Grow, StepTestIsSymmetric) {
+  // A step across columns between a near and a far pixel is allowed or not whichever of the two is
+  // the seed (the arc term takes the nearer range), so growing is the components of an
+  // undirected graph. The climb fits the far pixel's arc but not the near one's.
+  const float near_r = 5.0f, far_r = 60.0f;
+  for (int seed_far = 0; seed_far < 2; ++seed_far)
+    for (float climb_share : {0.5f, 2.0f}) {
+      Image im(64, 1);
+      im.p.min_component = 0;
+      im.p.grow_grade = 0.05f;
+      const float near_allowed = im.p.grow_dz + im.p.grow_grade * (far_r - near_r +
+                                                                   near_r * im.p.column_arc);
+      const float climb = climb_share < 1.0f ? 0.9f * near_allowed
+                                             : near_allowed + 0.5f * im.p.grow_grade * far_r *
+                                                                  im.p.column_arc;
+      im.Set(0, 0, seed_far ? kPixGround : kPixUnknown, -1.7f, 0.3f, far_r);
+      im.Set(0, 1, seed_far ? kPixUnknown : kPixGround, -1.7f + climb, 0.3f, near_r);
+      im.Run();
+      EXPECT_EQ(im.Grown(0, seed_far ? 1 : 0), climb_share < 1.0f ? kPixGround : kPixNonGround)
+          << "seed " << (seed_far ? "far" : "near") << ", climb " << climb;
+    }
 }
 
 // The independent Jacobi schedule: every sweep reads the previous sweep's labels only; an unknown

@@ -7,21 +7,42 @@
 // point, ground (1) exactly when why is kWhyGround, and non-ground with why kWhyInvalid exactly
 // for the points stage 1 must reject (a non-finite value, the origin, a ring past the beams, a
 // planar range or |z| outside the profile's range), decided here independently of the pipeline.
+// The subnormal cases (heights of about 1e-38 m, heights whose differences are subnormal,
+// subnormal coordinates) put the float arithmetic of every stage in the range where a device may
+// flush (Vulkan allows it): the bytes must still be the reference's, and the cloud must really
+// make the stages subtract heights into that range (SubnormalHeightsReachTheStages).
+// FlushingLavapipe runs clouds on lavapipe made to flush fp32 subnormals as such a device would
+// (MXCSR's FTZ and DAZ bits on the thread that creates its instance and device: its worker
+// threads inherit them, pthread_create's floating-point environment rule) against the reference
+// on the test thread: ordinary scans give the same bytes, and each hostile case lists the buffers
+// that still depend on the device's mode (docs/decisions/denormals.md), so the list can only
+// shrink.
+#include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/io/kitti_bin.h"
+#include "host/io/sensor_profile.h"
 #include "host/segmenter.h"
 #include "reference_cpu/frame.h"
 #include "tests/frame_compare.h"
 #include "tests/stage_test_util.h"
+#include "tests/test_util.h"
 #include "tests/vk_test_util.h"
 
 namespace lpir {
@@ -102,6 +123,107 @@ Cloud WildIntensities() {
 Cloud RingsPastTheBeams() {
   Cloud cloud = Street();
   for (size_t i = 0; i < cloud.size(); ++i) cloud.ring.push_back(int32_t(i % 3 ? i % 16 : 16 + i));
+  return cloud;
+}
+
+bool Subnormal(float f) { return f != 0.0f && std::fabs(f) < std::numeric_limits<float>::min(); }
+
+// The street with rings (rows from the ring index, not from the elevation, which heights of
+// 1e-38 m would make 0 everywhere) and every height scaled by 1e-38: ground at about -1.7e-38,
+// obstacles up to about 3e-38, normal floats, and those below 1.18e-38 in magnitude subnormal
+// (stage 1 flushes them). Neighbouring heights differ by subnormal amounts.
+Cloud TinyHeights() {
+  SimOptions options;
+  options.seed = 6;
+  options.emit_rings = true;
+  Cloud cloud = Simulate(test::SmallSensor(), options).cloud;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    cloud.xyzi[4 * i + 2] = float(double(cloud.z(i)) * 1e-38);
+  return cloud;
+}
+
+// The street with rings, every height the smallest normal float (2^-126) plus (i % 61) steps of
+// the smallest subnormal (2^-149), negated on every third point: all normal, and every
+// difference of two neighbours' heights an exact subnormal (or 0, or about 2^-125).
+Cloud SubnormalHeightSteps() {
+  SimOptions options;
+  options.seed = 6;
+  options.emit_rings = true;
+  Cloud cloud = Simulate(test::SmallSensor(), options).cloud;
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const uint32_t bits = 0x00800000u + uint32_t(i % 61) + (i % 3 == 0 ? 0x80000000u : 0u);
+    std::memcpy(&cloud.xyzi[4 * i + 2], &bits, 4);
+  }
+  return cloud;
+}
+
+// The street with a subnormal or tiny coordinate in every 23rd point: x or y of +-1e-40 or
+// +-3e-39 (subnormal: stage 1 flushes it, stage 2 reads it raw for the column), x or y of
+// +-1e-20 (its square, 1e-40, is subnormal inside r2 = x*x + y*y); and every 50th point's z
+// +-1e-40 (flushed: a height of 0, 1.7 m above the road, so only a few). It labels no ground: the
+// street's ground (about 320 pixels) breaks up below min_component (300); pixel_grown still holds
+// the grown set.
+Cloud SubnormalCoordinates() {
+  const float tiny[] = {1e-40f, -3e-39f, 1e-20f, -1e-40f, 3e-39f, -1e-20f};
+  Cloud cloud = Street();
+  for (size_t i = 0; i < cloud.size(); i += 23)
+    cloud.xyzi[4 * i + (i / 138) % 2] = tiny[(i / 23) % 6];
+  for (size_t i = 1; i < cloud.size(); i += 50)
+    cloud.xyzi[4 * i + 2] = i % 100 == 1 ? 1e-40f : -1e-40f;
+  return cloud;
+}
+
+// The street with rings, holes in every column u with u % 4 == 2, and heights and intensities of
+// +1.3e-38 where (u / 2) % 2, else -1.25e-38: a hole's two neighbours have opposite signs, and
+// the filled value, their sum times 0.5, is subnormal (stage 5's hole filling).
+Cloud FillOppositeSigns() {
+  SimOptions options;
+  options.seed = 6;
+  options.emit_rings = true;
+  const Cloud street = Simulate(test::SmallSensor(), options).cloud;
+  const double kPi = 3.14159265358979323846;
+  Cloud cloud;
+  for (size_t i = 0; i < street.size(); ++i) {
+    const double theta = std::atan2(double(street.y(i)), double(street.x(i)));
+    const int u = int(std::floor((kPi - theta) / (2.0 * kPi) * 256.0));  // eq. 1, about
+    if (u % 4 == 2) continue;
+    const float value = (u / 2) % 2 ? 1.3e-38f : -1.25e-38f;
+    cloud.Push(street.x(i), street.y(i), value, value);
+    cloud.ring.push_back(street.ring[i]);
+  }
+  return cloud;
+}
+
+// TinyHeights with every 3rd point's x 1e-37 (y moved to 5 m where it was nearer than 2 m): with
+// a tilt k_xz of 0.01 (TiltedSensor), stage 1's k_xz * x is subnormal, and so z minus it.
+Cloud TinyXTinyHeights() {
+  Cloud cloud = TinyHeights();
+  for (size_t i = 0; i < cloud.size(); i += 3) {
+    cloud.xyzi[4 * i + 0] = 1e-37f;
+    if (std::fabs(cloud.y(i)) < 2.0f) cloud.xyzi[4 * i + 1] = 5.0f;
+  }
+  return cloud;
+}
+
+SensorProfile TiltedSensor() {
+  SensorProfile s = test::SmallSensor();
+  s.k_xz = 0.01f;
+  return s;
+}
+
+// Thresholds of 0 (allowed values), against which a subnormal difference and a flushed one
+// compare differently, with TinyHeights' heights and intensities of about 1.3e-38.
+SensorProfile ZeroThresholdsSensor() {
+  SensorProfile s = test::SmallSensor();
+  for (const char* name :
+       {"grow_dz", "grow_grade", "grow_di", "bp_height_gate", "t_edge", "h_athr", "rise_margin"})
+    s.overrides.push_back({name, 0.0f});
+  return s;
+}
+Cloud TinyHeightsAndIntensities() {
+  Cloud cloud = TinyHeights();
+  for (size_t i = 0; i < cloud.size(); ++i)
+    cloud.xyzi[4 * i + 3] = float(1.3e-38 + 1e-40 * double(i % 17));
   return cloud;
 }
 
@@ -202,7 +324,10 @@ INSTANTIATE_TEST_SUITE_P(
         HostileCase{"coordinates_of_1e30", HugeCoordinates},
         HostileCase{"every_point_on_one_pixel", OnePixel},
         HostileCase{"wild_intensities", WildIntensities},
-        HostileCase{"rings_past_the_beams", RingsPastTheBeams}),
+        HostileCase{"rings_past_the_beams", RingsPastTheBeams},
+        HostileCase{"tiny_heights", TinyHeights},
+        HostileCase{"subnormal_height_steps", SubnormalHeightSteps},
+        HostileCase{"subnormal_coordinates", SubnormalCoordinates}),
     [](const ::testing::TestParamInfo<HostileCase>& info) { return std::string(info.param.name); });
 
 // The cases are what they claim to be: the hostile points are there, and valid points remain.
@@ -223,7 +348,204 @@ TEST(HostileClouds, CasesHoldWhatTheyClaim) {
     EXPECT_LT(invalid(c), c.size() / 2);
   }
   EXPECT_EQ(invalid(OnePixel()), 0u);
+  EXPECT_EQ(invalid(TinyHeights()), 0u);
+  EXPECT_EQ(invalid(SubnormalHeightSteps()), 0u);
+  const Cloud coordinates = SubnormalCoordinates();
+  size_t subnormal_inputs = 0;
+  for (float f : coordinates.xyzi) subnormal_inputs += Subnormal(f);
+  EXPECT_GT(subnormal_inputs, coordinates.size() / 40);
+  EXPECT_LT(invalid(coordinates), coordinates.size() / 2);
 }
+
+// The subnormal cases exercise what they claim: in the reference's frame, horizontally
+// neighbouring measured pixels whose heights (f_height) differ by a subnormal amount, the
+// difference that the edge features compute (stage 5). Prints how many subnormal values each
+// float buffer of the reference holds.
+TEST_F(HostileVk, SubnormalHeightsReachTheStages) {
+  for (Cloud (*make)() : {TinyHeights, SubnormalHeightSteps}) {
+    const Cloud cloud = make();
+    const Frame f = ExpectDefinedAndSame(cloud, make == TinyHeights ? "tiny heights" : "steps");
+    const Params& p = Cpu().params();
+    size_t subnormal_steps = 0;
+    for (uint32_t v = 0; v < p.beams; ++v)
+      for (uint32_t u = 0; u + 1 < p.width; ++u) {
+        const size_t a = v * p.width + u, b = a + 1;
+        if (f.pixel_filled[a] == 1 && f.pixel_filled[b] == 1)
+          subnormal_steps += Subnormal(f.f_height[b] - f.f_height[a]);
+      }
+    EXPECT_GT(subnormal_steps, 50u) << "the cloud no longer makes subnormal height differences";
+    std::string counts;
+    auto count = [&](const char* name, const std::vector<float>& buffer) {
+      size_t n = 0;
+      for (float x : buffer) n += Subnormal(x);
+      counts += std::string(" ") + name + " " + std::to_string(n);
+    };
+    count("zt", f.zt), count("r2", f.r2), count("inten", f.inten), count("f_range", f.f_range);
+    count("f_height", f.f_height), count("f_slope", f.f_slope), count("f_edge_l", f.f_edge_l);
+    count("f_edge_r", f.f_edge_r), count("f_varz", f.f_varz), count("f_vari", f.f_vari);
+    std::printf("[hostile] %zu subnormal height steps; subnormal values in the reference:%s\n",
+                subnormal_steps, counts.c_str());
+  }
+}
+
+// One case for FlushingLavapipe: the cloud, its sensor, and the buffers (frame_compare.h's
+// names) that differ on a flushing device today.
+struct FlushCase {
+  const char* name;
+  Cloud (*make)();
+  SensorProfile (*sensor)();
+  std::set<std::string> open;
+};
+
+// The buffers that ExpectSameFrame reports as different (its failures intercepted).
+std::set<std::string> DifferingBuffers(const Params& p, const Frame& cpu, const Frame& gpu,
+                                       const Cloud& cloud) {
+  ::testing::TestPartResultArray results;
+  {
+    ::testing::ScopedFakeTestPartResultReporter reporter(
+        ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &results);
+    test::ExpectSameFrame(p, cpu, gpu, &cloud, "");
+  }
+  std::set<std::string> names;
+  for (int k = 0; k < results.size(); ++k) {
+    const std::string message = results.GetTestPartResult(k).message();
+    const size_t at = message.find("buffer ");
+    if (at == std::string::npos) {
+      names.insert("(" + message + ")");
+      continue;
+    }
+    const size_t begin = at + 7, end = message.find_first_of(" ,", begin);
+    names.insert(message.substr(begin, end - begin));
+  }
+  return names;
+}
+
+std::string Joined(const std::set<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : " ") + n;
+  return s.empty() ? "(none)" : s;
+}
+
+class FlushingLavapipe : public test::VkTest {
+ protected:
+  void SetUp() override {
+    test::VkTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
+#if defined(__SSE__)
+    if (Lower(context().device().name()).find("llvmpipe") == std::string::npos)
+      GTEST_SKIP() << "flushing is emulated on lavapipe only, not on " << context().device().name();
+#else
+    GTEST_SKIP() << "flushing is emulated through x86's MXCSR only";
+#endif
+  }
+  static std::string Lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  }
+  // A Vulkan segmenter whose lavapipe flushes subnormals (see the top of the file).
+  static std::unique_ptr<Segmenter> Flushing(const SensorProfile& sensor, size_t max_points) {
+    SegmenterOptions o = SegmenterOptions::For(Backend::kVulkan);
+    o.all_buffers = true;
+    o.max_points = max_points;
+#if defined(__SSE__)
+    const unsigned saved = _mm_getcsr();
+    _mm_setcsr(saved | 0x8040u);  // FTZ (bit 15) | DAZ (bit 6)
+    auto s = std::make_unique<Segmenter>(sensor, o);
+    _mm_setcsr(saved);
+    return s;
+#else
+    return std::make_unique<Segmenter>(sensor, o);
+#endif
+  }
+  static std::unique_ptr<Segmenter> Reference(const SensorProfile& sensor, size_t max_points) {
+    SegmenterOptions o = SegmenterOptions::For(Backend::kCpu);
+    o.all_buffers = true;
+    o.max_points = max_points;
+    return std::make_unique<Segmenter>(sensor, o);
+  }
+};
+
+// The emulation works: where the reference keeps subnormal edges, the device has none.
+TEST_F(FlushingLavapipe, TheDeviceFlushes) {
+  const Cloud cloud = TinyHeights();
+  const Frame gpu = Flushing(test::SmallSensor(), kMaxPoints)->Segment(cloud);
+  const Frame cpu = Reference(test::SmallSensor(), kMaxPoints)->Segment(cloud);
+  size_t cpu_subnormal = 0, gpu_subnormal = 0;
+  for (size_t k = 0; k < cpu.f_edge_l.size(); ++k)
+    cpu_subnormal += Subnormal(cpu.f_edge_l[k]), gpu_subnormal += Subnormal(gpu.f_edge_l[k]);
+  EXPECT_GT(cpu_subnormal, 100u);
+  EXPECT_EQ(gpu_subnormal, 0u) << "lavapipe's threads kept subnormals: the MXCSR bits did not "
+                                  "reach them, so FlushingLavapipe tests nothing";
+}
+
+// Ordinary scans do not reach the subnormal range: the same bytes on a flushing device.
+TEST_F(FlushingLavapipe, OrdinaryScansGiveTheSameBytes) {
+  {
+    const Cloud cloud = Street();
+    const std::unique_ptr<Segmenter> cpu = Reference(test::SmallSensor(), kMaxPoints);
+    const Frame gpu = Flushing(test::SmallSensor(), kMaxPoints)->Segment(cloud);
+    test::ExpectSameFrame(cpu->params(), cpu->Segment(cloud), gpu, &cloud, "street, flushing");
+  }
+  const char* scans[] = {"kitti/07/velodyne/000964.bin", "kitti/unknown/velodyne/000056.bin"};
+  if (test::DataFile(scans[0]).empty()) {
+    std::printf("[hostile] real scans absent under %s: only the street\n", LPIR_DATA_DIR);
+    return;
+  }
+  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", test::SensorsDir());
+  const std::unique_ptr<Segmenter> gpu = Flushing(hdl64e, 200000);
+  const std::unique_ptr<Segmenter> cpu = Reference(hdl64e, 200000);
+  for (const char* scan : scans) {
+    if (test::DataFile(scan).empty()) continue;
+    const Cloud cloud = ReadKittiBin(test::DataFile(scan));
+    const uint64_t bytes = test::ExpectSameFrame(cpu->params(), cpu->Segment(cloud),
+                                                 gpu->Segment(cloud), &cloud, scan);
+    std::printf("[hostile] %s, flushing device: %llu bytes compared\n", scan,
+                static_cast<unsigned long long>(bytes));
+  }
+}
+
+// The hostile cases on a flushing device: exactly the listed buffers differ (every other one is
+// byte for byte the reference's). The labels differ only with thresholds of 0.
+class FlushingLavapipeCases : public FlushingLavapipe,
+                              public ::testing::WithParamInterface<FlushCase> {};
+
+TEST_P(FlushingLavapipeCases, OnlyTheOpenBuffersDiffer) {
+  const FlushCase& c = GetParam();
+  const Cloud cloud = c.make();
+  const SensorProfile sensor = c.sensor();
+  const std::unique_ptr<Segmenter> cpu = Reference(sensor, kMaxPoints);
+  const Frame gpu = Flushing(sensor, kMaxPoints)->Segment(cloud);
+  const Frame ref = cpu->Segment(cloud);
+  const std::set<std::string> differ = DifferingBuffers(cpu->params(), ref, gpu, cloud);
+  EXPECT_EQ(Joined(differ), Joined(c.open))
+      << c.name << ": a buffer not listed now differs, or a listed one became equal (then "
+      << "shorten the list)";
+  std::printf("[hostile] %s on a flushing device: differ %s\n", c.name, Joined(differ).c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Clouds, FlushingLavapipeCases,
+    ::testing::Values(
+        FlushCase{"subnormal_coordinates", SubnormalCoordinates, test::SmallSensor, {}},
+        FlushCase{"tiny_heights", TinyHeights, test::SmallSensor, {"f_edge_l", "f_edge_r"}},
+        FlushCase{"subnormal_height_steps",
+                  SubnormalHeightSteps,
+                  test::SmallSensor,
+                  {"f_edge_l", "f_edge_r"}},
+        FlushCase{"fill_opposite_signs",
+                  FillOppositeSigns,
+                  test::SmallSensor,
+                  {"f_edge_l", "f_edge_r", "f_height", "f_inten"}},
+        FlushCase{"tilt_tiny_x",
+                  TinyXTinyHeights,
+                  TiltedSensor,
+                  {"cell_zmax", "cell_zmin", "f_height", "f_slope", "zt"}},
+        FlushCase{"zero_thresholds",
+                  TinyHeightsAndIntensities,
+                  ZeroThresholdsSensor,
+                  {"cell_seed_mode", "f_edge_l", "f_edge_r", "label", "label_why", "pixel_comp",
+                   "pixel_grown", "pixel_label", "why"}}),
+    [](const ::testing::TestParamInfo<FlushCase>& info) { return std::string(info.param.name); });
 
 // Every point of OnePixel lands on one pixel, so the nearest-point rule and its ties decide.
 TEST_F(HostileVk, OnePixelReallyIsOnePixel) {

@@ -216,10 +216,6 @@ int RunSegment(int argc, char** argv) {
   }
   while (!jobs.empty()) finish();
   if (args.Has("--timings")) timings.PrintMedians();
-  if (segmenter.reference_fallbacks())
-    std::printf("%zu frame%s needed more growing sweeps than grow_max_iters on the device and "
-                "were labelled by the CPU reference\n",
-                segmenter.reference_fallbacks(), segmenter.reference_fallbacks() == 1 ? "" : "s");
   if (failures) {
     std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, files.size());
     return 1;

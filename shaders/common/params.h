@@ -60,11 +60,10 @@ struct Params {
   // --- stage 8 grow (Alg. 1, IV-A) ---
   float grow_di;           // max intensity change of one growing step
   float grow_dz;           // m, height change of one growing step allowed at zero distance
-  float grow_grade;        // ... plus this times the step's planar length (|dr|, + r * column_arc
-                           // when the column changes)
+  float grow_grade;        // ... plus this times the step's planar length (|dr|, + the nearer
+                           // pixel's r * column_arc when the column changes)
   float column_arc;        // rad, one column (2 pi / width; set from the profile)
   uint min_component;      // ground components smaller than this (pixels) become non-ground
-  uint grow_max_iters;     // GPU fixed-point iteration budget (the reference runs to the fixed point)
 
   // --- stage 9 back-project (III-D.2) ---
   float bp_range_gate;     // m, a non-winning point takes its pixel's label within this range
@@ -77,6 +76,7 @@ struct Params {
                            // as range^2 * beam spacing / sensor height)
   uint pad0;
   uint pad1;
+  uint pad2;
 };
 
 #ifdef __cplusplus
