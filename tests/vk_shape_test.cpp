@@ -36,8 +36,10 @@ class ScopedShapeEnv {
   }
   ~ScopedShapeEnv() { Set(saved_ ? saved_->c_str() : nullptr); }
   void Set(const char* value) {
-    if (value) setenv(vk::kShapeEnv, value, 1);
-    else unsetenv(vk::kShapeEnv);
+    if (value)
+      setenv(vk::kShapeEnv, value, 1);
+    else
+      unsetenv(vk::kShapeEnv);
   }
 
  private:
@@ -137,7 +139,10 @@ TEST_F(ShapeTest, WorkgroupsFollowTheShape) {
   const Params p = DefaultParams();
   const uint32_t n = 124000, cells = CellCount(p), width = p.width, beams = p.beams;
   ASSERT_EQ(width % 4, 0u);  // feature_maps measures quads
-  const uint64_t local = 64;
+  const uint64_t local = vk::ProjectStage::kLocalSize;  // every stage's (Vulkan allows 128)
+  static_assert(vk::GridReduceStage::kLocalSize == vk::ProjectStage::kLocalSize &&
+                vk::CoarseSegmentStage::kLocalSize == vk::ProjectStage::kLocalSize &&
+                vk::FeatureMapsStage::kLocalSize == vk::ProjectStage::kLocalSize);
   for (const vk::Shape shape : {vk::Shape::kGpu, vk::Shape::kCpu}) {
     SCOPED_TRACE(vk::ShapeName(shape));
     ScopedShapeEnv env(vk::ShapeName(shape));
@@ -150,22 +155,20 @@ TEST_F(ShapeTest, WorkgroupsFollowTheShape) {
         [&](const vk::GridReduceStage& s, vk::CommandBuffer& cmd) {
           return s.Record(cmd, n, cells);
         });
-    const std::optional<Recorded> coarse =
-        Record<vk::CoarseSegmentStage, vk::CoarseSegmentBuffers>(
-            [&](const vk::CoarseSegmentStage& s, vk::CommandBuffer& cmd) {
-              return s.Record(cmd, n, cells);
-            });
-    const std::optional<Recorded> features =
-        Record<vk::FeatureMapsStage, vk::FeatureMapsBuffers>(
-            [&](const vk::FeatureMapsStage& s, vk::CommandBuffer& cmd) {
-              return s.Record(cmd, width, beams);
-            });
+    const std::optional<Recorded> coarse = Record<vk::CoarseSegmentStage, vk::CoarseSegmentBuffers>(
+        [&](const vk::CoarseSegmentStage& s, vk::CommandBuffer& cmd) {
+          return s.Record(cmd, n, cells);
+        });
+    const std::optional<Recorded> features = Record<vk::FeatureMapsStage, vk::FeatureMapsBuffers>(
+        [&](const vk::FeatureMapsStage& s, vk::CommandBuffer& cmd) {
+          return s.Record(cmd, width, beams);
+        });
     ASSERT_TRUE(project && grid && coarse && features);
     for (const Recorded* r : {&*project, &*grid, &*coarse, &*features}) EXPECT_EQ(r->shape, shape);
 
     // project: pass 0 over chunks, pass 2 indirect (not counted), pass 1 one per point.
-    const uint64_t project_0 = Groups((n + items(vk::ProjectStage::kCpuItems) - 1) /
-                                          items(vk::ProjectStage::kCpuItems), local);
+    const uint64_t project_0 = Groups(
+        (n + items(vk::ProjectStage::kCpuItems) - 1) / items(vk::ProjectStage::kCpuItems), local);
     EXPECT_EQ(project->dispatches, 3u);
     EXPECT_EQ(project->workgroups, project_0 + Groups(n, local));
     // grid_reduce: the cell clear, then the points.
@@ -194,7 +197,8 @@ TEST_F(ShapeTest, WorkgroupsFollowTheShape) {
         vk::ShapeName(shape), n, cells, beams, width, (unsigned long long)project_0,
         (unsigned long long)Groups(n, local), (unsigned long long)Groups(cells, local),
         (unsigned long long)grid_1, (unsigned long long)Groups(cells, local),
-        (unsigned long long)coarse_odd, (unsigned long long)Groups(uint64_t(width) * beams / 4, local),
+        (unsigned long long)coarse_odd,
+        (unsigned long long)Groups(uint64_t(width) * beams / 4, local),
         (unsigned long long)features_1,
         (unsigned long long)(project->workgroups + grid->workgroups + coarse->workgroups +
                              features->workgroups));

@@ -19,8 +19,8 @@ Result<Kernel> Kernel::Create(const Device& device, const PipelineDesc& desc,
   }
   LPIR_VK_ASSIGN_OR_RETURN(DescriptorSet set,
                            DescriptorSet::Create(device, pipelines.front(), buffers));
-  return Kernel(std::move(pipelines), std::move(set),
-                device.limits().maxComputeWorkGroupCount[0], shape);
+  return Kernel(std::move(pipelines), std::move(set), device.limits().maxComputeWorkGroupCount[0],
+                shape);
 }
 
 Status Kernel::CheckGroups(uint64_t invocations) const {

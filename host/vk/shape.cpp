@@ -14,8 +14,7 @@ Result<Shape> ShapeFor(const Device& device) {
     if (value == ShapeName(Shape::kCpu)) return Shape::kCpu;
     return UsageError(kShapeEnv, "\"" + value + "\" is no shape (gpu or cpu)");
   }
-  return device.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Shape::kCpu
-                                                                        : Shape::kGpu;
+  return device.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Shape::kCpu : Shape::kGpu;
 }
 
 const char* ShapeName(Shape shape) { return shape == Shape::kCpu ? "cpu" : "gpu"; }
