@@ -74,7 +74,7 @@ class ShapeTest : public test::VkTest {
     }
   }
 
-  // Creates `Stage` over dummy buffers (every binding the same one) under the current
+  // Creates `Stage` over BindAll's buffers under the current
   // LPIR_VK_SHAPE and records it into a fresh command buffer with `record`.
   template <class Stage, class Buffers, class RecordFn>
   std::optional<Recorded> Record(RecordFn record) {
@@ -138,7 +138,7 @@ TEST_F(ShapeTest, InvalidValueIsAnErrorNamingVariableAndValue) {
 TEST_F(ShapeTest, WorkgroupsFollowTheShape) {
   const Params p = DefaultParams();
   const uint32_t n = 124000, cells = CellCount(p), width = p.width, beams = p.beams;
-  ASSERT_EQ(width % 4, 0u);  // feature_maps measures quads
+  ASSERT_EQ(width % 4, 0u);                             // feature_maps measures quads
   const uint64_t local = vk::ProjectStage::kLocalSize;  // every stage's (Vulkan allows 128)
   static_assert(vk::GridReduceStage::kLocalSize == vk::ProjectStage::kLocalSize &&
                 vk::CoarseSegmentStage::kLocalSize == vk::ProjectStage::kLocalSize &&
