@@ -8,17 +8,19 @@ namespace lpir::vk {
 
 Result<Kernel> Kernel::Create(const Device& device, const PipelineDesc& desc,
                               const std::vector<const Buffer*>& buffers) {
+  LPIR_VK_ASSIGN_OR_RETURN(const Shape shape, ShapeFor(device));
   std::vector<ComputePipeline> pipelines;
   for (uint32_t pass = 0; pass < std::max(desc.passes, 1u); ++pass) {
     PipelineDesc one = desc;
     one.pass = pass;
+    one.items = shape == Shape::kCpu ? desc.cpu_items : 1;
     LPIR_VK_ASSIGN_OR_RETURN(ComputePipeline pipeline, ComputePipeline::Create(device, one));
     pipelines.push_back(std::move(pipeline));
   }
   LPIR_VK_ASSIGN_OR_RETURN(DescriptorSet set,
                            DescriptorSet::Create(device, pipelines.front(), buffers));
-  return Kernel(std::move(pipelines), std::move(set),
-                device.limits().maxComputeWorkGroupCount[0]);
+  return Kernel(std::move(pipelines), std::move(set), device.limits().maxComputeWorkGroupCount[0],
+                shape);
 }
 
 Status Kernel::CheckGroups(uint64_t invocations) const {
