@@ -8,6 +8,8 @@
 #      chooses;
 #   3. builds the libFuzzer targets with clang (LPIR_FUZZ=ON; ./build-fuzz or $LPIR_FUZZ_BUILD_DIR)
 #      and runs their bounded runs (a few seconds each, ctest -L fuzz).
+# Steps 1 and 2 run every Vulkan equality test once per shape (tests/CMakeLists.txt registers
+# <file>.gpu.<test> and <file>.cpu.<test> with LPIR_VK_SHAPE set; docs/decisions/shapes.md).
 # ctest runs on every core and prints the output of failing tests. Every step runs even when an
 # earlier one failed; the exit code is non-zero when any failed. Arguments go to the ctest of steps
 # 1 and 2, e.g. scripts/test.sh -R images. LPIR_TEST_SANITIZE=0 / LPIR_TEST_FUZZ=0 skip step 2 / 3.

@@ -6,19 +6,23 @@
 //     rise and slope-prior rules, the whole-cell rule), cell_seed_mode, cell_plane zeroed, the
 //     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
 //     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds).
-//   pass 1, one invocation per kChunk consecutive points: seed iff z_t - h <= lambda (one rounded
+//   pass 1, one invocation per kItems consecutive points: seed iff z_t - h <= lambda (one rounded
 //     float op, the CPU's test; mode 2 decided on z_t's bits with the same outcome, no infinity
 //     arithmetic); a seed adds n, x, y, z and the six products to its cell's sums. The chunk's
 //     seeds are summed in registers while their cell stays the same (scans come ring by ring,
 //     so consecutive points mostly share a cell) and each run is added with one set of atomics.
 //   pass 2, one invocation per cell: mean (DivToZero), centred moments, PlaneNormal, the plane
 //     (cell_plane[0..5, 7]), cell_plane[6] = -1 when the normal is too steep.
-//   pass 3, one invocation per kChunk consecutive points: |n . q - n . mean| of the seeds of
+//   pass 3, one invocation per kItems consecutive points: |n . q - n . mean| of the seeds of
 //     ground cells, summed per cell (runs of one cell summed in registers first, as in pass 1).
 //   pass 4, one invocation per cell: threshold max(floor, scale * mean seed distance) into
 //     cell_plane[6] of the ground cells.
-//   pass 5, one invocation per kChunk consecutive points: coarse = the point's cell is a ground
+//   pass 5, one invocation per kItems consecutive points: coarse = the point's cell is a ground
 //     cell and its |distance| <= threshold (the cell's plane read once per run of one cell).
+//   kItems is the device's shape (specialization constant 2: host/vk/shape.h). A chunk starts
+//   with no run and no cell read, so every point's test, sums and label are the same for every
+//   kItems (with kItems = 1 each point reads its cell and adds its own sums), and the sums are
+//   order-independent integers (below).
 // In: binding 0 Params (uniform), 1 xyzi (4 floats per point), 2 zt, 3 point_cell (per point),
 //     4 cell_zmin, 5 cell_zmax (ordered keys), 6 cell_count (per cell), 7 ring_inner (per ring).
 // Out: 8 cell_seed_mode, 9 cell_plane (8 ints per cell), 10 coarse (per point).
@@ -63,6 +67,7 @@ layout(std430, set = 0, binding = 9) readonly buffer CellPlane4 { ivec4 cell_pla
 layout(std430, set = 0, binding = 11) readonly buffer CellScratch4 { uvec4 scratch4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+layout(constant_id = 2) const uint kItems = 1u;  // points per invocation, passes 1, 3, 5 (shape)
 
 layout(push_constant) uniform Push {
   uint count;  // cells (passes 0, 2, 4) or points (passes 1, 3, 5)
@@ -80,8 +85,6 @@ const uint kScratch = 24u;
 const uint kSumDist = 10u;
 const uint kTestH = 22u;
 const uint kTestLambda = 23u;
-
-const uint kChunk = 32u;  // points per invocation in passes 1, 3 and 5 (host/stages/coarse_segment.h)
 
 uint Base(uint cell) { return cell * kScratch; }
 
@@ -337,9 +340,9 @@ void FlushSeedSums(uint c, uint64_t s[10]) {
   for (uint k = 1u; k < 10u; ++k) AtomicAdd64(b + 2u * k, s[k]);
 }
 
-// Pass 1 over points first .. first + kChunk - 1.
+// Pass 1 over points first .. first + kItems - 1.
 void SeedSums(uint first) {
-  uint end = min(first + kChunk, pc.count);
+  uint end = min(first + kItems, pc.count);
   uint cur = kNone, seen = kNone;  // the cell of the sums s, the cell of the test t
   SeedTest t = SeedTest(0u, 0.0, 0.0);
   uint64_t s[10];
@@ -373,9 +376,9 @@ void SeedSums(uint first) {
   if (cur != kNone) FlushSeedSums(cur, s);
 }
 
-// Pass 3 over points first .. first + kChunk - 1.
+// Pass 3 over points first .. first + kItems - 1.
 void DistanceSums(uint first) {
-  uint end = min(first + kChunk, pc.count);
+  uint end = min(first + kItems, pc.count);
   uint cur = kNone, seen = kNone;  // the cell of sum, the cell of t, a, b and ground
   SeedTest t = SeedTest(0u, 0.0, 0.0);
   ivec4 a = ivec4(0), b = ivec4(0);
@@ -403,10 +406,10 @@ void DistanceSums(uint first) {
   if (cur != kNone) AtomicAdd64(Base(cur) + 2u * kSumDist, sum);
 }
 
-// Pass 5 over points first .. first + kChunk - 1: coarse = the point's cell is a ground cell and
+// Pass 5 over points first .. first + kItems - 1: coarse = the point's cell is a ground cell and
 // its |distance| (Distance's arithmetic) <= the threshold; the cell's plane is read once per run.
 void Classify(uint first) {
-  uint end = min(first + kChunk, pc.count);
+  uint end = min(first + kItems, pc.count);
   uint cur = kNone;
   bool ground = false;
   int64_t nx = int64_t(0), ny = int64_t(0), nz = int64_t(0), offset = int64_t(0);
@@ -440,11 +443,11 @@ void main() {
   if (kPass == 0u) {
     SeedMode(i);
   } else if (kPass == 1u) {
-    SeedSums(i * kChunk);
+    SeedSums(i * kItems);
   } else if (kPass == 2u) {
     FitPlane(i);
   } else if (kPass == 3u) {
-    DistanceSums(i * kChunk);
+    DistanceSums(i * kItems);
   } else if (kPass == 4u) {
     if (!Ground(i)) return;
     int64_t floor_q = exact_ToFixed(p.plane_dist_floor, 16384000.0);  // metres -> mm * 2^14
@@ -453,6 +456,6 @@ void main() {
                                           int64_t(256) * int64_t(cell_plane[8u * i + 7u]));
     cell_plane[8u * i + 6u] = int(min(max(floor_q, mean_scaled), int64_t(0x7FFFFFFF)));
   } else {
-    Classify(i * kChunk);
+    Classify(i * kItems);
   }
 }

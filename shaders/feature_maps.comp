@@ -3,8 +3,10 @@
 // specialization constant kPass (one pipeline each), with a compute -> compute barrier between
 // them; pass 0 one invocation per pixel < pixels (push constant), pixel = v * width + u, or
 // instead, when the width is a multiple of 4, pass 2 one per quad of pixels (pixels / 4 of them);
-// pass 1 one per run of kRun pixels of a row (its 3x3 window's columns sliding along the run,
-// each column's three pixels loaded once).
+// pass 1 one per run of kItems pixels of a row (the device's shape, specialization constant 2:
+// host/vk/shape.h; its 3x3 window's columns sliding along the run, each column's three pixels
+// loaded once; a run's first pixel loads its three columns, so with kItems = 1 every pixel loads
+// its own, and the integers summed are the same for every kItems).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
 //     2 r2, 3 zt, 4 inten (floats per point).
 // Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (pass 0),
@@ -58,13 +60,13 @@ layout(std430, set = 0, binding = 7) writeonly buffer InMap4 { vec4 f_inten4[]; 
 layout(std430, set = 0, binding = 8) writeonly buffer Height4 { vec4 f_height4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+layout(constant_id = 2) const uint kItems = 1u;  // pass 1: pixels of one row per invocation
 
 layout(push_constant) uniform Push {
   uint pixels;
 } pc;
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
-const uint kRun = 32u;  // pass 1: pixels of one row per invocation (host/stages/feature_maps.h)
 
 // reference_cpu/feature_maps.cpp: kHeightScale, kIntensityScale (10000), kHeightQuantum2,
 // kIntensityQuantum2 (1e-8f), by their bits so that no literal parsing can differ.
@@ -234,13 +236,13 @@ void Features(uint pix, uint v, Column l, Column c, Column r) {
   f_vari[pix] = filled ? vari : 0.0;
 }
 
-// Pass 1 over run `run` (kRun consecutive pixels of one row): the window's column moments slide
+// Pass 1 over run `run` (kItems consecutive pixels of one row): the window's column moments slide
 // along the row, each column's computed once instead of three times.
 void FeaturesRun(uint run) {
   uint w = p.width;
-  uint runs_per_row = (w + kRun - 1u) / kRun;
-  uint v = run / runs_per_row, u0 = (run % runs_per_row) * kRun;
-  uint u1 = min(u0 + kRun, w);
+  uint runs_per_row = (w + kItems - 1u) / kItems;
+  uint v = run / runs_per_row, u0 = (run % runs_per_row) * kItems;
+  uint u1 = min(u0 + kItems, w);
   Column l = ColumnAt(u0 == 0u ? w - 1u : u0 - 1u, v);  // columns wrap
   Column c = ColumnAt(u0, v);
   for (uint u = u0; u < u1; ++u) {

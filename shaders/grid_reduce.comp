@@ -2,8 +2,10 @@
 // bytes. Two passes of this one shader, chosen by the specialization constant kPass, with a
 // compute -> compute barrier between them (GridReduceStage::Record records both):
 //   pass 0, one invocation per cell c < count: cell_zmin = kNone, cell_zmax = 0, cell_count = 0.
-//   pass 1, one invocation per kChunk consecutive points (of count): point_cell and the per-cell
-//     reductions (runs of one cell reduced in registers, then one set of atomics per run).
+//   pass 1, one invocation per kItems consecutive points (of count; the device's shape,
+//     specialization constant 2: host/vk/shape.h): point_cell and the per-cell reductions (runs
+//     of one cell reduced in registers, then one set of atomics per run; with kItems = 1 a set
+//     per point). The atomics are order-independent, so the bytes do not depend on kItems.
 // In: binding 0 Params (uniform), 1 flags, 2 r2, 3 zt, 4 point_pixel (per point), 5 ring_bound2
 //     (rings_near + rings_far floats, ascending: the host's table, the reference's bytes).
 // Out: 6 point_cell (per point), 7 cell_zmin, 8 cell_zmax (ordered keys of z_t), 9 cell_count.
@@ -35,6 +37,7 @@ layout(std430, set = 0, binding = 8) buffer CellZmax { uint cell_zmax[]; };
 layout(std430, set = 0, binding = 9) buffer CellCount { uint cell_count[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+layout(constant_id = 2) const uint kItems = 1u;  // points per invocation of pass 1 (the shape)
 
 layout(push_constant) uniform Push {
   uint count;  // cells (pass 0) or points (pass 1)
@@ -44,8 +47,6 @@ const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
 
 // reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
-const uint kChunk = 32u;  // points per invocation of pass 1 (host/stages/grid_reduce.h)
-
 // The reference searches by halves; here a guess from the rings' widths (ring_res_near over
 // rings_near rings, then ring_res_far: how reference_cpu/params.cpp lays out ring_bound2) walks to
 // the same index, as Less(r, ring_bound2[k]) only turns from false to true once along k. On
@@ -87,11 +88,11 @@ void main() {
     cell_count[i] = 0u;
     return;
   }
-  // Pass 1: points kChunk * i .. kChunk * i + kChunk - 1, each run of one cell reduced in
+  // Pass 1: points kItems * i .. kItems * i + kItems - 1, each run of one cell reduced in
   // registers first (scans come ring by ring: consecutive points mostly share a cell).
-  uint first = i * kChunk;
+  uint first = i * kItems;
   if (first >= pc.count) return;
-  uint end = min(first + kChunk, pc.count);
+  uint end = min(first + kItems, pc.count);
   uint cur = kNone, zmin = kNone, zmax = 0u, count = 0u;
   for (uint k = first; k < end; ++k) {
     uint cell = CellOf(k);

@@ -11,7 +11,8 @@
 //     pixel_point (per pixel: the lowest point index among those whose key equals pixel_key).
 // Scratch: 11 the exact list: words 0-2 the indirect dispatch arguments of pass 2, word 3 its
 //     length, then point indices.
-// Pass 0, one invocation per kChunk consecutive points: column and row of every valid point with
+// Pass 0, one invocation per kItems consecutive points (the device's shape, specialization
+// constant 2: host/vk/shape.h): column and row of every valid point with
 // the device's float products (MulFast), point_pixel and atomicMin of the key; a point for which
 // one of them may differ from IEEE's (a subnormal operand, or a product under 2^-125 that the
 // device may flush) goes on the exact list instead. Pass 2, one invocation per listed point: the
@@ -25,7 +26,8 @@
 // over k. (A guess one column off costs a KITTI frame some 3 ms more in walking on lavapipe than
 // the exact division costs.) Row: as the reference's RowNear, the previous point's row of the
 // chunk when it passes both boundary tests (two tests where the binary search takes six; scans
-// come ring by ring), else RowOf's binary search: the same row.
+// // come ring by ring), else RowOf's binary search: the same row, so the bytes do not depend on
+// kItems (with kItems = 1 no point has a hint).
 // Exactness against the CPU (gradual underflow): the raw cloud is read, so a coordinate may be
 // subnormal, and products such as x * sin(phi) or h * |h| may round into the subnormal range.
 // A device may flush those (lavapipe does), so every float the predicates compare is produced by
@@ -55,6 +57,7 @@ layout(std430, set = 0, binding = 10) buffer PixelPoint { uint pixel_point[]; };
 layout(std430, set = 0, binding = 11) buffer ExactList { uint exact_list[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
+layout(constant_id = 2) const uint kItems = 1u;  // points per invocation of pass 0 (the shape)
 
 layout(push_constant) uniform Push {
   uint n;
@@ -64,7 +67,6 @@ const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
 const uint kPointNoise = 2u;
 const uint kListLength = 3u, kListStart = 4u;  // exact_list words (0-2: dispatch arguments)
-const uint kChunk = 32u;  // points per invocation of pass 0 (host/stages/project.h)
 
 // --- float predicates by their bits (no device float op touches a subnormal) ---
 
@@ -255,9 +257,9 @@ void main() {
     PixelOf(i, flags[i], row);
     return;
   }
-  if (kPass == 0u) {  // kChunk consecutive points, each row the next one's hint
-    uint end = min(pc.n, (i + 1u) * kChunk);
-    for (uint k = i * kChunk; k < end; ++k) {
+  if (kPass == 0u) {  // kItems consecutive points, each row the next one's hint
+    uint end = min(pc.n, i * kItems + kItems);
+    for (uint k = i * kItems; k < end; ++k) {
       uint f = flags[k];
       if ((f & kPointValid) == 0u) point_pixel[k] = kNone;
       else PixelOf(k, f, row);

@@ -34,6 +34,7 @@ Result<CoarseSegmentStage> CoarseSegmentStage::Create(const Device& device,
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
   desc.passes = 6;
+  desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -46,8 +47,8 @@ Status CoarseSegmentStage::Record(CommandBuffer& cmd, uint32_t n, uint32_t cells
   for (uint32_t pass = 0; pass < 6; ++pass) {
     if (pass) cmd.ComputeToCompute();
     const Push push{pass % 2 == 0 ? cells : n};
-    // Passes 1, 3 and 5: one invocation per kChunk points (shaders/coarse_segment.comp).
-    const uint32_t invocations = pass % 2 == 1 ? (n + kChunk - 1) / kChunk : push.count;
+    // Passes 1, 3 and 5: one invocation per kernel_.items() points (shaders/coarse_segment.comp).
+    const uint32_t invocations = pass % 2 == 1 ? kernel_.Chunks(n) : push.count;
     LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, invocations, &push, pass));
   }
   return Status();

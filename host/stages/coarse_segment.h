@@ -38,7 +38,8 @@ class CoarseSegmentStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
   static constexpr uint32_t kScratchWords = 24;  // per cell, shaders/coarse_segment.comp
-  static constexpr uint32_t kChunk = 32;  // points per invocation of passes 1, 3, 5 (the shader's)
+  // Points per invocation of passes 1, 3, 5 in the CPU shape (host/vk/shape.h; the GPU's is 1).
+  static constexpr uint32_t kCpuItems = 32;
 
   static VkDeviceSize ScratchBytes(uint32_t cells) {
     return 4 * VkDeviceSize(kScratchWords) * cells;
@@ -50,6 +51,9 @@ class CoarseSegmentStage {
   // Records the six passes over `cells` cells and n points with a compute -> compute barrier
   // between each two (none before or after: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+
+  // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
+  Shape shape() const { return kernel_.shape(); }
 
  private:
   explicit CoarseSegmentStage(Kernel kernel) : kernel_(std::move(kernel)) {}

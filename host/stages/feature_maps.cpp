@@ -35,6 +35,7 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
   desc.passes = 3;
+  desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -45,7 +46,7 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
 }
 
 Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
-  const uint32_t pixels = width * beams, runs = (width + kRun - 1) / kRun * beams;
+  const uint32_t pixels = width * beams, runs = kernel_.Chunks(width) * beams;
   // Pass 2 measures four pixels an invocation where no quad straddles rows, pass 0 one.
   const bool quads = width % 4 == 0;
   const Push measure{quads ? pixels / 4 : pixels}, features{runs};

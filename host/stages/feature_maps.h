@@ -39,7 +39,8 @@ struct FeatureMapsBuffers {
 class FeatureMapsStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
-  static constexpr uint32_t kRun = 32;  // pixels of a row per invocation of pass 1 (the shader's)
+  // Pixels of a row per invocation of pass 1 in the CPU shape (host/vk/shape.h; the GPU's is 1).
+  static constexpr uint32_t kCpuItems = 32;
 
   // The scratch buffer's size: a uvec4 per pixel (filled, and the bits of range, intensity and
   // height), so that pass 1 reads a pixel with one load instead of four.
@@ -49,9 +50,12 @@ class FeatureMapsStage {
 
   // Records the measure-and-fill pass over the width x beams image (one invocation per four
   // pixels when the width is a multiple of 4, else per pixel), a compute -> compute barrier and
-  // the features pass (one invocation per kRun pixels of a row), with no barrier before or after
-  // (the caller orders it with the stages around).
+  // the features pass (one invocation per run of the shape's items, kCpuItems or 1, pixels of a
+  // row), with no barrier before or after (the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+
+  // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
+  Shape shape() const { return kernel_.shape(); }
 
  private:
   explicit FeatureMapsStage(Kernel kernel) : kernel_(std::move(kernel)) {}

@@ -34,6 +34,7 @@ Result<GridReduceStage> GridReduceStage::Create(const Device& device,
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
   desc.passes = 2;
+  desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -46,7 +47,7 @@ Status GridReduceStage::Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) c
   const Push clear{cells}, reduce{n};
   LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, cells, &clear, 0));
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, (n + kChunk - 1) / kChunk, &reduce, 1);  // kChunk points each
+  return kernel_.Record(cmd, kernel_.Chunks(n), &reduce, 1);  // kernel_.items() points each
 }
 
 Status RunGridReduce(const Context& context, const Params& p, const Tables& t, Frame& f,

@@ -34,13 +34,17 @@ struct GridReduceBuffers {
 class GridReduceStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
-  static constexpr uint32_t kChunk = 32;  // points per invocation of the reduction (the shader's)
+  // Points per invocation of the reduction in the CPU shape (host/vk/shape.h; the GPU's is 1).
+  static constexpr uint32_t kCpuItems = 32;
 
   static Result<GridReduceStage> Create(const Device& device, const GridReduceBuffers& buffers);
 
   // Records the clear of `cells` cells, a compute -> compute barrier and the reduction over n
   // points (no barrier before or after: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+
+  // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
+  Shape shape() const { return kernel_.shape(); }
 
  private:
   explicit GridReduceStage(Kernel kernel) : kernel_(std::move(kernel)) {}

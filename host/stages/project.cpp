@@ -29,6 +29,7 @@ Result<ProjectStage> ProjectStage::Create(const Device& device, const ProjectBuf
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
   desc.passes = 3;
+  desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
       Kernel::Create(device, desc,
@@ -44,7 +45,7 @@ Status ProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
   cmd.UpdateBuffer(*exact_list_, header, sizeof(header));
   cmd.TransferToCompute();
   const Push push{n};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, n / kChunk + (n % kChunk != 0), &push, 0));
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, kernel_.Chunks(n), &push, 0));
   cmd.ComputeToIndirect();
   kernel_.RecordIndirect(cmd, *exact_list_, 0, &push, 2);
   cmd.ComputeToCompute();

@@ -35,7 +35,8 @@ struct ProjectBuffers {
 class ProjectStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
-  static constexpr uint32_t kChunk = 32;  // points per invocation of pass 0 (the shader's)
+  // Points per invocation of pass 0 in the CPU shape (host/vk/shape.h; the GPU shape's is 1).
+  static constexpr uint32_t kCpuItems = 32;
 
   // The exact list for up to n points: four header words and an index per point.
   static VkDeviceSize ExactListBytes(uint64_t n) { return 4 * (4 + n); }
@@ -48,6 +49,9 @@ class ProjectStage {
   // orders them with the stages around (stage 1's writes must be visible to compute and the
   // clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+
+  // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
+  Shape shape() const { return kernel_.shape(); }
 
  private:
   ProjectStage(Kernel kernel, const Buffer* pixel_key, const Buffer* pixel_point,

@@ -31,6 +31,8 @@ Status CommandBuffer::Begin() {
   info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   LPIR_VK_CHECK(vkBeginCommandBuffer(cmd_.get(), &info), "vkBeginCommandBuffer", "");
+  dispatches_ = 0;
+  workgroups_ = 0;
   return Status();
 }
 
@@ -71,10 +73,13 @@ void CommandBuffer::PushConstants(const ComputePipeline& pipeline, const void* d
 
 void CommandBuffer::Dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {
   vkCmdDispatch(cmd_.get(), groups_x, groups_y, groups_z);
+  ++dispatches_;
+  workgroups_ += uint64_t(groups_x) * groups_y * groups_z;
 }
 
 void CommandBuffer::DispatchIndirect(const Buffer& args, VkDeviceSize offset) {
   vkCmdDispatchIndirect(cmd_.get(), args.handle(), offset);
+  ++dispatches_;
 }
 
 void CommandBuffer::Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_access,

@@ -60,6 +60,11 @@ class CommandBuffer {
   // Timestamp `index`, written once every earlier command has completed.
   void WriteTimestamp(const TimestampQueries& queries, uint32_t index);
 
+  // Recorded since Begin: dispatches (indirect ones included) and the workgroups of the direct
+  // ones (an indirect dispatch's count is known only on the GPU).
+  uint32_t dispatches() const { return dispatches_; }
+  uint64_t workgroups() const { return workgroups_; }
+
   VkCommandBuffer handle() const { return cmd_.get(); }
 
  private:
@@ -68,6 +73,8 @@ class CommandBuffer {
   DeviceHandle<VkCommandPool, vkDestroyCommandPool> pool_;  // frees the command buffer with it
   ResetOnMove<VkCommandBuffer> cmd_;
   ResetOnMove<VkQueue> queue_;
+  uint32_t dispatches_ = 0;
+  uint64_t workgroups_ = 0;
 };
 
 }  // namespace lpir::vk

@@ -18,10 +18,10 @@ Result<ComputePipeline> ComputePipeline::Create(const Device& device, const Pipe
                 std::to_string(limits.maxPushConstantsSize) + " on " + device.name() + ")";
     return e;
   }
-  if (desc.local_size_x == 0) {
+  if (desc.local_size_x == 0 || desc.items == 0) {
     Error e;
     e.result = VK_ERROR_INITIALIZATION_FAILED;
-    e.message = desc.name + ": workgroup size 0";
+    e.message = desc.name + (desc.items ? ": workgroup size 0" : ": 0 items per invocation");
     return e;
   }
   if (!desc.code.words || desc.code.bytes == 0 || desc.code.bytes % 4) {
@@ -38,6 +38,7 @@ Result<ComputePipeline> ComputePipeline::Create(const Device& device, const Pipe
   // 128); shaders read it as gl_WorkGroupSize and Kernel counts workgroups with it.
   pipeline.local_size_x_ = std::min({desc.local_size_x, limits.maxComputeWorkGroupSize[0],
                                      limits.maxComputeWorkGroupInvocations});
+  pipeline.items_ = desc.items;
   pipeline.name_ = desc.name;
 
   VkShaderModuleCreateInfo module_info{};
@@ -81,11 +82,12 @@ Result<ComputePipeline> ComputePipeline::Create(const Device& device, const Pipe
                 "vkCreatePipelineLayout", what);
   pipeline.layout_ = DeviceHandle<VkPipelineLayout, vkDestroyPipelineLayout>(vk_device, layout);
 
-  const uint32_t constants[2] = {pipeline.local_size_x_, desc.pass};
-  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
-                                               {1, sizeof(uint32_t), sizeof(uint32_t)}};
+  const uint32_t constants[3] = {pipeline.local_size_x_, desc.pass, desc.items};
+  const VkSpecializationMapEntry entries[3] = {{0, 0, sizeof(uint32_t)},
+                                               {1, sizeof(uint32_t), sizeof(uint32_t)},
+                                               {2, 2 * sizeof(uint32_t), sizeof(uint32_t)}};
   VkSpecializationInfo specialization{};
-  specialization.mapEntryCount = 2;
+  specialization.mapEntryCount = 3;
   specialization.pMapEntries = entries;
   specialization.dataSize = sizeof(constants);
   specialization.pData = constants;

@@ -1,11 +1,13 @@
 // ComputePipeline: one compute shader from SPIR-V embedded at build time (<build>/shaders/
 // <stage>.spv.h, k<Stage>Spv), with its descriptor set layout (set 0: binding i of the type
-// bindings[i], storage or uniform buffers), an optional push-constant block, the workgroup
-// size given as specialization constant 0 (shaders declare `layout(local_size_x_id = 0) in;`)
-// and, for a stage of several passes, the pass as specialization constant 1
-// (`layout(constant_id = 1) const uint kPass = 0u;`). One pipeline per pass: a CPU driver such
-// as lavapipe runs every branch of a shader under a lane mask (an `if` skips no code), so a
-// pass chosen at run time would pay for the code of all the others.
+// bindings[i], storage or uniform buffers), an optional push-constant block and three
+// specialization constants: 0 the workgroup size (`layout(local_size_x_id = 0) in;`), 1 the pass
+// of a stage of several passes (`layout(constant_id = 1) const uint kPass = 0u;`), 2 the points
+// or pixels per invocation of a stage's chunked passes (`layout(constant_id = 2) const uint
+// kItems = 1u;`, chosen by the device's shape: shape.h); a shader ignores those it does not
+// declare. One pipeline per pass: a CPU driver such as lavapipe runs every branch of a shader
+// under a lane mask (an `if` skips no code), so a pass chosen at run time would pay for the code
+// of all the others.
 #pragma once
 #include <vulkan/vulkan.h>
 
@@ -37,6 +39,8 @@ struct PipelineDesc {
   uint32_t local_size_x = 64;              // specialization constant 0 (at most the device's)
   uint32_t pass = 0;                       // specialization constant 1 (multi-pass stages)
   uint32_t passes = 1;                     // Kernel: one pipeline for each pass 0 .. passes - 1
+  uint32_t items = 1;                      // specialization constant 2 (chunked passes)
+  uint32_t cpu_items = 1;                  // Kernel: `items` in the CPU shape (the GPU's is 1)
 };
 
 class ComputePipeline {
@@ -52,6 +56,7 @@ class ComputePipeline {
   const std::vector<VkDescriptorType>& bindings() const { return bindings_; }
   uint32_t push_constant_bytes() const { return push_constant_bytes_; }
   uint32_t local_size_x() const { return local_size_x_; }
+  uint32_t items() const { return items_; }
   const std::string& name() const { return name_; }
 
  private:
@@ -63,6 +68,7 @@ class ComputePipeline {
   std::vector<VkDescriptorType> bindings_;
   uint32_t push_constant_bytes_ = 0;
   uint32_t local_size_x_ = 0;
+  uint32_t items_ = 1;
   std::string name_;
 };
 
