@@ -39,8 +39,9 @@ Backend ParseBackend(const std::string& name);
 
 struct SegmenterOptions {
   Backend backend = Backend::kAuto;
-  std::string device;  // Vulkan device: "" the first usable (discrete first), digits an index,
-                       // else a part of its name (`lpir-gseg devices` lists them)
+  std::string device;  // Vulkan device: "" the first usable (discrete first; kAuto: no CPU
+                       // driver), digits an index, else a part of its name (`lpir-gseg devices`
+                       // lists them; a named device may be a CPU driver)
   size_t max_points = 0;  // a larger cloud is an error; 0: DefaultMaxPoints(sensor)
   uint32_t frames_in_flight = 2;          // Submit may run this many frames ahead of Collect
   // Every buffer of every stage in the returned Frame (pictures, debugging), not only label and
