@@ -169,7 +169,8 @@ TEST(Segmenter, BadOptionsAreErrors) {
 }
 
 // Without max_points, the profile's max_points, else the sensor's beams x width x 2 (a point a
-// pixel, as many second returns); max_points given overrides it; a cloud over it is a length_error that names both numbers.
+// pixel, as many second returns); max_points given overrides it; a cloud over it is a
+// length_error that names both numbers.
 TEST(Segmenter, MaxPointsFollowsTheSensorProfile) {
   for (const char* name : {"vlp16", "hdl64e", "os1-128"}) {
     const SensorProfile sensor = LoadSensorProfile(name, test::SensorsDir());
