@@ -28,7 +28,7 @@ size_t Count(const std::string& text, const std::string& what) {
 // Segments `files` with `sensor` on each backend and compares every .label file byte for byte.
 void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
                                     const std::string& sensor) {
-  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_VULKAN();
   std::string inputs;
   std::vector<std::string> stems;
   for (const std::string& f : files) {
@@ -37,7 +37,7 @@ void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
     std::string stem = fs::path(f).stem().string();
     stems.push_back(stem);
   }
-  if (stems.empty()) GTEST_SKIP() << "none of the scans is under " LPIR_DATA_DIR;
+  if (stems.empty()) GTEST_SKIP() << "none of the scans is under " << test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR);
   const std::string out = test::TempDir();
   std::string log;
   ASSERT_EQ(test::RunCommand("LPIR_VK_VALIDATION=1 " + test::CliPath() + " segment" + inputs +
@@ -91,7 +91,7 @@ TEST(CliBackend, Vlp32cScanSameOnBothBackends) {
 }
 
 TEST(CliBackend, TimingsNameEveryStage) {
-  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_VULKAN();
   LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
   std::string log;
   ASSERT_EQ(test::RunCommand(test::CliPath() + " segment " +
@@ -148,7 +148,7 @@ TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
 // Auto on a machine whose only usable Vulkan device is a CPU driver (lavapipe): one notice that
 // --backend cpu is faster; none when the backend or the device was asked for, or on a GPU.
 TEST(CliBackend, ACpuDriverChosenByAutoSaysTheReferenceIsFaster) {
-  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_VULKAN();
   const std::string dir = test::TempDir();
   std::string log;
   ASSERT_EQ(test::RunCommand(test::CliPath() + " simulate --sensor vlp16 --seed 1 --out " + dir +
@@ -186,7 +186,7 @@ TEST(CliBackend, BadBackendOrDeviceIsAnError) {
 }
 
 TEST(CliBackend, DevicesListsLavapipe) {
-  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_VULKAN();
   std::string log;
   ASSERT_EQ(test::RunCommand(test::CliPath() + " devices", &log), 0) << log;
   EXPECT_NE(log.find("#0 "), std::string::npos) << log;
