@@ -159,7 +159,7 @@ main() {
   done
 
   # Bench, alone on the machine.
-  say "lpir-gseg bench --json ${bench_args[*]} (at most ${bench_budget} s)"
+  say "lpir-gseg bench --json${bench_args[*]:+ ${bench_args[*]}} (at most ${bench_budget} s)"
   timeout -k 5 "${bench_budget}" "${bin}/lpir-gseg" bench --json "${bench_args[@]}" \
     > "${out}/bench.json" 2> "${out}/bench.log"
   bench_rc=$?
@@ -202,7 +202,8 @@ main() {
 
   # The results file.
   bench_device="$(sed -n 's/^{"device": "\([^"]*\)".*/\1/p' "${out}/bench.json" 2> /dev/null)"
-  name="${bench_device:-${device:-no-device}}"
+  name="${bench_device:-${device}}"
+  [[ -n "${device}" && "${name}" != none* ]] || name="no-device"
   slug="$(printf '%s' "${name}" | tr 'A-Z' 'a-z' | sed 's/[^a-z0-9]\{1,\}/-/g; s/^-//; s/-$//')"
   mkdir -p "${out}/bench/results"
   results="${out}/bench/results/${slug:-unknown}.json"
