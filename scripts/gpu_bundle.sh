@@ -29,8 +29,13 @@ die() {
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 mkdir -p "$1"
 dir="$(cd "$1" && pwd)"
-[[ -z "$(ls -A "${dir}")" || -f "${dir}/run.sh" ]] ||
-  die "${dir} is neither empty nor an earlier bundle (no run.sh): refusing to write into it"
+for f in "${dir}"/* "${dir}"/.[!.]*; do
+  [[ -e "${f}" ]] || continue
+  case "${f##*/}" in
+    run.sh | payload.tar.xz | payload.tar.xz.part | MANIFEST.txt | out) ;;
+    *) die "${dir} holds ${f##*/}, which no bundle has: refusing to write into it" ;;
+  esac
+done
 data="${LPIR_DATA_DIR:-${root}/../shared/data}"
 [[ -d "${data}" ]] || die "no real scans at ${data} (set LPIR_DATA_DIR)"
 data="$(cd "${data}" && pwd)"
@@ -109,7 +114,7 @@ glibc_need="$(for f in "${stage}"/bin/* "${stage}"/lib/* "${stage}"/layers/*.so;
   objdump -T "${f}" 2> /dev/null | grep -o 'GLIBC_[0-9][0-9.]*' || true
 done | sed 's/GLIBC_//' | sort -t. -k1,1n -k2,2n -k3,3n -u | tail -n 1)"
 
-rm -f "${dir}/payload.tar.xz" "${dir}/run.sh" "${dir}/MANIFEST.txt"
+rm -f "${dir}/payload.tar.xz" "${dir}/payload.tar.xz.part" "${dir}/run.sh" "${dir}/MANIFEST.txt"
 {
   echo "lpir-gseg GPU bundle (scripts/gpu_bundle.sh, docs/gpu_bundle.md)"
   echo "commit: $(git -C "${root}" rev-parse HEAD 2> /dev/null || echo unknown)$(
@@ -122,7 +127,8 @@ rm -f "${dir}/payload.tar.xz" "${dir}/run.sh" "${dir}/MANIFEST.txt"
   (cd "${stage}" && find . -type f -printf '%s %P\n' | sort -k2)
 } > "${dir}/MANIFEST.txt"
 say "packing $(du -sh "${stage}" | cut -f1) (xz)"
-tar -C "${stage}" -cf - . | xz -6 -T0 > "${dir}/payload.tar.xz"
+tar -C "${stage}" -cf - . | xz -6 -T0 > "${dir}/payload.tar.xz.part"
+mv "${dir}/payload.tar.xz.part" "${dir}/payload.tar.xz"
 install -m 0755 "${root}/scripts/gpu_bundle_run.sh" "${dir}/run.sh"
 
 files=("${dir}/run.sh" "${dir}/payload.tar.xz" "${dir}/MANIFEST.txt")

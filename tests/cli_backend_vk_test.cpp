@@ -37,7 +37,8 @@ void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
     std::string stem = fs::path(f).stem().string();
     stems.push_back(stem);
   }
-  if (stems.empty()) GTEST_SKIP() << "none of the scans is under " << test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR);
+  if (stems.empty())
+    GTEST_SKIP() << "none of the scans is under " << test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR);
   const std::string out = test::TempDir();
   std::string log;
   ASSERT_EQ(test::RunCommand("LPIR_VK_VALIDATION=1 " + test::CliPath() + " segment" + inputs +

@@ -427,7 +427,8 @@ int RunBench(int argc, char** argv) {
       if (!gc.error.empty()) {
         j += "{\"error\": " + JsonString(gc.error) + ", \"labels_equal_reference\": false}";
       } else {
-        const double frames_d = double(gc.frames), points_d = double(std::max<uint64_t>(gc.points, 1));
+        const double frames_d = double(gc.frames);
+        const double points_d = double(std::max<uint64_t>(gc.points, 1));
         std::snprintf(
             b, sizeof b,
             "{\"frames\": %zu, \"dispatches_per_frame_min\": %u, "
