@@ -24,6 +24,7 @@
 # under 5 minutes in all. On a CPU driver (lavapipe) the tests are 10-50 times slower: the same
 # programs and shapes run, with 900 s per shape, and bench with fewer repetitions (--runs 3
 # --scaling-runs 3 --frames 6), 600 s at most; about 25 minutes at most in all.
+# LPIR_BUNDLE_SHAPE_SECONDS and LPIR_BUNDLE_BENCH_SECONDS override those budgets.
 set -uo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -130,6 +131,8 @@ main() {
     shape_budget=100 bench_budget=90
     bench_args=()
   fi
+  shape_budget="${LPIR_BUNDLE_SHAPE_SECONDS:-${shape_budget}}"
+  bench_budget="${LPIR_BUNDLE_BENCH_SECONDS:-${bench_budget}}"
   [[ -n "${LPIR_VK_DEVICE:-}" ]] && bench_args+=(--device "${LPIR_VK_DEVICE}")
   jobs="$(nproc 2> /dev/null || echo 2)"
 
