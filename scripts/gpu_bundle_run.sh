@@ -261,7 +261,11 @@ main() {
   fi
   echo "labels_equal_reference: ${verdict}"
   echo "results: ${results}"
-  echo "  commit it as bench/results/$(basename "${results}") in the repository"
+  if [[ "${name}" == no-device ]]; then
+    echo "  no Vulkan device ran: nothing to commit (see devices.txt)"
+  else
+    echo "  commit it as bench/results/$(basename "${results}") in the repository"
+  fi
   echo "everything: ${out} ($(elapsed) s)"
   [[ "${verdict}" == true ]]
 }
