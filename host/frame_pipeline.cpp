@@ -102,6 +102,7 @@ FramePipeline& FramePipeline::operator=(FramePipeline&& other) noexcept {
     params_ = other.params_;
     max_points_ = other.max_points_, cells_ = other.cells_, pixels_ = other.pixels_;
     device_bytes_ = other.device_bytes_, submitted_ = other.submitted_;
+    last_counts_ = other.last_counts_;
     // The stages before the buffers they point into.
     stages_ = std::move(other.stages_);
     buffers_ = std::move(other.buffers_);
@@ -343,6 +344,7 @@ Status FramePipeline::Submit(uint32_t index, const Cloud& cloud) {
   slot.n = uint32_t(n);
   slot.has_ring = has_ring;
   LPIR_VK_RETURN_IF_ERROR(Record(slot, has_ring));
+  last_counts_ = slot.cmd.counts();
   LPIR_VK_RETURN_IF_ERROR(slot.cmd.Submit(slot.fence));
   slot.busy = true;
   slot.serial = ++submitted_;

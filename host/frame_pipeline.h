@@ -68,6 +68,8 @@ class FramePipeline {
   // Vulkan memory allocated, in bytes: the device buffers and the slots' staging buffers (all
   // made by Create: constant for the pipeline's life).
   uint64_t device_bytes() const { return device_bytes_; }
+  // The commands of the frame recorded last (by the latest Submit), counted at record time.
+  const RecordCounts& last_counts() const { return last_counts_; }
 
   ~FramePipeline();  // waits for the frames in flight
   FramePipeline(FramePipeline&&) noexcept;
@@ -96,6 +98,7 @@ class FramePipeline {
   Params params_{};
   uint32_t max_points_ = 0, cells_ = 0, pixels_ = 0;
   uint64_t device_bytes_ = 0, submitted_ = 0;
+  RecordCounts last_counts_;
   std::unique_ptr<Buffers> buffers_;
   std::unique_ptr<Stages> stages_;
   std::vector<Slot> slots_;

@@ -1,6 +1,8 @@
-// lpir-gseg bench as a user runs it (few runs, on lavapipe under ctest): the table names every
-// stage, both backends and the device in every row; --json holds the fields the issue lists, with
-// finite positive times and the scaling rows from 16 to 256 beams with doubling points.
+// lpir-gseg bench as a user runs it (few runs, on lavapipe under ctest, or on the machine's own
+// device): the table names every stage, both backends and the device in every row; --json holds
+// the fields the issue lists, with finite positive times, the scaling rows from 16 to 256 beams
+// with doubling points, and the counted GPU cost of both shapes (a dispatch count that is the
+// same on every frame, labels equal to the reference's).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -13,9 +15,9 @@
 namespace lpir {
 namespace {
 
-// Runs `bench` with few repetitions (stdout only); skips without lavapipe.
+// Runs `bench` with few repetitions (stdout only); "" without a Vulkan device.
 std::string Bench(const std::string& extra) {
-  if (!test::HasLavapipe()) return "";
+  if (!test::HasVulkanDevice()) return "";
   std::string out;
   const int code = test::RunCommand(test::CliPath() + " bench --runs 1 --scaling-runs 1 --frames 2 " +
                                         extra + " 2>/dev/null",
@@ -36,8 +38,9 @@ double Number(const std::string& json, const std::string& key) {
 
 TEST(CliBench, JsonHoldsEveryField) {
   const std::string json = Bench("--json");
-  if (json.empty()) GTEST_SKIP() << "no lavapipe ICD; install mesa-vulkan-drivers";
-  EXPECT_NE(json.find("\"device\": \"llvmpipe"), std::string::npos) << json;
+  if (json.empty()) GTEST_SKIP() << "no Vulkan device; install mesa-vulkan-drivers";
+  EXPECT_NE(json.find("\"device\": \""), std::string::npos) << json;
+  EXPECT_EQ(json.find("\"device\": \"none"), std::string::npos) << json;
   EXPECT_NE(json.find("\"end_to_end\": {\"cpu\": {\"median_ms\": "), std::string::npos) << json;
   EXPECT_NE(json.find("\"vulkan\": {\"median_ms\": "), std::string::npos) << json;
   for (const char* stage : {"prepare", "project", "grid_reduce", "coarse_segment", "feature_maps",
@@ -59,19 +62,43 @@ TEST(CliBench, JsonHoldsEveryField) {
   EXPECT_EQ(beams.front(), 16);
   EXPECT_EQ(beams.back(), 256);
   for (size_t k = 2; k < points.size(); ++k) EXPECT_NEAR(points[k] / points[k - 1], 2.0, 0.2);
+
+  // gpu_cost: both shapes, every key, counts positive, the dispatch count the same on every
+  // frame (the frames have different point counts), the labels equal to the reference's.
+  const size_t cost = json.find("\"gpu_cost\": {");
+  ASSERT_NE(cost, std::string::npos) << json;
+  const size_t cpu_shape = json.find("\"cpu\": {", cost);
+  ASSERT_NE(json.find("\"gpu\": {", cost), std::string::npos) << json;
+  ASSERT_NE(cpu_shape, std::string::npos) << json;
+  for (const std::string& part : {json.substr(cost, cpu_shape - cost), json.substr(cpu_shape)}) {
+    for (const char* key : {"dispatches_per_frame_min", "dispatches_per_frame_max",
+                            "barriers_per_frame", "workgroups_per_frame", "upload_bytes_per_point",
+                            "download_bytes_per_point", "device_mib"})
+      EXPECT_GT(Number(part, key), 0.0) << key << " in " << part;
+    EXPECT_EQ(Number(part, "dispatches_per_frame_min"), Number(part, "dispatches_per_frame_max"))
+        << part;
+    EXPECT_GE(Number(part, "upload_bytes_per_point"), 16.0) << part;  // xyzi floats
+    EXPECT_NE(part.find("\"labels_equal_reference\": true"), std::string::npos) << part;
+  }
 }
 
 TEST(CliBench, TableNamesTheDeviceInEveryRow) {
   const std::string table = Bench("");
-  if (table.empty()) GTEST_SKIP() << "no lavapipe ICD; install mesa-vulkan-drivers";
+  if (table.empty()) GTEST_SKIP() << "no Vulkan device; install mesa-vulkan-drivers";
+  const std::string header = "| Vulkan device: ";
+  const size_t at_name = table.find(header);
+  ASSERT_NE(at_name, std::string::npos) << table;
+  const std::string name =
+      table.substr(at_name + header.size(), table.find('\n', at_name) - at_name - header.size());
+  ASSERT_FALSE(name.empty()) << table;
   size_t rows = 0;
-  for (size_t at = table.find("llvmpipe"); at != std::string::npos;
-       at = table.find("llvmpipe", at + 1))
+  for (size_t at = table.find(name); at != std::string::npos; at = table.find(name, at + 1))
     ++rows;
-  // 13 stage rows, throughput, memory, 5 scaling rows, and the header line.
-  EXPECT_GE(rows, 21u) << table;
+  // 13 stage rows, throughput, memory, 2 gpu cost rows, 5 scaling rows, and the header line.
+  EXPECT_GE(rows, 23u) << table;
   for (const char* what : {"end to end", "throughput (frames/s", "frames in flight 1:",
-                           "peak host RSS", "device memory allocated", "os1-256", "vk/cpu"})
+                           "peak host RSS", "device memory allocated", "os1-256", "vk/cpu",
+                           "gpu cost, shape gpu, per frame: ", "gpu cost, shape cpu, per frame: "})
     EXPECT_NE(table.find(what), std::string::npos) << what << " in\n" << table;
 }
 

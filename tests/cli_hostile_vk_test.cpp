@@ -94,7 +94,7 @@ std::string SegmentGoodAlone(const std::string& dir, const std::vector<std::stri
 }
 
 TEST(CliHostileVk, ATruncatedFileInTheMiddleOfAFolder) {
-  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_VULKAN();
   const std::string dir = test::TempDir();
   fs::create_directories(dir + "/in");
   const std::vector<std::string> good = {"a", "b", "d", "e"};
@@ -109,7 +109,7 @@ TEST(CliHostileVk, ATruncatedFileInTheMiddleOfAFolder) {
 // cloud over --max-points (read, then refused by the segmenter), a PCD whose header promises
 // more points than it holds.
 TEST(CliHostileVk, BadFilesFirstInTheMiddleAndLast) {
-  LPIR_REQUIRE_LAVAPIPE();
+  LPIR_REQUIRE_VULKAN();
   const std::string dir = test::TempDir();
   fs::create_directories(dir + "/in");
   const std::vector<std::string> good = {"b", "c", "e", "f"};

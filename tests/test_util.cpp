@@ -15,9 +15,15 @@ namespace fs = std::filesystem;
 
 namespace lpir::test {
 
+std::string EnvOr(const char* name, const char* fallback) {
+  const char* value = std::getenv(name);
+  return value && *value ? std::string(value) : std::string(fallback);
+}
+
 std::string DataDir() {
+  const std::string dir = EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR);
   std::error_code ec;
-  return fs::is_directory(LPIR_DATA_DIR, ec) ? std::string(LPIR_DATA_DIR) : std::string();
+  return fs::is_directory(dir, ec) ? dir : std::string();
 }
 
 std::string DataFile(const std::string& relative) {
@@ -28,8 +34,8 @@ std::string DataFile(const std::string& relative) {
   return fs::exists(path, ec) ? path : std::string();
 }
 
-std::string SensorsDir() { return LPIR_SENSORS_DIR; }
-std::string CliPath() { return LPIR_CLI; }
+std::string SensorsDir() { return EnvOr("LPIR_SENSORS_DIR", LPIR_SENSORS_DIR); }
+std::string CliPath() { return EnvOr("LPIR_CLI", LPIR_CLI); }
 
 std::string TempDir() {
   static std::atomic<int> counter{0};
@@ -58,10 +64,13 @@ std::string ReadFileBytes(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-bool HasLavapipe() {
+bool HasVulkanDevice() {
   const char* icd = std::getenv("VK_ICD_FILENAMES");
   std::error_code ec;
-  return icd && fs::exists(icd, ec);
+  if (icd && *icd) return fs::exists(icd, ec);
+  // The loader's own search (the machine's drivers): asked once, of the CLI the tests run.
+  static const bool found = RunCommand(CliPath() + " devices >/dev/null") == 0;
+  return found;
 }
 
 }  // namespace lpir::test

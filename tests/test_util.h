@@ -1,10 +1,15 @@
-// Helpers shared by the tests: where the real scans, the profiles and the CLI are.
+// Helpers shared by the tests: where the real scans, the profiles and the CLI are (the
+// environment variables LPIR_DATA_DIR, LPIR_SENSORS_DIR and LPIR_CLI, when set and not empty,
+// override the paths compiled in; a copy of the tests elsewhere, scripts/gpu_bundle.sh, sets them).
 #pragma once
 #include <string>
 
 namespace lpir::test {
 
-// ../shared/data, or "" when the folder is absent (tests then GTEST_SKIP with a message).
+// The environment variable `name` when set and not empty, else `fallback`.
+std::string EnvOr(const char* name, const char* fallback);
+// ../shared/data (or $LPIR_DATA_DIR), or "" when the folder is absent (tests then GTEST_SKIP
+// with a message).
 std::string DataDir();
 // Full path of a file under the data folder; "" when the folder or file is absent.
 std::string DataFile(const std::string& relative);
@@ -16,21 +21,25 @@ std::string TempDir();
 int RunCommand(const std::string& command, std::string* output = nullptr);
 // A file's bytes ("" when it cannot be read).
 std::string ReadFileBytes(const std::string& path);
-// True when VK_ICD_FILENAMES names an existing file (ctest points it at lavapipe for *_vk_test).
-bool HasLavapipe();
+// True when the CLI has a Vulkan device: VK_ICD_FILENAMES names an existing file (ctest points it
+// at lavapipe for *_vk_test), or, with VK_ICD_FILENAMES unset or empty, `lpir-gseg devices`
+// finds a usable device among the machine's drivers.
+bool HasVulkanDevice();
 
 }  // namespace lpir::test
 
-// For tests that run Vulkan through the CLI (no VkTest fixture): skip without the lavapipe ICD.
-#define LPIR_REQUIRE_LAVAPIPE()                                                           \
-  do {                                                                                    \
-    if (!::lpir::test::HasLavapipe())                                                     \
-      GTEST_SKIP() << "no lavapipe ICD (VK_ICD_FILENAMES); install mesa-vulkan-drivers";  \
+// For tests that run Vulkan through the CLI (no VkTest fixture): skip without a Vulkan device.
+#define LPIR_REQUIRE_VULKAN()                                                              \
+  do {                                                                                     \
+    if (!::lpir::test::HasVulkanDevice())                                                  \
+      GTEST_SKIP() << "no Vulkan device (VK_ICD_FILENAMES, or none found by the loader); "  \
+                      "install mesa-vulkan-drivers for lavapipe";                          \
   } while (0)
 
 #define LPIR_REQUIRE_DATA(path)                                                             \
   do {                                                                                      \
     if (::lpir::test::DataFile(path).empty())                                               \
-      GTEST_SKIP() << "real scan " << (path) << " not found under " LPIR_DATA_DIR           \
+      GTEST_SKIP() << "real scan " << (path) << " not found under "                         \
+                   << ::lpir::test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR)       \
                    << " (../shared/data is absent on this machine)";                        \
   } while (0)

@@ -89,7 +89,7 @@ class ShapeTest : public test::VkTest {
     const vk::Status recorded = record(stage.value(), cmd.value());
     EXPECT_TRUE(recorded.ok()) << recorded.message();
     EXPECT_TRUE(cmd->End().ok());
-    return Recorded{stage->shape(), cmd->dispatches(), cmd->workgroups()};
+    return Recorded{stage->shape(), cmd->counts().dispatches, cmd->counts().workgroups};
   }
 
  private:

@@ -6,6 +6,10 @@
 // and the scaling of cost with points and image size from 16 to 256 beams (simulated streets:
 // VLP-16, then OS1-128's field of view with 32, 64, 128 and 256 beams).
 // Every timed configuration first checks that its labels equal the CPU reference's byte for byte.
+// The counted GPU cost: for each shape (LPIR_VK_SHAPE=gpu and cpu, set before its pipeline is
+// made) every scan once through a FramePipeline of its own, the commands of each frame counted
+// as they are recorded (host/vk/command_buffer.h, RecordCounts), and its labels compared with
+// the reference's: exit code 1, after the report, when they differ.
 // The CPU and the device are timed in turns, a round of the scans each, so drifts of the
 // machine's speed fall on both alike.
 #include <algorithm>
@@ -23,8 +27,10 @@
 #include "apps/cli/commands.h"
 #include "apps/sim/scene.h"
 #include "host/io/kitti_bin.h"
+#include "host/frame_pipeline.h"
 #include "host/io/sensor_profile.h"
 #include "host/segmenter.h"
+#include "host/vk/context.h"
 
 namespace fs = std::filesystem;
 
@@ -160,6 +166,75 @@ struct ScalingRow {
   double cpu_ms = 0, vulkan_ms = -1;
 };
 
+// What one shape's frames cost, counted at record time (RecordCounts), over every frame. Indirect
+// dispatches are in the dispatch counts but not in `workgroups` (their counts are read on the
+// GPU). Reported per frame: dispatches min and max, barriers the most of any frame (the test
+// holds both constant), workgroups the mean, bytes per point over all frames.
+struct GpuCost {
+  std::string shape;
+  uint32_t dispatches_min = UINT32_MAX, dispatches_max = 0, indirect_max = 0;
+  uint32_t barriers_min = UINT32_MAX, barriers_max = 0;
+  uint64_t workgroups = 0, upload_bytes = 0, download_bytes = 0, points = 0, device_bytes = 0;
+  size_t frames = 0;
+  bool labels_equal_reference = true;
+  std::string error;  // the pipeline could not be made or a frame failed: nothing counted
+};
+
+// Sets LPIR_VK_SHAPE to `shape` for the pipeline's creation (where it is read), then puts the
+// variable back as it was. Every cloud once, slot 0, labels compared with `reference_labels`.
+GpuCost MeasureGpuCost(const std::string& shape, const vk::Context& context,
+                       const Segmenter& reference, const std::vector<Cloud>& clouds,
+                       const std::vector<Labels>& reference_labels, size_t max_points) {
+  GpuCost cost;
+  cost.shape = shape;
+  const char* before = std::getenv("LPIR_VK_SHAPE");
+  const std::string saved = before ? before : "";
+  ::setenv("LPIR_VK_SHAPE", shape.c_str(), 1);
+  vk::Result<vk::FramePipeline> made = vk::FramePipeline::Create(
+      context, reference.params(), reference.tables(), uint32_t(max_points), 1);
+  if (before)
+    ::setenv("LPIR_VK_SHAPE", saved.c_str(), 1);
+  else
+    ::unsetenv("LPIR_VK_SHAPE");
+  if (!made.ok()) {
+    cost.error = made.error().message;
+    cost.labels_equal_reference = false;
+    return cost;
+  }
+  vk::FramePipeline pipeline = std::move(made).value();
+  cost.device_bytes = pipeline.device_bytes();
+  Frame frame;
+  for (size_t k = 0; k < clouds.size(); ++k) {
+    vk::Status status = pipeline.Submit(0, clouds[k]);
+    const vk::RecordCounts counts = pipeline.last_counts();
+    if (status.ok()) status = pipeline.Collect(0, frame);
+    if (!status.ok()) {
+      cost.error = status.message();
+      cost.labels_equal_reference = false;
+      return cost;
+    }
+    cost.dispatches_min = std::min(cost.dispatches_min, counts.dispatches);
+    cost.dispatches_max = std::max(cost.dispatches_max, counts.dispatches);
+    cost.indirect_max = std::max(cost.indirect_max, counts.indirect_dispatches);
+    cost.barriers_min = std::min(cost.barriers_min, counts.barriers);
+    cost.barriers_max = std::max(cost.barriers_max, counts.barriers);
+    cost.workgroups += counts.workgroups;
+    cost.upload_bytes += counts.upload_bytes;
+    cost.download_bytes += counts.download_bytes;
+    cost.points += clouds[k].size();
+    ++cost.frames;
+    if (frame.label != reference_labels[k]) cost.labels_equal_reference = false;
+  }
+  return cost;
+}
+
+// Every shape counted labelled every frame as the reference did (exit code 1 otherwise).
+bool AllEqual(const std::vector<GpuCost>& costs) {
+  for (const GpuCost& gc : costs)
+    if (!gc.labels_equal_reference) return false;
+  return true;
+}
+
 std::string JsonString(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -237,6 +312,19 @@ int RunBench(int argc, char** argv) {
   Segmenter cpu(hdl64e, cpu_options);
   CheckAgainstReference(cpu, reference, clouds, names);
   if (gpu) CheckAgainstReference(*gpu, reference, clouds, names);
+  std::vector<GpuCost> costs;
+  if (gpu) {
+    say("counting the commands of a frame in each shape");
+    vk::ContextOptions context_options;
+    context_options.device = vk_options.device;
+    vk::Result<vk::Context> context = vk::Context::Create(context_options);
+    if (!context.ok()) throw std::runtime_error("Vulkan: " + context.error().message);
+    std::vector<Labels> reference_labels;
+    for (const Cloud& cloud : clouds) reference_labels.push_back(reference.Segment(cloud).label);
+    for (const char* shape : {"gpu", "cpu"})
+      costs.push_back(MeasureGpuCost(shape, context.value(), reference, clouds, reference_labels,
+                                     vk_options.max_points));
+  }
   say("timing frames");
   Timed c, g;
   TimeFramesInTurns(cpu, gpu.get(), clouds, runs, c, g);
@@ -331,8 +419,33 @@ int RunBench(int argc, char** argv) {
                     r.vulkan_ms);
       j += b;
     }
-    std::printf("%s]}\n", j.c_str());
-    return 0;
+    j += "], \"gpu_cost\": ";
+    if (costs.empty()) j += "null";
+    for (size_t k = 0; k < costs.size(); ++k) {
+      const GpuCost& gc = costs[k];
+      j += (k ? ", " : "{") + JsonString(gc.shape) + ": ";
+      if (!gc.error.empty()) {
+        j += "{\"error\": " + JsonString(gc.error) + ", \"labels_equal_reference\": false}";
+      } else {
+        const double frames_d = double(gc.frames);
+        const double points_d = double(std::max<uint64_t>(gc.points, 1));
+        std::snprintf(
+            b, sizeof b,
+            "{\"frames\": %zu, \"dispatches_per_frame_min\": %u, "
+            "\"dispatches_per_frame_max\": %u, \"indirect_dispatches_per_frame\": %u, "
+            "\"barriers_per_frame\": %u, \"workgroups_per_frame\": %.1f, "
+            "\"upload_bytes_per_point\": %.3f, \"download_bytes_per_point\": %.3f, "
+            "\"device_mib\": %.1f, \"labels_equal_reference\": %s}",
+            gc.frames, gc.dispatches_min, gc.dispatches_max, gc.indirect_max, gc.barriers_max,
+            double(gc.workgroups) / frames_d, double(gc.upload_bytes) / points_d,
+            double(gc.download_bytes) / points_d, double(gc.device_bytes) / (1 << 20),
+            gc.labels_equal_reference ? "true" : "false");
+        j += b;
+      }
+      if (k + 1 == costs.size()) j += "}";
+    }
+    std::printf("%s}\n", j.c_str());
+    return AllEqual(costs) ? 0 : 1;
   }
 
   std::printf("lpir-gseg bench: %zu frames (%s..., %zu points on average), %d runs each\n",
@@ -363,6 +476,22 @@ int RunBench(int argc, char** argv) {
               frames, cpu_fps, fps[0], fps[1], fps[2], device.c_str());
   std::printf("memory: peak host RSS %.1f MiB | device memory allocated %.1f MiB   %s\n", rss,
               double(device_bytes) / (1 << 20), device.c_str());
+  for (const GpuCost& gc : costs) {
+    if (!gc.error.empty()) {
+      std::printf("gpu cost, shape %s: %s   %s\n", gc.shape.c_str(), gc.error.c_str(),
+                  device.c_str());
+      continue;
+    }
+    const double points_d = double(std::max<uint64_t>(gc.points, 1));
+    std::printf("gpu cost, shape %s, per frame: %u-%u dispatches (%u indirect), %u barriers, "
+                "%.0f workgroups (direct dispatches), %.2f B/point up, %.2f B/point down, "
+                "%.1f MiB device; labels %s the reference's   %s\n",
+                gc.shape.c_str(), gc.dispatches_min, gc.dispatches_max, gc.indirect_max,
+                gc.barriers_max, double(gc.workgroups) / double(gc.frames),
+                double(gc.upload_bytes) / points_d, double(gc.download_bytes) / points_d,
+                double(gc.device_bytes) / (1 << 20),
+                gc.labels_equal_reference ? "equal" : "DIFFER from", device.c_str());
+  }
   std::printf("\nscaling (simulated street, seed 1, median of %d end-to-end frames):\n",
               scaling_runs);
   std::printf("(x: growth from the row above; linear cost: time x equal to points x)\n");
@@ -381,7 +510,7 @@ int RunBench(int argc, char** argv) {
     std::printf("%-10s %6u %6u %9zu %9s %10.2f %10s %12s %14s   %s\n", r.sensor.c_str(), r.beams,
                 r.width, r.points, px, r.cpu_ms, cr, gms, gr, device.c_str());
   }
-  return 0;
+  return AllEqual(costs) ? 0 : 1;
 }
 
 }  // namespace lpir

@@ -26,13 +26,12 @@ Result<CommandBuffer> CommandBuffer::Create(const Device& device) {
 }
 
 Status CommandBuffer::Begin() {
+  counts_ = RecordCounts{};
   LPIR_VK_CHECK(vkResetCommandBuffer(cmd_.get(), 0), "vkResetCommandBuffer", "");
   VkCommandBufferBeginInfo info{};
   info.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
   info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   LPIR_VK_CHECK(vkBeginCommandBuffer(cmd_.get(), &info), "vkBeginCommandBuffer", "");
-  dispatches_ = 0;
-  workgroups_ = 0;
   return Status();
 }
 
@@ -73,13 +72,14 @@ void CommandBuffer::PushConstants(const ComputePipeline& pipeline, const void* d
 
 void CommandBuffer::Dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {
   vkCmdDispatch(cmd_.get(), groups_x, groups_y, groups_z);
-  ++dispatches_;
-  workgroups_ += uint64_t(groups_x) * groups_y * groups_z;
+  ++counts_.dispatches;
+  counts_.workgroups += uint64_t(groups_x) * groups_y * groups_z;
 }
 
 void CommandBuffer::DispatchIndirect(const Buffer& args, VkDeviceSize offset) {
   vkCmdDispatchIndirect(cmd_.get(), args.handle(), offset);
-  ++dispatches_;
+  ++counts_.dispatches;
+  ++counts_.indirect_dispatches;
 }
 
 void CommandBuffer::Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_access,
@@ -89,6 +89,7 @@ void CommandBuffer::Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_ac
   barrier.srcAccessMask = src_access;
   barrier.dstAccessMask = dst_access;
   vkCmdPipelineBarrier(cmd_.get(), src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+  ++counts_.barriers;
 }
 
 void CommandBuffer::ComputeToCompute() {
@@ -130,6 +131,10 @@ void CommandBuffer::CopyBuffer(const Buffer& src, const Buffer& dst, VkDeviceSiz
                                VkDeviceSize src_offset, VkDeviceSize dst_offset) {
   const VkBufferCopy region{src_offset, dst_offset, bytes};
   vkCmdCopyBuffer(cmd_.get(), src.handle(), dst.handle(), 1, &region);
+  const bool src_host = src.kind() == MemoryKind::kHostVisible;
+  const bool dst_host = dst.kind() == MemoryKind::kHostVisible;
+  if (src_host && !dst_host) counts_.upload_bytes += bytes;
+  if (!src_host && dst_host) counts_.download_bytes += bytes;
 }
 
 void CommandBuffer::FillBuffer(const Buffer& dst, uint32_t value) {
@@ -138,6 +143,7 @@ void CommandBuffer::FillBuffer(const Buffer& dst, uint32_t value) {
 
 void CommandBuffer::UpdateBuffer(const Buffer& dst, const void* data, VkDeviceSize bytes) {
   vkCmdUpdateBuffer(cmd_.get(), dst.handle(), 0, bytes, data);
+  counts_.upload_bytes += bytes;
 }
 
 void CommandBuffer::ResetQueries(const TimestampQueries& queries) {

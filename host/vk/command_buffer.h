@@ -17,6 +17,19 @@
 
 namespace lpir::vk {
 
+// What one recording holds, counted as the commands are recorded (Begin resets it). Indirect
+// dispatches read their workgroup counts on the GPU, unknown at record time: they are counted in
+// `dispatches` and `indirect_dispatches`, and their workgroups are not in `workgroups`.
+struct RecordCounts {
+  uint32_t dispatches = 0;           // direct and indirect
+  uint32_t indirect_dispatches = 0;  // of which indirect
+  uint32_t barriers = 0;             // vkCmdPipelineBarrier calls
+  uint64_t workgroups = 0;           // x * y * z summed over the direct dispatches
+  uint64_t upload_bytes = 0;    // host -> device: copies from kHostVisible into kDeviceLocal
+                                // buffers, and UpdateBuffer's inline data
+  uint64_t download_bytes = 0;  // device -> host: copies from kDeviceLocal into kHostVisible
+};
+
 class CommandBuffer {
  public:
   static Result<CommandBuffer> Create(const Device& device);
@@ -60,12 +73,9 @@ class CommandBuffer {
   // Timestamp `index`, written once every earlier command has completed.
   void WriteTimestamp(const TimestampQueries& queries, uint32_t index);
 
-  // Recorded since Begin: dispatches (indirect ones included) and the workgroups of the direct
-  // ones (an indirect dispatch's count is known only on the GPU).
-  uint32_t dispatches() const { return dispatches_; }
-  uint64_t workgroups() const { return workgroups_; }
-
   VkCommandBuffer handle() const { return cmd_.get(); }
+  // The commands recorded since the last Begin.
+  const RecordCounts& counts() const { return counts_; }
 
  private:
   CommandBuffer() = default;
@@ -73,8 +83,7 @@ class CommandBuffer {
   DeviceHandle<VkCommandPool, vkDestroyCommandPool> pool_;  // frees the command buffer with it
   ResetOnMove<VkCommandBuffer> cmd_;
   ResetOnMove<VkQueue> queue_;
-  uint32_t dispatches_ = 0;
-  uint64_t workgroups_ = 0;
+  RecordCounts counts_;
 };
 
 }  // namespace lpir::vk
