@@ -58,9 +58,12 @@ DeviceLimits DeviceLimits::Of(const Device& device) {
   return limits;
 }
 
+struct FramePipeline::TableBuffers {
+  Buffer column_dir, beam_bound, beam_origin, ring_bound2, ring_inner;
+};
+
 struct FramePipeline::Buffers {
   Buffer params, points, ring;
-  Buffer column_dir, beam_bound, beam_origin, ring_bound2, ring_inner;  // tables
   Buffer flags, zt, r2, inten;                                           // 1 prepare
   Buffer point_pixel, pixel_key, pixel_point, project_exact;             // 2 project
   Buffer point_cell, cell_zmin, cell_zmax, cell_count;                   // 3 grid reduce
@@ -86,11 +89,12 @@ struct FramePipeline::Stages {
 
 // Frames still in flight are waited for: their command buffers use what is about to be freed.
 void FramePipeline::WaitForAll() {
-  for (Slot& slot : slots_)
-    if (slot.busy) {
-      (void)slot.fence.WaitAndReset();  // a lost device has nothing left to wait for
-      slot.busy = false;
-    }
+  for (Slot& slot : slots_) {
+    if (slot.fence_pending) (void)slot.fence.WaitAndReset();  // a lost device: nothing to wait
+    slot.fence_pending = false;
+    slot.busy = false;
+    slot.frames = 0;
+  }
 }
 
 FramePipeline::~FramePipeline() { WaitForAll(); }
@@ -103,12 +107,52 @@ FramePipeline& FramePipeline::operator=(FramePipeline&& other) noexcept {
     max_points_ = other.max_points_, cells_ = other.cells_, pixels_ = other.pixels_;
     device_bytes_ = other.device_bytes_, submitted_ = other.submitted_;
     last_counts_ = other.last_counts_;
-    // The stages before the buffers they point into.
-    stages_ = std::move(other.stages_);
-    buffers_ = std::move(other.buffers_);
+    // The slots (their stages and buffers) before the tables their stages point into.
     slots_ = std::move(other.slots_);
+    tables_ = std::move(other.tables_);
   }
   return *this;
+}
+
+// The nine stages bound to one slot's buffers and the shared tables.
+Result<std::unique_ptr<FramePipeline::Stages>> FramePipeline::MakeStages(const Device& device,
+                                                                          const TableBuffers& t,
+                                                                          Buffers& b) {
+  PrepareBuffers prepare{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten};
+  ProjectBuffers project{&b.params,      &b.points,     &b.ring,        &b.flags,
+                         &b.r2,          &t.column_dir, &t.beam_bound,  &t.beam_origin,
+                         &b.point_pixel, &b.pixel_key,  &b.pixel_point, &b.project_exact};
+  GridReduceBuffers grid{&b.params,      &b.flags,      &b.r2,        &b.zt,       &b.point_pixel,
+                         &t.ring_bound2, &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count};
+  CoarseSegmentBuffers coarse{&b.params,     &b.points,         &b.zt,         &b.point_cell,
+                              &b.cell_zmin,  &b.cell_zmax,      &b.cell_count, &t.ring_inner,
+                              &b.cell_seed_mode, &b.cell_plane, &b.coarse,     &b.coarse_scratch};
+  FeatureMapsBuffers features{&b.params,   &b.pixel_point, &b.r2,       &b.zt,     &b.inten,
+                              &b.pixel_filled, &b.f_range, &b.f_inten,  &b.f_height,
+                              &b.f_slope,  &b.f_edge_l,    &b.f_edge_r, &b.f_varz, &b.f_vari,
+                              &b.feature_pack};
+  ClassifyPixelsBuffers classify{&b.params,   &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
+                                 &b.f_slope,  &b.f_varz,       &b.f_vari,   &b.pixel_class};
+  FuseBuffers fuse{&b.params,       &b.pixel_class, &b.pixel_point, &b.coarse,
+                   &b.pixel_filled, &b.f_range,     &b.f_height,    &b.pixel_fused};
+  GrowBuffers grow{&b.params,      &b.pixel_fused, &b.f_inten,      &b.f_height,
+                   &b.f_range,     &b.pixel_grown, &b.pixel_comp,   &b.pixel_label,
+                   &b.grow_reach,  &b.grow_sizes};
+  BackProjectBuffers back{&b.params, &b.flags,  &b.point_pixel, &b.pixel_point,
+                          &b.pixel_label, &b.f_range, &b.f_height, &b.r2,
+                          &b.zt,     &b.coarse, &b.label_why};
+  LPIR_VK_ASSIGN_OR_RETURN(PrepareStage s1, PrepareStage::Create(device, prepare));
+  LPIR_VK_ASSIGN_OR_RETURN(ProjectStage s2, ProjectStage::Create(device, project));
+  LPIR_VK_ASSIGN_OR_RETURN(GridReduceStage s3, GridReduceStage::Create(device, grid));
+  LPIR_VK_ASSIGN_OR_RETURN(CoarseSegmentStage s4, CoarseSegmentStage::Create(device, coarse));
+  LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage s5, FeatureMapsStage::Create(device, features));
+  LPIR_VK_ASSIGN_OR_RETURN(ClassifyPixelsStage s6, ClassifyPixelsStage::Create(device, classify));
+  LPIR_VK_ASSIGN_OR_RETURN(FuseStage s7, FuseStage::Create(device, fuse));
+  LPIR_VK_ASSIGN_OR_RETURN(GrowStage s8, GrowStage::Create(device, grow));
+  LPIR_VK_ASSIGN_OR_RETURN(BackProjectStage s9, BackProjectStage::Create(device, back));
+  return std::unique_ptr<Stages>(new Stages{std::move(s1), std::move(s2), std::move(s3),
+                                            std::move(s4), std::move(s5), std::move(s6),
+                                            std::move(s7), std::move(s8), std::move(s9)});
 }
 
 Result<FramePipeline> FramePipeline::Create(const Context& context, const Params& params,
@@ -135,8 +179,9 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   fp.max_points_ = max_points;
   fp.cells_ = cells;
   fp.pixels_ = uint32_t(pixels);
-  fp.buffers_ = std::make_unique<Buffers>();
-  Buffers& b = *fp.buffers_;
+  fp.tables_ = std::make_unique<TableBuffers>();
+  TableBuffers& t = *fp.tables_;
+  Buffers b;  // the sizes below, and their names in the limit errors, are those of every slot's
   const VkDeviceSize point = 4 * VkDeviceSize(max_points), pixel = 4 * pixels, cell = 4 * cells;
   // Each slot's staging: the points (16 bytes each) and rings (4 each) up, label_why down.
   const VkDeviceSize upload_bytes = 5 * point;
@@ -149,26 +194,31 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   auto table = [&](Buffer& buffer, const std::vector<float>& values) -> Status {
     return make(buffer, 4 * VkDeviceSize(values.size()));
   };
-  const struct {
+  struct Sized {
     Buffer* buffer;
     VkDeviceSize bytes;
-  } sizes[] = {
-      {&b.params, sizeof(Params)},  {&b.points, 4 * point},      {&b.ring, point},
-      {&b.flags, point},            {&b.zt, point},              {&b.r2, point},
-      {&b.inten, point},            {&b.point_pixel, point},     {&b.pixel_key, pixel},
-      {&b.pixel_point, pixel},      {&b.point_cell, point},      {&b.cell_zmin, cell},
-      {&b.project_exact, ProjectStage::ExactListBytes(max_points)},
-      {&b.cell_zmax, cell},         {&b.cell_count, cell},       {&b.cell_seed_mode, cell},
-      {&b.cell_plane, 8 * cell},    {&b.coarse, point},
-      {&b.coarse_scratch, CoarseSegmentStage::ScratchBytes(cells)},
-      {&b.pixel_filled, pixel},     {&b.f_range, pixel},         {&b.f_inten, pixel},
-      {&b.f_height, pixel},         {&b.f_slope, pixel},         {&b.f_edge_l, pixel},
-      {&b.f_edge_r, pixel},         {&b.f_varz, pixel},          {&b.f_vari, pixel},
-      {&b.feature_pack, FeatureMapsStage::PackBytes(pixels)},
-      {&b.pixel_class, pixel},      {&b.pixel_fused, pixel},     {&b.pixel_grown, pixel},
-      {&b.pixel_comp, pixel},       {&b.pixel_label, pixel},
-      {&b.grow_reach, GrowStage::ReachBytes(pixels)},           {&b.grow_sizes, pixel},
-      {&b.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
+  };
+  // Every frame buffer of a slot and its size.
+  auto sizes_of = [&](Buffers& x) {
+    return std::vector<Sized>{
+      {&x.params, sizeof(Params)},  {&x.points, 4 * point},      {&x.ring, point},
+      {&x.flags, point},            {&x.zt, point},              {&x.r2, point},
+      {&x.inten, point},            {&x.point_pixel, point},     {&x.pixel_key, pixel},
+      {&x.pixel_point, pixel},      {&x.point_cell, point},      {&x.cell_zmin, cell},
+      {&x.project_exact, ProjectStage::ExactListBytes(max_points)},
+      {&x.cell_zmax, cell},         {&x.cell_count, cell},       {&x.cell_seed_mode, cell},
+      {&x.cell_plane, 8 * cell},    {&x.coarse, point},
+      {&x.coarse_scratch, CoarseSegmentStage::ScratchBytes(cells)},
+      {&x.pixel_filled, pixel},     {&x.f_range, pixel},         {&x.f_inten, pixel},
+      {&x.f_height, pixel},         {&x.f_slope, pixel},         {&x.f_edge_l, pixel},
+      {&x.f_edge_r, pixel},         {&x.f_varz, pixel},          {&x.f_vari, pixel},
+      {&x.feature_pack, FeatureMapsStage::PackBytes(pixels)},
+      {&x.pixel_class, pixel},      {&x.pixel_fused, pixel},     {&x.pixel_grown, pixel},
+      {&x.pixel_comp, pixel},       {&x.pixel_label, pixel},
+      {&x.grow_reach, GrowStage::ReachBytes(pixels)},           {&x.grow_sizes, pixel},
+      {&x.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
+  };
+  const std::vector<Sized> sizes = sizes_of(b);
   {
     // The device's limits, before anything is allocated: every storage buffer's size (what it
     // scales with named in the error), Params, and the sum of all against the heap.
@@ -215,6 +265,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                            " buffer; this device's maxStorageBufferRange is " +
                            std::to_string(device_limits.max_storage_buffer_range));
     }
+    total *= slots;  // every slot owns its frame buffers; the tables are shared
     const std::vector<float>* table_values[] = {&tables.column_dir, &tables.beam_bound,
                                                 &tables.beam_origin, &tables.ring_bound2,
                                                 &tables.ring_inner};
@@ -237,63 +288,26 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                            "; this device's device-local memory heap holds " +
                            std::to_string(device_limits.device_local_heap) + " bytes");
   }
-  for (const auto& s : sizes) LPIR_VK_RETURN_IF_ERROR(make(*s.buffer, s.bytes));
-  LPIR_VK_RETURN_IF_ERROR(table(b.column_dir, tables.column_dir));
-  LPIR_VK_RETURN_IF_ERROR(table(b.beam_bound, tables.beam_bound));
-  LPIR_VK_RETURN_IF_ERROR(table(b.beam_origin, tables.beam_origin));
-  LPIR_VK_RETURN_IF_ERROR(table(b.ring_bound2, tables.ring_bound2));
-  LPIR_VK_RETURN_IF_ERROR(table(b.ring_inner, tables.ring_inner));
+  LPIR_VK_RETURN_IF_ERROR(table(t.column_dir, tables.column_dir));
+  LPIR_VK_RETURN_IF_ERROR(table(t.beam_bound, tables.beam_bound));
+  LPIR_VK_RETURN_IF_ERROR(table(t.beam_origin, tables.beam_origin));
+  LPIR_VK_RETURN_IF_ERROR(table(t.ring_bound2, tables.ring_bound2));
+  LPIR_VK_RETURN_IF_ERROR(table(t.ring_inner, tables.ring_inner));
   {
     LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
     const struct {
       const Buffer* buffer;
       const std::vector<float>* values;
-    } uploads[] = {{&b.column_dir, &tables.column_dir},
-                   {&b.beam_bound, &tables.beam_bound},
-                   {&b.beam_origin, &tables.beam_origin},
-                   {&b.ring_bound2, &tables.ring_bound2},
-                   {&b.ring_inner, &tables.ring_inner}};
+    } uploads[] = {{&t.column_dir, &tables.column_dir},
+                   {&t.beam_bound, &tables.beam_bound},
+                   {&t.beam_origin, &tables.beam_origin},
+                   {&t.ring_bound2, &tables.ring_bound2},
+                   {&t.ring_inner, &tables.ring_inner}};
     for (const auto& u : uploads)
       if (!u.values->empty())
         LPIR_VK_RETURN_IF_ERROR(
             transfer.Upload(*u.buffer, u.values->data(), 4 * u.values->size()));
   }
-
-  PrepareBuffers prepare{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten};
-  ProjectBuffers project{&b.params,      &b.points,     &b.ring,        &b.flags,
-                         &b.r2,          &b.column_dir, &b.beam_bound,  &b.beam_origin,
-                         &b.point_pixel, &b.pixel_key,  &b.pixel_point, &b.project_exact};
-  GridReduceBuffers grid{&b.params,      &b.flags,      &b.r2,        &b.zt,       &b.point_pixel,
-                         &b.ring_bound2, &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count};
-  CoarseSegmentBuffers coarse{&b.params,     &b.points,         &b.zt,         &b.point_cell,
-                              &b.cell_zmin,  &b.cell_zmax,      &b.cell_count, &b.ring_inner,
-                              &b.cell_seed_mode, &b.cell_plane, &b.coarse,     &b.coarse_scratch};
-  FeatureMapsBuffers features{&b.params,   &b.pixel_point, &b.r2,       &b.zt,     &b.inten,
-                              &b.pixel_filled, &b.f_range, &b.f_inten,  &b.f_height,
-                              &b.f_slope,  &b.f_edge_l,    &b.f_edge_r, &b.f_varz, &b.f_vari,
-                              &b.feature_pack};
-  ClassifyPixelsBuffers classify{&b.params,   &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
-                                 &b.f_slope,  &b.f_varz,       &b.f_vari,   &b.pixel_class};
-  FuseBuffers fuse{&b.params,       &b.pixel_class, &b.pixel_point, &b.coarse,
-                   &b.pixel_filled, &b.f_range,     &b.f_height,    &b.pixel_fused};
-  GrowBuffers grow{&b.params,      &b.pixel_fused, &b.f_inten,      &b.f_height,
-                   &b.f_range,     &b.pixel_grown, &b.pixel_comp,   &b.pixel_label,
-                   &b.grow_reach,  &b.grow_sizes};
-  BackProjectBuffers back{&b.params, &b.flags,  &b.point_pixel, &b.pixel_point,
-                          &b.pixel_label, &b.f_range, &b.f_height, &b.r2,
-                          &b.zt,     &b.coarse, &b.label_why};
-  LPIR_VK_ASSIGN_OR_RETURN(PrepareStage s1, PrepareStage::Create(device, prepare));
-  LPIR_VK_ASSIGN_OR_RETURN(ProjectStage s2, ProjectStage::Create(device, project));
-  LPIR_VK_ASSIGN_OR_RETURN(GridReduceStage s3, GridReduceStage::Create(device, grid));
-  LPIR_VK_ASSIGN_OR_RETURN(CoarseSegmentStage s4, CoarseSegmentStage::Create(device, coarse));
-  LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage s5, FeatureMapsStage::Create(device, features));
-  LPIR_VK_ASSIGN_OR_RETURN(ClassifyPixelsStage s6, ClassifyPixelsStage::Create(device, classify));
-  LPIR_VK_ASSIGN_OR_RETURN(FuseStage s7, FuseStage::Create(device, fuse));
-  LPIR_VK_ASSIGN_OR_RETURN(GrowStage s8, GrowStage::Create(device, grow));
-  LPIR_VK_ASSIGN_OR_RETURN(BackProjectStage s9, BackProjectStage::Create(device, back));
-  fp.stages_.reset(new Stages{std::move(s1), std::move(s2), std::move(s3), std::move(s4),
-                              std::move(s5), std::move(s6), std::move(s7), std::move(s8),
-                              std::move(s9)});
 
   const bool timed = device.timestamp_valid_bits() != 0;
   for (uint32_t i = 0; i < slots; ++i) {
@@ -304,7 +318,11 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
     LPIR_VK_ASSIGN_OR_RETURN(Buffer download,
                              Buffer::Create(device, download_bytes, MemoryKind::kHostVisible));
     fp.device_bytes_ += upload.size() + download.size();
-    Slot slot{std::move(cmd), std::move(fence), std::move(upload), std::move(download), {}};
+    Slot slot{std::move(cmd), std::move(fence), std::move(upload), std::move(download), {}, {}, {}};
+    slot.buffers = std::make_unique<Buffers>();
+    for (const Sized& own : sizes_of(*slot.buffers))
+      LPIR_VK_RETURN_IF_ERROR(make(*own.buffer, own.bytes));
+    LPIR_VK_ASSIGN_OR_RETURN(slot.stages, MakeStages(device, t, *slot.buffers));
     if (timed) {
       LPIR_VK_ASSIGN_OR_RETURN(TimestampQueries q, TimestampQueries::Create(device, kQueries));
       slot.queries.push_back(std::move(q));
@@ -317,16 +335,26 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   {
     Slot& first = fp.slots_.front();
     first.n = max_points;
-    const Status status = fp.Record(first, /*has_ring=*/true);
+    first.has_ring = true;
+    Status status = first.cmd.Begin();
+    if (status.ok()) status = fp.RecordFrame(first, first.cmd);
+    if (status.ok()) status = first.cmd.End();
     first.n = 0;
+    first.has_ring = false;
     if (!status.ok())
       return PipelineError("max_points " + std::to_string(max_points) + ": " + status.message());
   }
   return fp;
 }
 
-Status FramePipeline::Submit(uint32_t index, const Cloud& cloud) {
-  if (index >= slots_.size() || slots_[index].busy)
+Status FramePipeline::Submit(uint32_t slot, const Cloud& cloud) {
+  LPIR_VK_RETURN_IF_ERROR(Stage(slot, cloud));
+  return SubmitStaged(slot, 1);
+}
+
+Status FramePipeline::Stage(uint32_t index, const Cloud& cloud) {
+  if (index >= slots_.size() || slots_[index].busy || slots_[index].staged ||
+      slots_[index].frames)
     return PipelineError("slot " + std::to_string(index) + " is not free");
   const uint64_t n = cloud.size();
   if (n > max_points_)
@@ -343,19 +371,49 @@ Status FramePipeline::Submit(uint32_t index, const Cloud& cloud) {
   if (has_ring && n) std::memcpy(upload + 16 * VkDeviceSize(max_points_), cloud.ring.data(), 4 * n);
   slot.n = uint32_t(n);
   slot.has_ring = has_ring;
-  LPIR_VK_RETURN_IF_ERROR(Record(slot, has_ring));
-  last_counts_ = slot.cmd.counts();
-  LPIR_VK_RETURN_IF_ERROR(slot.cmd.Submit(slot.fence));
-  slot.busy = true;
-  slot.serial = ++submitted_;
+  slot.staged = true;
   return Status();
 }
 
-Status FramePipeline::Record(Slot& slot, bool has_ring) {
-  Buffers& b = *buffers_;
-  Stages& s = *stages_;
-  CommandBuffer& cmd = slot.cmd;
+Status FramePipeline::SubmitStaged(uint32_t first, uint32_t count) {
+  if (count == 0) return PipelineError("a batch of no frame");
+  if (first >= slots_.size() || count > slots_.size() - first)
+    return PipelineError("slots " + std::to_string(first) + " .. " +
+                         std::to_string(uint64_t(first) + count - 1) + " do not exist (" +
+                         std::to_string(slots_.size()) + " slots)");
+  for (uint32_t k = first; k < first + count; ++k)
+    if (!slots_[k].staged) return PipelineError("slot " + std::to_string(k) + " holds no cloud");
+  Slot& lead = slots_[first];
+  CommandBuffer& cmd = lead.cmd;
+  std::vector<Tape> tapes(count);
+  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
+  for (uint32_t k = 0; k < count; ++k) {
+    cmd.BeginTape(&tapes[k]);
+    const Status recorded = RecordFrame(slots_[first + k], cmd);
+    cmd.EndTape();
+    LPIR_VK_RETURN_IF_ERROR(recorded);
+  }
+  LPIR_VK_RETURN_IF_ERROR(cmd.PlayInterleaved(tapes));
+  LPIR_VK_RETURN_IF_ERROR(cmd.End());
+  last_counts_ = cmd.counts();
+  LPIR_VK_RETURN_IF_ERROR(cmd.Submit(lead.fence));
+  lead.fence_pending = true;
+  lead.frames = count;
+  for (uint32_t k = first; k < first + count; ++k) {
+    Slot& slot = slots_[k];
+    slot.staged = false;
+    slot.busy = true;
+    slot.lead = first;
+    slot.serial = ++submitted_;
+  }
+  return Status();
+}
+
+Status FramePipeline::RecordFrame(Slot& slot, CommandBuffer& cmd) {
+  Buffers& b = *slot.buffers;
+  Stages& s = *slot.stages;
   const uint32_t n = slot.n;
+  const bool has_ring = slot.has_ring;
   const VkDeviceSize point = 4 * VkDeviceSize(max_points_);
   const TimestampQueries* q = slot.queries.empty() ? nullptr : &slot.queries[0];
   uint32_t stamp = 0;
@@ -363,10 +421,9 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
     if (q) cmd.WriteTimestamp(*q, stamp++);
   };
 
-  LPIR_VK_RETURN_IF_ERROR(cmd.Begin());
   if (q) cmd.ResetQueries(*q);
   time();
-  // The frames before this one in the queue have finished with the shared buffers.
+  // The slot's previous frame has finished with its buffers (the queue's earlier work is done).
   cmd.ComputeToTransfer();
   Params params = params_;
   params.has_ring = has_ring ? 1u : 0u;
@@ -379,7 +436,7 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   cmd.ComputeToCompute();
   time();
   // Project starts with fills (transfer writes) of its pixel buffers, which nothing of this
-  // frame has touched yet; the head barrier ordered them after the previous frame.
+  // frame has touched yet; the head barrier ordered them after the slot's previous frame.
   LPIR_VK_RETURN_IF_ERROR(s.project.Record(cmd, n));
   cmd.ComputeToCompute();
   time();
@@ -407,20 +464,20 @@ Status FramePipeline::Record(Slot& slot, bool has_ring) {
   if (n) cmd.CopyBuffer(b.label_why, slot.download, BackProjectStage::LabelWhyBytes(n));
   cmd.TransferToHost();
   time();
-  return cmd.End();
+  return Status();
 }
 
 Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, FrameTimes* times) {
   if (index >= slots_.size() || !slots_[index].busy)
     return PipelineError("slot " + std::to_string(index) + " holds no submitted frame");
   Slot& slot = slots_[index];
-  if (all_buffers)
-    for (const Slot& other : slots_)
-      if (other.busy && other.serial > slot.serial)
-        return PipelineError("all buffers of a frame are only readable before the next frame is "
-                             "submitted (collect this slot without all_buffers)");
-  LPIR_VK_RETURN_IF_ERROR(slot.fence.WaitAndReset());
+  Slot& lead = slots_[slot.lead];
+  if (lead.fence_pending) {
+    LPIR_VK_RETURN_IF_ERROR(lead.fence.WaitAndReset());
+    lead.fence_pending = false;
+  }
   slot.busy = false;
+  --lead.frames;
   const uint32_t n = slot.n;
   const auto* label_why = static_cast<const uint8_t*>(slot.download.mapped());
   out.n = n;
@@ -445,7 +502,7 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
   }
 
   if (all_buffers) {
-    const Buffers& b = *buffers_;
+    const Buffers& b = *slot.buffers;
     LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(context_->device()));
     Status status;
     auto read = [&](const Buffer& src, auto& dst, size_t count) {

@@ -2,10 +2,12 @@
 // buffer: the cloud's upload, the nine stages back to back with barriers, the labels' download;
 // the number of dispatches is the same for every frame. Every device buffer is
 // allocated once, for `max_points` points and the sensor's image and grid; a frame allocates
-// nothing. Several frames in flight: each slot owns its command buffer, fence, staging buffers
-// and timestamps, and the slots share the device buffers, ordered by a barrier at the head of
-// every frame (one queue runs the frames in submission order, each overlapping the host's work
-// on the others: reading files, writing labels).
+// nothing. Several frames in flight: each slot owns its command buffer, fence, staging buffers,
+// timestamps and frame buffers (the tables and the pipelines are shared), so any frame's buffers
+// can be read back and the host reads files and writes labels while the device works. A batch
+// records the frames of several slots in one command buffer, interleaved pass by pass
+// (CommandBuffer::PlayInterleaved): their dispatches between two barriers run side by side, and
+// the batch pays for one frame's barriers.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -51,16 +53,22 @@ class FramePipeline {
                                       const Tables& tables, uint32_t max_points, uint32_t slots,
                                       const DeviceLimits* limits = nullptr);
 
-  // Copies `cloud` into slot `slot`'s staging buffer, records its frame and submits it. The slot
-  // must be free: never submitted, or collected since. An error (nothing submitted) for a cloud
-  // over max_points or with a ring field of another length.
+  // Copies `cloud` into slot `slot`'s staging buffer (Stage), records its frame and submits it
+  // (SubmitStaged of one frame).
   Status Submit(uint32_t slot, const Cloud& cloud);
+  // Copies `cloud` into slot `slot`'s staging buffer. The slot must be free: never used, or
+  // collected since, and not the first of a batch with frames still to collect. An error
+  // (nothing staged) for a cloud over max_points or with a ring field of another length.
+  Status Stage(uint32_t slot, const Cloud& cloud);
+  // Records the frames staged in slots first .. first + count - 1 into one command buffer
+  // (slot first's; interleaved pass by pass when count > 1) and submits it. Each frame is
+  // collected from its own slot.
+  Status SubmitStaged(uint32_t first, uint32_t count);
 
   // Waits for slot `slot`'s frame and frees the slot. Fills out.n, out.label_why (downloaded)
   // and out.label, out.why (unpacked from it); with `all_buffers`, every other buffer of the
-  // frame too (read back after the wait, so only for the frame submitted last: the slots share
-  // the device buffers; asked of an earlier frame, an error that leaves the slot as it was).
-  // `times` (optional) gets the frame's GPU times (timestamps).
+  // frame too. `times` (optional) gets the frame's GPU times (timestamps; in a batch, each stamp
+  // is written when the batch's interleaved commands reach it, so stages overlap frames).
   Status Collect(uint32_t slot, Frame& out, bool all_buffers = false, FrameTimes* times = nullptr);
 
   uint32_t slots() const { return uint32_t(slots_.size()); }
@@ -68,7 +76,7 @@ class FramePipeline {
   // Vulkan memory allocated, in bytes: the device buffers and the slots' staging buffers (all
   // made by Create: constant for the pipeline's life).
   uint64_t device_bytes() const { return device_bytes_; }
-  // The commands of the frame recorded last (by the latest Submit), counted at record time.
+  // The commands of the latest Submit (one frame, or a batch), counted at record time.
   const RecordCounts& last_counts() const { return last_counts_; }
 
   ~FramePipeline();  // waits for the frames in flight
@@ -76,22 +84,33 @@ class FramePipeline {
   FramePipeline& operator=(FramePipeline&&) noexcept;
 
  private:
-  struct Buffers;  // every device buffer, at stable addresses (the stages keep pointers)
-  struct Stages;   // the nine recorded stages
+  struct TableBuffers;  // the tables' device buffers, shared by the slots
+  struct Buffers;  // one slot's frame buffers, at stable addresses (the stages keep pointers)
+  struct Stages;   // the nine stages bound to one slot's buffers
   struct Slot {
     CommandBuffer cmd;
     Fence fence;
     Buffer upload;    // host-visible: points (16 bytes each), then rings (4 bytes each)
     Buffer download;  // host-visible: label_why bytes (four points a word)
     std::vector<TimestampQueries> queries;  // one pool of kQueries, or none without timestamps
-    bool busy = false, has_ring = false;
+    std::unique_ptr<Buffers> buffers;
+    std::unique_ptr<Stages> stages;  // after buffers: destroyed first
+    bool busy = false, staged = false, has_ring = false;
     uint32_t n = 0;
     uint64_t serial = 0;  // submission order
+    uint32_t lead = 0;    // the slot whose command buffer and fence carry this frame
+    // As a lead: its fence signals a submission not yet waited for; frames of that submission
+    // not yet collected (the slot takes no new frame before they are).
+    bool fence_pending = false;
+    uint32_t frames = 0;
   };
   static constexpr uint32_t kQueries = 12;  // start, after upload, after each stage, after download
 
   FramePipeline() = default;
-  Status Record(Slot& slot, bool has_ring);
+  // Records slot's frame (slot.n points, slot.has_ring) into cmd, begun by the caller.
+  Status RecordFrame(Slot& slot, CommandBuffer& cmd);
+  static Result<std::unique_ptr<Stages>> MakeStages(const Device& device, const TableBuffers& t,
+                                                    Buffers& b);
   void WaitForAll();
 
   const Context* context_ = nullptr;
@@ -99,9 +118,8 @@ class FramePipeline {
   uint32_t max_points_ = 0, cells_ = 0, pixels_ = 0;
   uint64_t device_bytes_ = 0, submitted_ = 0;
   RecordCounts last_counts_;
-  std::unique_ptr<Buffers> buffers_;
-  std::unique_ptr<Stages> stages_;
-  std::vector<Slot> slots_;
+  std::unique_ptr<TableBuffers> tables_;
+  std::vector<Slot> slots_;  // after tables_: destroyed first
 };
 
 }  // namespace lpir::vk

@@ -30,8 +30,10 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
                                 std::to_string(UINT32_MAX / 16) + ", not " +
                                 std::to_string(options_.max_points));
   if (options.frames_in_flight == 0) throw std::invalid_argument("frames_in_flight is 0");
-  // Every buffer is read back after its frame, before the next one may start.
-  slots_ = options.all_buffers ? 1u : options.frames_in_flight;
+  if (options.batch == 0) throw std::invalid_argument("batch is 0");
+  if (uint64_t(options.frames_in_flight) * options.batch > 4096)
+    throw std::invalid_argument("frames_in_flight * batch is over 4096");
+  slots_ = options.frames_in_flight * options.batch;
 
   if (options.backend != Backend::kCpu) {
     vk::ContextOptions context_options;
@@ -69,6 +71,7 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
     backend_note_ = "CPU reference (asked for)";
   }
   if (backend_ == Backend::kCpu) cpu_frames_.resize(slots_), cpu_times_.resize(slots_);
+  batch_ = backend_ == Backend::kCpu ? 1u : options.batch;
 }
 
 Segmenter::~Segmenter() = default;  // the pipeline (waiting for its frames) before the context
@@ -102,24 +105,45 @@ const Frame& Segmenter::Segment(const Cloud& cloud, FrameTimes* times) {
   return Collect(times);
 }
 
+bool Segmenter::CanSubmit() const {
+  if (staged_ > 0 || pending_.empty()) return true;  // a batch being filled has room
+  const uint32_t blocks = slots_ / batch_;
+  const uint32_t first = pending_.front() / batch_, last = pending_.back() / batch_;
+  return (last + blocks - first) % blocks + 1 < blocks;  // blocks with frames pending
+}
+
 void Segmenter::Submit(const Cloud& cloud) {
-  if (pending_.size() >= slots_)
+  if (!CanSubmit())
     throw std::logic_error("Submit called with " + std::to_string(pending_.size()) +
                            " frames pending, the most in flight: Collect first");
   CheckCloud(cloud);
+  if (staged_ == 0) next_slot_ = next_block_ * batch_;
   const uint32_t slot = next_slot_;
   if (backend_ == Backend::kCpu) {
     RunReference(cloud, params_, tables_, cpu_frames_[slot], &cpu_times_[slot]);
   } else {
-    const vk::Status status = pipeline_->Submit(slot, cloud);
+    const vk::Status status = pipeline_->Stage(slot, cloud);
     if (!status.ok()) throw std::runtime_error("Vulkan: " + status.message());
+    ++staged_;
   }
   pending_.push_back(slot);
-  next_slot_ = (slot + 1) % slots_;
+  next_slot_ = slot + 1;
+  if (backend_ == Backend::kCpu) next_block_ = next_slot_ % slots_;
+  if (staged_ == batch_) SubmitStaged();
+}
+
+void Segmenter::SubmitStaged() {
+  const uint32_t first = pending_.back() + 1 - staged_;  // a batch fills its block from the start
+  const uint32_t count = staged_;
+  staged_ = 0;
+  next_block_ = (first / batch_ + 1) % (slots_ / batch_);
+  const vk::Status status = pipeline_->SubmitStaged(first, count);
+  if (!status.ok()) throw std::runtime_error("Vulkan: " + status.message());
 }
 
 const Frame& Segmenter::Collect(FrameTimes* times) {
   if (pending_.empty()) throw std::logic_error("Collect called with no frame pending");
+  if (staged_ == pending_.size()) SubmitStaged();  // the oldest frame waits in a partial batch
   const uint32_t slot = pending_.front();
   pending_.pop_front();
   if (backend_ == Backend::kCpu) {

@@ -43,9 +43,14 @@ struct SegmenterOptions {
                        // driver), digits an index, else a part of its name (`lpir-gseg devices`
                        // lists them; a named device may be a CPU driver)
   size_t max_points = 0;  // a larger cloud is an error; 0: DefaultMaxPoints(sensor)
-  uint32_t frames_in_flight = 2;          // Submit may run this many frames ahead of Collect
+  // Submit may run this many frames (batch > 1: batches) ahead of Collect.
+  uint32_t frames_in_flight = 2;
+  // Vulkan: frames recorded in one command buffer, interleaved pass by pass (offline relabelling:
+  // the batch pays for one frame's barriers). Submit queues clouds until `batch` wait, or until
+  // Collect asks for one of them. 1: each frame on its own.
+  uint32_t batch = 1;
   // Every buffer of every stage in the returned Frame (pictures, debugging), not only label and
-  // why. On Vulkan they are read back after each frame, so frames are not overlapped.
+  // why; on Vulkan read back from the frame's slot when it is collected.
   bool all_buffers = false;
   bool validation = false;  // Vulkan validation layer (messages go to stderr)
 
@@ -72,12 +77,17 @@ class Segmenter {
   // the device fails.
   const Frame& Segment(const Cloud& cloud, FrameTimes* times = nullptr);
 
-  // Frames in flight: Submit queues a cloud (copied; it need not outlive the call) while up to
-  // frames_in_flight frames are pending, Collect returns the oldest pending one (in submission
-  // order), valid until the next Collect or Segment. Same errors as Segment.
+  // Frames in flight: Submit queues a cloud (copied; it need not outlive the call) while
+  // CanSubmit(), Collect returns the oldest pending one (in submission order), valid until the
+  // next Collect or Segment. Same errors as Segment; Submit when !CanSubmit() is a logic_error.
+  // The slots form frames_in_flight blocks of `batch` slots; a batch fills one block (a partial
+  // one, submitted by Collect, leaves the rest of its block unused) and may start only in a
+  // block with no frame pending: with batch 1, CanSubmit() is pending() < frames_in_flight.
   void Submit(const Cloud& cloud);
   const Frame& Collect(FrameTimes* times = nullptr);
+  bool CanSubmit() const;
   size_t pending() const { return pending_.size(); }
+  // The most frames pending at once: options.frames_in_flight * options.batch.
   size_t frames_in_flight() const { return slots_; }
 
   // The backend in use (never kAuto), and one line saying which and why: "Vulkan on <device>",
@@ -100,6 +110,7 @@ class Segmenter {
 
  private:
   void CheckCloud(const Cloud& cloud) const;
+  void SubmitStaged();  // the staged frames, as one batch
 
   SensorProfile sensor_;
   SegmenterOptions options_;
@@ -107,7 +118,10 @@ class Segmenter {
   Tables tables_;
   Backend backend_ = Backend::kCpu;
   std::string backend_note_;
-  uint32_t slots_ = 1;
+  uint32_t slots_ = 1;       // frames_in_flight * batch
+  uint32_t batch_ = 1;       // slots a block (1 on the CPU)
+  uint32_t staged_ = 0;      // Vulkan: the newest pending frames, staged but not yet submitted
+  uint32_t next_block_ = 0;  // where the next batch starts
   std::unique_ptr<vk::Context> context_;          // Vulkan only
   std::unique_ptr<vk::FramePipeline> pipeline_;   // Vulkan only; uses *context_
   std::vector<Frame> cpu_frames_;                 // CPU: the frames computed at Submit, per slot

@@ -4,6 +4,7 @@
 // the CPU backend's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -75,7 +76,7 @@ TEST_F(SegmenterVk, AllBuffersEqualTheReferencesOnBothBackends) {
   const SensorProfile sensor = Vlp16();
   Segmenter gpu(sensor, Options(Backend::kVulkan, 2, true));
   Segmenter cpu(sensor, Options(Backend::kCpu));
-  EXPECT_EQ(gpu.frames_in_flight(), 1u) << "all_buffers reads every frame back before the next";
+  EXPECT_EQ(gpu.frames_in_flight(), 2u) << "each slot's buffers are read back when collected";
   for (uint32_t seed : {1u, 2u}) {
     const Cloud cloud = Street(sensor, seed);
     FrameTimes times;
@@ -118,6 +119,42 @@ TEST_F(SegmenterVk, FramesInFlightComeBackInSubmissionOrder) {
     EXPECT_EQ(s->pending(), 0u);
     EXPECT_THROW(s->Collect(), std::logic_error);
   }
+}
+
+// Batches of 3 with 2 in flight: 13 frames (so the last batch is partial, and Segment's frame of
+// one is a batch of its own) come back in submission order with the reference's labels; a batch
+// waits in its block until every frame of the block before it is collected.
+TEST_F(SegmenterVk, BatchesComeBackInSubmissionOrder) {
+  const SensorProfile sensor = Vlp16();
+  SegmenterOptions o = Options(Backend::kVulkan, 2);
+  o.batch = 3;
+  Segmenter gpu(sensor, o);
+  Segmenter cpu(sensor, Options(Backend::kCpu));
+  EXPECT_EQ(gpu.frames_in_flight(), 6u);
+  std::vector<Cloud> clouds;
+  for (uint32_t k = 0; k < 5; ++k) clouds.push_back(Street(sensor, 40 + k));
+  clouds[3].xyzi.resize(4 * 10);
+  if (!clouds[3].ring.empty()) clouds[3].ring.resize(10);
+  std::vector<Labels> reference;
+  for (const Cloud& c : clouds) reference.push_back(cpu.Segment(c).label);
+  EXPECT_EQ(gpu.Segment(clouds[1]).label, reference[1]) << "a batch of one";
+  size_t submitted = 0, collected = 0, most_pending = 0;
+  const size_t frames = 13;
+  while (collected < frames) {
+    while (submitted < frames && gpu.CanSubmit()) gpu.Submit(clouds[submitted++ % 5]);
+    most_pending = std::max(most_pending, gpu.pending());
+    if (!gpu.CanSubmit()) {
+      EXPECT_THROW(gpu.Submit(clouds[0]), std::logic_error);
+    }
+    const Frame& f = gpu.Collect();
+    EXPECT_EQ(f.label, reference[collected % 5]) << "frame " << collected;
+    ++collected;
+  }
+  EXPECT_EQ(most_pending, 6u);
+  EXPECT_EQ(gpu.pending(), 0u);
+  SegmenterOptions zero = o;
+  zero.batch = 0;
+  EXPECT_THROW(Segmenter(sensor, zero), std::invalid_argument);
 }
 
 TEST_F(SegmenterVk, OversizedCloudIsAnErrorOnBothBackends) {

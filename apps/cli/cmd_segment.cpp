@@ -45,6 +45,8 @@ const char kHelp[] =
     "                   a CPU driver such as lavapipe only with vulkan or --device). Both give\n"
     "                   the same bytes\n"
     "  --device D       Vulkan device: index or part of its name (`lpir-gseg devices` lists them)\n"
+    "  --batch N        Vulkan: N frames a command buffer, interleaved pass by pass (offline\n"
+    "                   relabelling of a folder; default 1)\n"
     "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
     "                   the CPU) and their medians at the end\n"
     "  --quiet          no per-frame lines\n"
@@ -116,7 +118,7 @@ class Timings {
 int RunSegment(int argc, char** argv) {
   const Args args(argc, argv, {"--images", "--nuscenes", "--quiet", "--timings", "--help"},
                   {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend",
-                   "--device"});
+                   "--device", "--batch"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     return 0;
@@ -134,6 +136,10 @@ int RunSegment(int argc, char** argv) {
   options.device = args.Get("--device");
   options.max_points = size_t(max_points);
   options.all_buffers = args.Has("--images");  // the pictures show every stage
+  const double batch = args.GetNumber("--batch", 1);
+  if (!(batch >= 1 && batch <= 64) || batch != double(uint32_t(batch)))
+    throw std::invalid_argument("--batch must be a whole number from 1 to 64");
+  options.batch = uint32_t(batch);
   const char* validation = std::getenv("LPIR_VK_VALIDATION");
   options.validation = validation && *validation && std::string(validation) != "0";
   const SensorProfile sensor = LoadSensorProfile(args.Require("--sensor"), SensorsDir());
@@ -206,7 +212,7 @@ int RunSegment(int argc, char** argv) {
     Job job{file, fs::path(file).stem().string(), {}};
     try {
       job.cloud = ReadCloud(file, read_options);
-      if (segmenter.pending() == segmenter.frames_in_flight()) finish();
+      while (!segmenter.CanSubmit()) finish();
       segmenter.Submit(job.cloud);
       jobs.push_back(std::move(job));
     } catch (const std::exception& e) {

@@ -1,6 +1,9 @@
 // Command pool and buffer creation, recording helpers, submission.
 #include "host/vk/command_buffer.h"
 
+#include <utility>
+#include <vector>
+
 namespace lpir::vk {
 
 Result<CommandBuffer> CommandBuffer::Create(const Device& device) {
@@ -55,41 +58,113 @@ Status CommandBuffer::SubmitAndWait(Fence& fence) const {
   return fence.WaitAndReset();
 }
 
+void CommandBuffer::Emit(Command command) {
+  if (tape_) {
+    tape_->push_back(std::move(command));
+    return;
+  }
+  Play(command);
+}
+
+void CommandBuffer::Play(const Command& command) {
+  command.record(cmd_.get());
+  counts_.dispatches += command.counts.dispatches;
+  counts_.indirect_dispatches += command.counts.indirect_dispatches;
+  counts_.barriers += command.counts.barriers;
+  counts_.workgroups += command.counts.workgroups;
+  counts_.upload_bytes += command.counts.upload_bytes;
+  counts_.download_bytes += command.counts.download_bytes;
+}
+
+void CommandBuffer::BeginTape(Tape* tape) {
+  tape->clear();
+  tape_ = tape;
+}
+
+void CommandBuffer::EndTape() { tape_ = nullptr; }
+
+Status CommandBuffer::PlayInterleaved(const std::vector<Tape>& tapes) {
+  if (tapes.empty()) return Status();
+  auto barriers = [](const Tape& tape) {
+    std::vector<const Command*> out;
+    for (const Command& c : tape)
+      if (c.counts.barriers) out.push_back(&c);
+    return out;
+  };
+  const std::vector<const Command*> first = barriers(tapes.front());
+  for (const Tape& tape : tapes) {
+    const std::vector<const Command*> other = barriers(tape);
+    bool same = other.size() == first.size();
+    for (size_t k = 0; same && k < first.size(); ++k) same = other[k]->barrier == first[k]->barrier;
+    if (!same) {
+      Error e;
+      e.result = VK_ERROR_UNKNOWN;
+      e.message = "interleaved frames record different barriers";
+      return e;
+    }
+  }
+  std::vector<size_t> at(tapes.size(), 0);  // each tape's next command
+  for (size_t k = 0; k <= first.size(); ++k) {
+    for (size_t t = 0; t < tapes.size(); ++t)
+      for (; at[t] < tapes[t].size() && !tapes[t][at[t]].counts.barriers; ++at[t])
+        Play(tapes[t][at[t]]);
+    if (k == first.size()) break;
+    Play(*first[k]);
+    for (size_t& a : at) ++a;  // past barrier k
+  }
+  return Status();
+}
+
 void CommandBuffer::BindPipeline(const ComputePipeline& pipeline) {
-  vkCmdBindPipeline(cmd_.get(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.handle());
+  const VkPipeline handle = pipeline.handle();
+  Emit({[=](VkCommandBuffer c) { vkCmdBindPipeline(c, VK_PIPELINE_BIND_POINT_COMPUTE, handle); }});
 }
 
 void CommandBuffer::BindDescriptorSet(const ComputePipeline& pipeline, const DescriptorSet& set) {
   const VkDescriptorSet handle = set.handle();
-  vkCmdBindDescriptorSets(cmd_.get(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 0, 1,
-                          &handle, 0, nullptr);
+  const VkPipelineLayout layout = pipeline.layout();
+  Emit({[=](VkCommandBuffer c) {
+    vkCmdBindDescriptorSets(c, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &handle, 0, nullptr);
+  }});
 }
 
 void CommandBuffer::PushConstants(const ComputePipeline& pipeline, const void* data,
                                   uint32_t bytes) {
-  vkCmdPushConstants(cmd_.get(), pipeline.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, data);
+  const VkPipelineLayout layout = pipeline.layout();
+  const auto* p = static_cast<const uint8_t*>(data);
+  std::vector<uint8_t> copy(p, p + bytes);  // vkCmdPushConstants copies at record time
+  Emit({[=](VkCommandBuffer c) {
+    vkCmdPushConstants(c, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, copy.data());
+  }});
 }
 
 void CommandBuffer::Dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {
-  vkCmdDispatch(cmd_.get(), groups_x, groups_y, groups_z);
-  ++counts_.dispatches;
-  counts_.workgroups += uint64_t(groups_x) * groups_y * groups_z;
+  Command command{[=](VkCommandBuffer c) { vkCmdDispatch(c, groups_x, groups_y, groups_z); }};
+  command.counts.dispatches = 1;
+  command.counts.workgroups = uint64_t(groups_x) * groups_y * groups_z;
+  Emit(std::move(command));
 }
 
 void CommandBuffer::DispatchIndirect(const Buffer& args, VkDeviceSize offset) {
-  vkCmdDispatchIndirect(cmd_.get(), args.handle(), offset);
-  ++counts_.dispatches;
-  ++counts_.indirect_dispatches;
+  const VkBuffer handle = args.handle();
+  Command command{[=](VkCommandBuffer c) { vkCmdDispatchIndirect(c, handle, offset); }};
+  command.counts.dispatches = 1;
+  command.counts.indirect_dispatches = 1;
+  Emit(std::move(command));
 }
 
 void CommandBuffer::Barrier(VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                             VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
-  VkMemoryBarrier barrier{};
-  barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-  barrier.srcAccessMask = src_access;
-  barrier.dstAccessMask = dst_access;
-  vkCmdPipelineBarrier(cmd_.get(), src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-  ++counts_.barriers;
+  Command command{[=](VkCommandBuffer c) {
+    VkMemoryBarrier barrier{};
+    barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    barrier.srcAccessMask = src_access;
+    barrier.dstAccessMask = dst_access;
+    vkCmdPipelineBarrier(c, src_stage, dst_stage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+  }};
+  command.counts.barriers = 1;
+  command.barrier = {src_stage, src_access, dst_stage, dst_access};
+  Emit(std::move(command));
 }
 
 void CommandBuffer::ComputeToCompute() {
@@ -129,29 +204,43 @@ void CommandBuffer::TransferToHost() {
 
 void CommandBuffer::CopyBuffer(const Buffer& src, const Buffer& dst, VkDeviceSize bytes,
                                VkDeviceSize src_offset, VkDeviceSize dst_offset) {
-  const VkBufferCopy region{src_offset, dst_offset, bytes};
-  vkCmdCopyBuffer(cmd_.get(), src.handle(), dst.handle(), 1, &region);
+  const VkBuffer from = src.handle(), to = dst.handle();
+  Command command{[=](VkCommandBuffer c) {
+    const VkBufferCopy region{src_offset, dst_offset, bytes};
+    vkCmdCopyBuffer(c, from, to, 1, &region);
+  }};
   const bool src_host = src.kind() == MemoryKind::kHostVisible;
   const bool dst_host = dst.kind() == MemoryKind::kHostVisible;
-  if (src_host && !dst_host) counts_.upload_bytes += bytes;
-  if (!src_host && dst_host) counts_.download_bytes += bytes;
+  if (src_host && !dst_host) command.counts.upload_bytes = bytes;
+  if (!src_host && dst_host) command.counts.download_bytes = bytes;
+  Emit(std::move(command));
 }
 
 void CommandBuffer::FillBuffer(const Buffer& dst, uint32_t value) {
-  vkCmdFillBuffer(cmd_.get(), dst.handle(), 0, VK_WHOLE_SIZE, value);
+  const VkBuffer to = dst.handle();
+  Emit({[=](VkCommandBuffer c) { vkCmdFillBuffer(c, to, 0, VK_WHOLE_SIZE, value); }});
 }
 
 void CommandBuffer::UpdateBuffer(const Buffer& dst, const void* data, VkDeviceSize bytes) {
-  vkCmdUpdateBuffer(cmd_.get(), dst.handle(), 0, bytes, data);
-  counts_.upload_bytes += bytes;
+  const VkBuffer to = dst.handle();
+  const auto* p = static_cast<const uint8_t*>(data);
+  std::vector<uint8_t> copy(p, p + bytes);  // vkCmdUpdateBuffer copies at record time
+  Command command{[=](VkCommandBuffer c) { vkCmdUpdateBuffer(c, to, 0, bytes, copy.data()); }};
+  command.counts.upload_bytes = bytes;
+  Emit(std::move(command));
 }
 
 void CommandBuffer::ResetQueries(const TimestampQueries& queries) {
-  vkCmdResetQueryPool(cmd_.get(), queries.handle(), 0, queries.count());
+  const VkQueryPool pool = queries.handle();
+  const uint32_t count = queries.count();
+  Emit({[=](VkCommandBuffer c) { vkCmdResetQueryPool(c, pool, 0, count); }});
 }
 
 void CommandBuffer::WriteTimestamp(const TimestampQueries& queries, uint32_t index) {
-  vkCmdWriteTimestamp(cmd_.get(), VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.handle(), index);
+  const VkQueryPool pool = queries.handle();
+  Emit({[=](VkCommandBuffer c) {
+    vkCmdWriteTimestamp(c, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool, index);
+  }});
 }
 
 }  // namespace lpir::vk

@@ -5,6 +5,9 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "host/vk/buffer.h"
 #include "host/vk/compute_pipeline.h"
@@ -29,6 +32,25 @@ struct RecordCounts {
                                 // buffers, and UpdateBuffer's inline data
   uint64_t download_bytes = 0;  // device -> host: copies from kDeviceLocal into kHostVisible
 };
+
+// One recorded command, kept on a tape instead of in the command buffer: what it records, what it
+// counts, and for a barrier its scopes (Barrier's arguments; all zero for every other command).
+struct Command {
+  Command(std::function<void(VkCommandBuffer)> r) : record(std::move(r)) {}  // NOLINT: implicit
+  std::function<void(VkCommandBuffer)> record;
+  RecordCounts counts{};
+  struct Scopes {
+    VkPipelineStageFlags src_stage = 0;
+    VkAccessFlags src_access = 0;
+    VkPipelineStageFlags dst_stage = 0;
+    VkAccessFlags dst_access = 0;
+    bool operator==(const Scopes& o) const {
+      return src_stage == o.src_stage && src_access == o.src_access &&
+             dst_stage == o.dst_stage && dst_access == o.dst_access;
+    }
+  } barrier;
+};
+using Tape = std::vector<Command>;
 
 class CommandBuffer {
  public:
@@ -73,6 +95,16 @@ class CommandBuffer {
   // Timestamp `index`, written once every earlier command has completed.
   void WriteTimestamp(const TimestampQueries& queries, uint32_t index);
 
+  // Batches: between BeginTape and EndTape every command above goes on `tape` (cleared first)
+  // instead of into the command buffer. PlayInterleaved records several tapes of the same
+  // barrier sequence (frames of one batch: the same passes, other buffers) as one: the commands
+  // of every tape up to its first barrier, tape after tape, then that barrier once, and so on;
+  // so the B frames' dispatches between two barriers run side by side, and a batch costs the
+  // barriers of one frame. An error (nothing recorded) when the tapes' barriers differ.
+  void BeginTape(Tape* tape);
+  void EndTape();
+  Status PlayInterleaved(const std::vector<Tape>& tapes);
+
   VkCommandBuffer handle() const { return cmd_.get(); }
   // The commands recorded since the last Begin.
   const RecordCounts& counts() const { return counts_; }
@@ -84,6 +116,10 @@ class CommandBuffer {
   ResetOnMove<VkCommandBuffer> cmd_;
   ResetOnMove<VkQueue> queue_;
   RecordCounts counts_;
+  Tape* tape_ = nullptr;  // where commands go between BeginTape and EndTape
+
+  void Emit(Command command);       // onto the tape, or recorded and counted
+  void Play(const Command& command);  // recorded and counted
 };
 
 }  // namespace lpir::vk
