@@ -143,17 +143,18 @@ void SeedMode(uint c) {
         best = min(best, cell_zmin[other]);
       }
     }
-    precise float lam = (c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max;
-    lam = lam + p.seed_margin;
+    precise float lam =
+        exact_Ftz0((c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max);
+    lam = exact_Ftz0(lam + p.seed_margin);
     float hmin = exact_FromKey(cell_zmin[c]), hmax = exact_FromKey(cell_zmax[c]);
     float hnmin = best == kNone ? hmin : exact_FromKey(best);
-    precise float rise = hmin - hnmin;
-    precise float base = -p.sensor_height + p.ground_max_above;
-    precise float slope_r = p.slope_max * ring_inner[ring];
-    precise float prior = base + slope_r;
-    precise float rise_lim = lam + p.rise_margin;
+    precise float rise = exact_Ftz0(hmin - hnmin);
+    precise float base = exact_Ftz0(-p.sensor_height + p.ground_max_above);
+    precise float slope_r = exact_Ftz0(p.slope_max * ring_inner[ring]);
+    precise float prior = exact_Ftz0(base + slope_r);
+    precise float rise_lim = exact_Ftz0(lam + p.rise_margin);
     if (!(rise > rise_lim || hmin > prior)) {
-      precise float spread = hmax - hnmin;
+      precise float spread = exact_Ftz0(hmax - hnmin);
       mode = spread <= p.h_athr ? 2u : 1u;
       if (mode == 2u) {
         h = inf;
@@ -188,7 +189,7 @@ SeedTest SeedTestOf(uint c) {
 // unless z_t is +inf or NaN.
 bool IsSeed(float z, SeedTest t) {
   uint u = floatBitsToUint(z);
-  precise float dz = z - t.h;
+  precise float dz = exact_Ftz0(z - t.h);
   return t.mode == 2u ? u != 0x7F800000u && (u & 0x7FFFFFFFu) <= 0x7F800000u
                       : t.mode != 0u && dz <= t.lam;
 }

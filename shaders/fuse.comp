@@ -20,6 +20,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -75,7 +76,7 @@ void main() {
     precise vec4 grade = p.occ_grade * rr;
     precise vec4 near = r + p.occ_margin;
     precise vec4 reach = near + grade;
-    precise vec4 top = HeightAt(e) + p.occ_rise;
+    precise vec4 top = exact_Ftz0(HeightAt(e) + p.occ_rise);  // as the reference: may flush
     for (uint k = 1u; k <= rows_above; ++k) {
       uint above = e - k * row;
       occluded |= uvec4(notEqual(FilledAt(above), uvec4(0u))) &
