@@ -49,7 +49,7 @@ constexpr uint32_t kNoOpinion = kPixUnknown;
 constexpr uint32_t kPiece = 256;
 
 // The occluder bounds of one row's pixels: reach = (r + occ_margin) + occ_grade * r^2 and
-// top = z + occ_rise (computed for every pixel, used where the pixel is not empty).
+// top = Ftz0(z + occ_rise) (computed for every pixel, used where the pixel is not empty).
 void Bounds(const Params& p, const float* __restrict range, const float* __restrict height,
             uint32_t w, float* __restrict reach, float* __restrict top) {
   const float margin = p.occ_margin, rise = p.occ_rise, occ_grade = p.occ_grade;

@@ -54,7 +54,8 @@ inline uint64_t Word(const uint8_t* s) {
   return x;
 }
 
-// The step test of the contract between pixels q and r (features i, z, r): symmetric in them.
+// The step test of the contract between pixels q and r (features i, z, r): symmetric in them,
+// each result through Ftz0 as the shader does (a device may flush a subnormal one).
 inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float ir, float zr,
                         float rr, bool column_changes) {
   const float di = exact::Ftz0(std::fabs(ir - iq));

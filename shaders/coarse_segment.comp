@@ -5,7 +5,9 @@
 //   pass 0, one invocation per cell: seed mode (eq. 5: lambda, the 3x3 neighbour minimum, the
 //     rise and slope-prior rules, the whole-cell rule), cell_seed_mode, cell_plane zeroed, the
 //     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
-//     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds).
+//     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds). lambda,
+//     base, prior, rise and spread, each result through exact_Ftz0 as in the reference (a device
+//     may flush a subnormal one), as is pass 1's z_t - h.
 //   pass 1, one invocation per kItems consecutive points: seed iff z_t - h <= lambda (one rounded
 //     float op, the CPU's test; mode 2 decided on z_t's bits with the same outcome, no infinity
 //     arithmetic); a seed adds n, x, y, z and the six products to its cell's sums. The chunk's

@@ -10,7 +10,7 @@
 // Opinion: the coarse bit of the pixel's winning point, kPixUnknown where it has none.
 // Occlusion veto over rows v - k, k = 1 .. min(occ_rows, v) of the same column: the pixel's
 // bounds, each one rounded float op (`precise`, never an FMA), in this order: rr = r * r,
-// grade = occ_grade * rr, near = r + occ_margin, reach = near + grade; top = z + occ_rise. An
+// grade = occ_grade * rr, near = r + occ_margin, reach = near + grade; top = Ftz0(z + occ_rise). An
 // occluder: filled above != 0, range above < reach, height above > top (computed for every pixel,
 // empty ones too, as the reference does; an empty pixel is empty whatever they say).
 // Decision: agree = class == opinion, or class unknown and opinion ground; vote = agree ? opinion
