@@ -644,8 +644,9 @@ TEST_P(FlushingLavapipeCases, EveryBufferIsTheReferences) {
     const std::unique_ptr<Segmenter> gpu = Vulkan(sensor, kMaxPoints, flush);
     const uint64_t bytes =
         test::ExpectSameFrame(cpu->params(), ref, gpu->Segment(cloud), &cloud, what);
-    std::printf("[hostile] %s: %zu subnormal intermediates in the reference, %llu bytes equal\n",
-                what.c_str(), probe.count, static_cast<unsigned long long>(bytes));
+    std::printf("[hostile] %s: %zu subnormal intermediates in the reference, %llu bytes %s\n",
+                what.c_str(), probe.count, static_cast<unsigned long long>(bytes),
+                HasFailure() ? "compared, FAILED (see above)" : "equal");
   }
 }
 
