@@ -55,7 +55,7 @@ void BackProject(const Params& p, Frame& f) {
     bool ground = pixel_label[pix] == kPixGround;
     if (ground && pixel_point[pix] != i && coarse[i] == 0) {
       const float dr = std::fabs(exact::Sqrt(r2[i]) - f_range[pix]);
-      const float dz = std::fabs(zt[i] - f_height[pix]);
+      const float dz = exact::Ftz0(std::fabs(zt[i] - f_height[pix]));  // a device may flush
       ground = dr <= range_gate && dz <= height_gate;
     }
     label[i] = ground ? 1 : 0;

@@ -24,6 +24,8 @@
 // plane_dist_scale * mean seed |distance|) with integer arithmetic. A normal steeper than allowed
 // (n_z^2 < normal_min_z2) means no ground in the cell (thr = -1).
 // Coarse label: 1 when the point's cell has seeds and |distance| <= thr, else 0.
+// The float results compared with a threshold (lambda, base, prior, rise, spread, the seed test's
+// z_t - h) go through exact::Ftz0, so that a device that flushes subnormals agrees.
 // CPU layout (same integers, fewer passes): coordinates go to mm four at a time in int32 (the
 // contract's int64 path when one exceeds 2^30 mm); the centred moments come from raw sums modulo
 // 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept over runs of one cell.
@@ -247,10 +249,11 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   constexpr float kInf = std::numeric_limits<float>::infinity();
 
   // Seed mode per cell (eq. 5); cells that may have seeds get a slot (slot 0: none).
-  const float lambda_near = p.ring_res_near * p.slope_max + p.seed_margin;
-  const float lambda_far = p.ring_res_far * p.slope_max + p.seed_margin;
+  const float lambda_near =
+      exact::Ftz0(exact::Ftz0(p.ring_res_near * p.slope_max) + p.seed_margin);
+  const float lambda_far = exact::Ftz0(exact::Ftz0(p.ring_res_far * p.slope_max) + p.seed_margin);
   const uint32_t near_cells = p.rings_near * p.sectors_near;
-  const float base = -p.sensor_height + p.ground_max_above;
+  const float base = exact::Ftz0(-p.sensor_height + p.ground_max_above);
   s.test.assign(size_t(cells) + 1, SeedTest{-kInf, 0.0f, 0u});
   s.cell_of.assign(1, kNone);
   for (uint32_t c = 0; c < cells; ++c) {
@@ -260,10 +263,10 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
     const float hmin = exact::FromKey(f.cell_zmin[c]), hmax = exact::FromKey(f.cell_zmax[c]);
     const uint32_t nkey = NeighbourMin(p, f, c);
     const float hnmin = nkey == kNone ? hmin : exact::FromKey(nkey);
-    const float rise = hmin - hnmin;
-    const float prior = base + p.slope_max * t.ring_inner[g.ring];
-    if (rise > lam + p.rise_margin || hmin > prior) continue;
-    const float spread = hmax - hnmin;
+    const float rise = exact::Ftz0(hmin - hnmin);
+    const float prior = exact::Ftz0(base + exact::Ftz0(p.slope_max * t.ring_inner[g.ring]));
+    if (rise > exact::Ftz0(lam + p.rise_margin) || hmin > prior) continue;
+    const float spread = exact::Ftz0(hmax - hnmin);
     const uint32_t mode = spread <= p.h_athr ? 2u : 1u;
     f.cell_seed_mode[c] = mode;
     const uint32_t slot = uint32_t(s.cell_of.size());
@@ -328,7 +331,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
         run_cell = c;
         st = test[c + 1u];
       }
-      const float dz = zt[i] - st.h;
+      const float dz = exact::Ftz0(zt[i] - st.h);
       const bool is_seed = dz <= st.lambda;
       seed[i] = is_seed;
       if (!is_seed) continue;

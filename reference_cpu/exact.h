@@ -33,6 +33,15 @@ inline float Ftz(float f) {
   return std::fabs(f) < std::numeric_limits<float>::min() ? std::copysign(0.0f, f) : f;
 }
 
+// A float result that may be subnormal, with every value whose exponent bits are 0 (subnormals,
+// -0) as +0: a device may flush a subnormal result to a zero of either sign, so the stages apply
+// this wherever one can arise and every device gives these bits. A mask on the bits: GCC turns
+// loops over it into vector code (a float compare and select there kept prepare's loop scalar).
+inline float Ftz0(float f) {
+  const uint32_t u = Bits(f);
+  return FromBits(u & (0u - uint32_t((u & 0x7F800000u) != 0u)));
+}
+
 // Monotone map float -> uint32: a < b (as floats, -0 < +0) iff Key(a) < Key(b). Reductions of
 // floats use integer atomics on these keys (min/max), so their result is order-independent.
 inline uint32_t Key(float f) {

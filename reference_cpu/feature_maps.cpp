@@ -21,6 +21,8 @@
 //            rows), var = I64ToFloat(n * sum q^2 - (sum q)^2) / n^2 (Div), times the squared
 //            quantum. Order-independent by construction, and unlike a float two-pass sum free of
 //            rounding in the sums. (5x fewer instructions than the float window it replaced.)
+// Results that can be subnormal go through exact::Ftz0 (subnormals and -0 to +0), so that a device
+// that flushes agrees: the filled intensity and height (sum and product), the edges.
 // Float operations, each rounded on its own, in this order: fill (l + r) * 0.5; slope
 // dz = |z(v+1) - z|, dr = |r(v+1) - r|, Div(dz, dr); edges as above; variance I64ToFloat, Div by
 // float(n * n) (exact), * quantum^2.
@@ -104,8 +106,8 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
     if (!(gap <= hole_gap)) return;
     filled[u] = 2u;
     range[u] = (range[l] + range[r]) * 0.5f;
-    inten_map[u] = (inten_map[l] + inten_map[r]) * 0.5f;
-    height[u] = (height[l] + height[r]) * 0.5f;
+    inten_map[u] = exact::Ftz0(exact::Ftz0(inten_map[l] + inten_map[r]) * 0.5f);
+    height[u] = exact::Ftz0(exact::Ftz0(height[l] + height[r]) * 0.5f);
   };
   fill(0, w - 1, w > 1 ? 1 : 0);
   for (uint32_t u = 1; u + 1 < w; ++u) fill(u, u - 1, u + 1);
@@ -174,7 +176,8 @@ void SlopeEdges(const Row& row, const Row& below, uint32_t w, float* __restrict 
   auto edges = [&](size_t u, size_t ul, size_t ur) {
     const bool f = filled[u] != 0u;
     const float z = height[u];
-    const float el = std::fabs(z - height[ul]), er = std::fabs(height[ur] - z);
+    const float el = exact::Ftz0(std::fabs(z - height[ul]));
+    const float er = exact::Ftz0(std::fabs(height[ur] - z));
     edge_l[u] = Select(f & (filled[ul] != 0u), el, 0.0f);
     edge_r[u] = Select(f & (filled[ur] != 0u), er, 0.0f);
   };

@@ -19,6 +19,7 @@
 #include <cstring>
 #include <vector>
 
+#include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 
 namespace lpir {
@@ -53,14 +54,15 @@ inline uint64_t Word(const uint8_t* s) {
   return x;
 }
 
-// The step test of the contract between pixels q and r (features i, z, r): symmetric in them.
+// The step test of the contract between pixels q and r (features i, z, r): symmetric in them,
+// each result through Ftz0 as the shader does (a device may flush a subnormal one).
 inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float ir, float zr,
                         float rr, bool column_changes) {
-  const float di = std::fabs(ir - iq);
-  const float dz = std::fabs(zr - zq);
-  float step = std::fabs(rr - rq);
-  if (column_changes) step = step + std::min(rq, rr) * p.column_arc;
-  const float allowed = p.grow_dz + p.grow_grade * step;
+  const float di = exact::Ftz0(std::fabs(ir - iq));
+  const float dz = exact::Ftz0(std::fabs(zr - zq));
+  float step = exact::Ftz0(std::fabs(rr - rq));
+  if (column_changes) step = exact::Ftz0(step + exact::Ftz0(std::min(rq, rr) * p.column_arc));
+  const float allowed = exact::Ftz0(p.grow_dz + exact::Ftz0(p.grow_grade * step));
   return di <= p.grow_di && dz <= allowed;
 }
 

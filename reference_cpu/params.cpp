@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace lpir {
@@ -32,6 +34,17 @@ const Field kFields[] = {
 };
 #undef LPIR_F
 #undef LPIR_U
+
+// A subnormal parameter is an operand a device may flush (Vulkan allows it), so the stages' bytes
+// would depend on the device (docs/decisions/denormals.md): rejected, naming the parameter.
+void RejectSubnormal(const std::string& profile, const std::string& name, float value) {
+  if (value == 0.0f || !(std::fabs(value) < std::numeric_limits<float>::min())) return;
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(value));
+  throw std::invalid_argument("sensor profile '" + profile + "': parameter " + name + " is " +
+                              text + ", a subnormal float (a device may flush it to 0): use 0 " +
+                              "or a magnitude of at least 1.18e-38");
+}
 
 }  // namespace
 
@@ -164,6 +177,17 @@ Params ParamsForSensor(const SensorProfile& s) {
     throw std::invalid_argument("sensor profile '" + s.name +
                                 "': k_xz and k_yz must lie in -1..1 and max_range be at most "
                                 "1000 m");
+  for (const Field& f : kFields)
+    if (!f.is_uint)
+      RejectSubnormal(s.name, f.name,
+                      *reinterpret_cast<const float*>(reinterpret_cast<const char*>(&p) + f.offset));
+  RejectSubnormal(s.name, "min_range2 (min_range squared)", p.min_range2);
+  RejectSubnormal(s.name, "max_range2 (max_range squared)", p.max_range2);
+  RejectSubnormal(s.name, "k_xz", p.k_xz);
+  RejectSubnormal(s.name, "k_yz", p.k_yz);
+  RejectSubnormal(s.name, "intensity_scale", p.intensity_scale);
+  RejectSubnormal(s.name, "sensor_height", p.sensor_height);
+  RejectSubnormal(s.name, "column_arc", p.column_arc);
   return p;
 }
 

@@ -5,7 +5,9 @@
 // written as 0.
 // inten is clamped to [-kMaxIntensity, kMaxIntensity] (1e4, far beyond any sensor's [0, 1]): stage
 // 5 quantises it to 1e-4 steps and squares it in int64, which a raw intensity of 1e30 overflowed.
-// Subnormal inputs (x, y, z, intensity) and outputs (zt, r2, inten) are flushed to zero.
+// Inputs (x, y, z, intensity) and every result that can be subnormal (xx, yy, zz, tx, ty, tilt,
+// zt, the scaled intensity) go through exact::Ftz0 (subnormals and -0 to +0), so that a device
+// that flushes gives the same bytes (docs/decisions/denormals.md).
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
 // sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise &&
 // inten < i_noise.
@@ -24,7 +26,7 @@ inline uint32_t Finite(float f) { return uint32_t(f - f == 0.0f); }
 
 // Every test of every point is computed and the outputs selected by the validity, without a
 // branch, so the compiler turns the loop into vector code. Ftz is the identity on all but
-// subnormals, so flushing every input and output is the rule above.
+// subnormals and -0, so flushing every input and result is the rule above.
 template <bool kRing>
 void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
   const uint32_t n = f.n;
@@ -38,17 +40,17 @@ void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
   const float min_range2 = p.min_range2, max_range2 = p.max_range2, k_xz = p.k_xz, k_yz = p.k_yz;
   const float scale = p.intensity_scale, h_noise = p.h_noise, i_noise = p.i_noise;
   for (size_t i = 0; i < n; ++i) {  // size_t: 4 * i must not wrap, or no vectors
-    const float x = exact::Ftz(xyzi[4 * i]), y = exact::Ftz(xyzi[4 * i + 1]);
-    const float z = exact::Ftz(xyzi[4 * i + 2]), in = exact::Ftz(xyzi[4 * i + 3]);
-    const float xx = x * x, yy = y * y;
-    const float r2 = xx + yy;
-    const float zz = z * z;
-    const float tx = k_xz * x, ty = k_yz * y;
-    const float tilt = tx + ty;
-    const float zt = exact::Ftz(z - tilt);  // eq. 3
-    const float scaled = in * scale;
+    const float x = exact::Ftz0(xyzi[4 * i]), y = exact::Ftz0(xyzi[4 * i + 1]);
+    const float z = exact::Ftz0(xyzi[4 * i + 2]), in = exact::Ftz0(xyzi[4 * i + 3]);
+    const float xx = exact::Ftz0(x * x), yy = exact::Ftz0(y * y);
+    const float r2 = xx + yy;  // 0 or at least 2^-126: never subnormal
+    const float zz = exact::Ftz0(z * z);
+    const float tx = exact::Ftz0(k_xz * x), ty = exact::Ftz0(k_yz * y);
+    const float tilt = exact::Ftz0(tx + ty);
+    const float zt = exact::Ftz0(z - tilt);  // eq. 3
+    const float scaled = exact::Ftz0(in * scale);
     const float low = scaled < -kMaxIntensity ? -kMaxIntensity : scaled;  // std::max(scaled, -k)
-    const float inten = exact::Ftz(kMaxIntensity < low ? kMaxIntensity : low);  // std::min(low, k)
+    const float inten = kMaxIntensity < low ? kMaxIntensity : low;        // std::min(low, k)
     // 0 or 1 each, combined with & so that every test is evaluated (no branch); |z| beyond the
     // sensor's range is garbage; NaN fails every comparison.
     const uint32_t finite = Finite(x) & Finite(y) & Finite(z) & Finite(in);
@@ -59,7 +61,7 @@ void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
     const uint32_t noise = uint32_t(zt < h_noise) & uint32_t(inten < i_noise);
     flags_out[i] = valid ? kPointValid | noise * kPointNoise : 0u;
     zt_out[i] = valid ? zt : 0.0f;
-    r2_out[i] = valid ? exact::Ftz(r2) : 0.0f;
+    r2_out[i] = valid ? r2 : 0.0f;
     inten_out[i] = valid ? inten : 0.0f;
   }
 }

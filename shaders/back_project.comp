@@ -63,7 +63,7 @@ uint Classify(uint i, uint flag, uint pix, uint coarse_i, float r2_i, float zt_i
     if (ground && pixel_point[pix] != i && coarse_i == 0u) {
       precise float range = exact_Sqrt(r2_i);
       precise float dr = abs(range - f_range[pix]);
-      precise float dz = abs(zt_i - f_height[pix]);
+      precise float dz = exact_Ftz0(abs(zt_i - f_height[pix]));  // as the reference: may flush
       ground = dr <= p.bp_range_gate && dz <= p.bp_height_gate;
     }
   }

@@ -5,7 +5,9 @@
 //   pass 0, one invocation per cell: seed mode (eq. 5: lambda, the 3x3 neighbour minimum, the
 //     rise and slope-prior rules, the whole-cell rule), cell_seed_mode, cell_plane zeroed, the
 //     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
-//     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds).
+//     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds). lambda,
+//     base, prior, rise and spread, each result through exact_Ftz0 as in the reference (a device
+//     may flush a subnormal one), as is pass 1's z_t - h.
 //   pass 1, one invocation per kItems consecutive points: seed iff z_t - h <= lambda (one rounded
 //     float op, the CPU's test; mode 2 decided on z_t's bits with the same outcome, no infinity
 //     arithmetic); a seed adds n, x, y, z and the six products to its cell's sums. The chunk's
@@ -143,17 +145,18 @@ void SeedMode(uint c) {
         best = min(best, cell_zmin[other]);
       }
     }
-    precise float lam = (c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max;
-    lam = lam + p.seed_margin;
+    precise float lam =
+        exact_Ftz0((c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max);
+    lam = exact_Ftz0(lam + p.seed_margin);
     float hmin = exact_FromKey(cell_zmin[c]), hmax = exact_FromKey(cell_zmax[c]);
     float hnmin = best == kNone ? hmin : exact_FromKey(best);
-    precise float rise = hmin - hnmin;
-    precise float base = -p.sensor_height + p.ground_max_above;
-    precise float slope_r = p.slope_max * ring_inner[ring];
-    precise float prior = base + slope_r;
-    precise float rise_lim = lam + p.rise_margin;
+    precise float rise = exact_Ftz0(hmin - hnmin);
+    precise float base = exact_Ftz0(-p.sensor_height + p.ground_max_above);
+    precise float slope_r = exact_Ftz0(p.slope_max * ring_inner[ring]);
+    precise float prior = exact_Ftz0(base + slope_r);
+    precise float rise_lim = exact_Ftz0(lam + p.rise_margin);
     if (!(rise > rise_lim || hmin > prior)) {
-      precise float spread = hmax - hnmin;
+      precise float spread = exact_Ftz0(hmax - hnmin);
       mode = spread <= p.h_athr ? 2u : 1u;
       if (mode == 2u) {
         h = inf;
@@ -188,7 +191,7 @@ SeedTest SeedTestOf(uint c) {
 // unless z_t is +inf or NaN.
 bool IsSeed(float z, SeedTest t) {
   uint u = floatBitsToUint(z);
-  precise float dz = z - t.h;
+  precise float dz = exact_Ftz0(z - t.h);
   return t.mode == 2u ? u != 0x7F800000u && (u & 0x7FFFFFFFu) <= 0x7F800000u
                       : t.mode != 0u && dz <= t.lam;
 }

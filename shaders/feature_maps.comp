@@ -26,6 +26,8 @@
 //   quantised values q = ToFixed(value, 1e4) (the nine neighbours' integers summed directly: the
 //   CPU's shared row sums give the same integers), var = Div(I64ToFloat(n * sum q^2 - (sum q)^2),
 //   float(n * n)) * 1e-8.
+// Results that can be subnormal go through exact_Ftz0 as in the reference: the filled intensity and
+// height (sum and product), the edges.
 // Comparisons on the bits (as IEEE does them: -0 == +0, false with a NaN), every float operation
 // precise (no contraction), division, square root and int64 -> float by exact.glsl.
 #version 450
@@ -110,8 +112,10 @@ Maps Fill(uint i, uint left, uint right) {
     if (LessEq(gap, p.hole_gap)) {
       filled = 2u;
       range = (rl + rr) * 0.5;
-      in_map = (il_in + inten[ir]) * 0.5;
-      height = (il_z + zt[ir]) * 0.5;
+      precise float in_sum = exact_Ftz0(il_in + inten[ir]);
+      precise float z_sum = exact_Ftz0(il_z + zt[ir]);
+      in_map = exact_Ftz0(in_sum * 0.5);
+      height = exact_Ftz0(z_sum * 0.5);
     }
   }
   return Maps(filled, range, in_map, height);
@@ -220,8 +224,8 @@ void Features(uint pix, uint v, Column l, Column c, Column r) {
 
   // Edges, columns wrapping.
   precise float el = 0.0, er = 0.0;
-  if (IsFilled(l.mid)) el = abs(z - HeightOf(l.mid));
-  if (IsFilled(r.mid)) er = abs(HeightOf(r.mid) - z);
+  if (IsFilled(l.mid)) el = exact_Ftz0(abs(z - HeightOf(l.mid)));
+  if (IsFilled(r.mid)) er = exact_Ftz0(abs(HeightOf(r.mid) - z));
   f_edge_l[pix] = filled ? el : 0.0;
   f_edge_r[pix] = filled ? er : 0.0;
 

@@ -10,7 +10,7 @@
 // Opinion: the coarse bit of the pixel's winning point, kPixUnknown where it has none.
 // Occlusion veto over rows v - k, k = 1 .. min(occ_rows, v) of the same column: the pixel's
 // bounds, each one rounded float op (`precise`, never an FMA), in this order: rr = r * r,
-// grade = occ_grade * rr, near = r + occ_margin, reach = near + grade; top = z + occ_rise. An
+// grade = occ_grade * rr, near = r + occ_margin, reach = near + grade; top = Ftz0(z + occ_rise). An
 // occluder: filled above != 0, range above < reach, height above > top (computed for every pixel,
 // empty ones too, as the reference does; an empty pixel is empty whatever they say).
 // Decision: agree = class == opinion, or class unknown and opinion ground; vote = agree ? opinion
@@ -20,6 +20,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -75,7 +76,7 @@ void main() {
     precise vec4 grade = p.occ_grade * rr;
     precise vec4 near = r + p.occ_margin;
     precise vec4 reach = near + grade;
-    precise vec4 top = HeightAt(e) + p.occ_rise;
+    precise vec4 top = exact_Ftz0(HeightAt(e) + p.occ_rise);  // as the reference: may flush
     for (uint k = 1u; k <= rows_above; ++k) {
       uint above = e - k * row;
       occluded |= uvec4(notEqual(FilledAt(above), uvec4(0u))) &

@@ -27,12 +27,14 @@
 // Step test from pixel a to pixel b (the reference's StepAllowed, each op rounded: `precise`):
 // di = |ib - ia|, dz = |zb - za|, step = |rb - ra|, + min(ra, rb) * column_arc when the column
 // changes; allowed = grow_dz + grow_grade * step; di <= grow_di && dz <= allowed. Every term is
-// symmetric in a and b (IEEE |b - a| = |a - b|), so the graph is undirected.
+// symmetric in a and b (IEEE |b - a| = |a - b|), so the graph is undirected. Each result goes
+// through exact_Ftz0 as in the reference, so that a device that flushes subnormals agrees.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_memory_scope_semantics : require  // atomicLoad (core SPIR-V)
 
 #include "common/params.h"
+#include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -101,14 +103,15 @@ UNION_FIND(FindComp, UnionComp, pixel_comp)
 bool StepAllowed(uint a, uint b, uint ca, uint cb) {
   float ia = f_inten[a], za = f_height[a], ra = f_range[a];
   float ib = f_inten[b], zb = f_height[b], rb = f_range[b];
-  precise float di = abs(ib - ia);
-  precise float dz = abs(zb - za);
-  precise float step = abs(rb - ra);
+  precise float di = exact_Ftz0(abs(ib - ia));
+  precise float dz = exact_Ftz0(abs(zb - za));
+  precise float step = exact_Ftz0(abs(rb - ra));
   if (ca != cb) {
-    precise float arc = min(ra, rb) * p.column_arc;
-    step = step + arc;
+    precise float arc = exact_Ftz0(min(ra, rb) * p.column_arc);
+    step = exact_Ftz0(step + arc);
   }
-  precise float allowed = p.grow_dz + p.grow_grade * step;
+  precise float graded = exact_Ftz0(p.grow_grade * step);
+  precise float allowed = exact_Ftz0(p.grow_dz + graded);
   return di <= p.grow_di && dz <= allowed;
 }
 

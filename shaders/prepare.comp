@@ -3,7 +3,8 @@
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
 //     1 xyzi (vec4 per point: x, y, z m, raw intensity), 2 ring (int per point, or a dummy).
 // Out per point: 3 flags (kPointValid 1, kPointNoise 2), 4 zt, 5 r2, 6 inten (floats).
-// Subnormal inputs and outputs are flushed to zero (exact_Ftz), as in the reference.
+// Inputs and every result that can be subnormal go through exact_Ftz0 (subnormals and -0 to +0),
+// as in the reference, so that a device that flushes gives the same bytes.
 // Valid: x, y, z, intensity finite; not exactly (0, 0, 0) (-0 counts as 0); ring (when present)
 // inside [0, beams); min_range2 <= r2 <= max_range2; z^2 <= max_range2. Everything of an invalid
 // point is written as 0. Finiteness and the origin test look at the bits, so a device that flushes
@@ -42,13 +43,12 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.n) return;
   vec4 point = xyzi[i];
-  // Subnormal inputs and outputs are flushed to zero, as in the reference.
-  float x = exact_Ftz(point.x), y = exact_Ftz(point.y), z = exact_Ftz(point.z);
-  float in_raw = exact_Ftz(point.w);
-  precise float xx = x * x;
-  precise float yy = y * y;
-  precise float r = xx + yy;
-  precise float zz = z * z;
+  float x = exact_Ftz0(point.x), y = exact_Ftz0(point.y), z = exact_Ftz0(point.z);
+  float in_raw = exact_Ftz0(point.w);
+  precise float xx = exact_Ftz0(x * x);
+  precise float yy = exact_Ftz0(y * y);
+  precise float r = xx + yy;  // 0 or at least 2^-126: never subnormal
+  precise float zz = exact_Ftz0(z * z);
   // Invalid: a NaN or infinity, the origin, a ring outside the beams, a planar range outside
   // [min_range, max_range], |z| beyond the sensor's range (garbage).
   uint bits = floatBitsToUint(x) | floatBitsToUint(y) | floatBitsToUint(z);
@@ -56,16 +56,15 @@ void main() {
                (bits & 0x7FFFFFFFu) != 0u &&
                (p.has_ring == 0u || (ring[i] >= 0 && uint(ring[i]) < p.beams)) &&
                r >= p.min_range2 && r <= p.max_range2 && zz <= p.max_range2;
-  precise float tx = p.k_xz * x;
-  precise float ty = p.k_yz * y;
-  precise float tilt = tx + ty;
-  precise float height = z - tilt;  // eq. 3
-  precise float in_scaled = clamp(in_raw * p.intensity_scale, -10000.0, 10000.0);
-  float height_out = exact_Ftz(height), in_out = exact_Ftz(in_scaled);
+  precise float tx = exact_Ftz0(p.k_xz * x);
+  precise float ty = exact_Ftz0(p.k_yz * y);
+  precise float tilt = exact_Ftz0(tx + ty);
+  precise float height_out = exact_Ftz0(z - tilt);  // eq. 3
+  precise float in_out = clamp(exact_Ftz0(in_raw * p.intensity_scale), -10000.0, 10000.0);
   uint f = kPointValid;
   if (height_out < p.h_noise && in_out < p.i_noise) f |= kPointNoise;
   flags[i] = valid ? f : 0u;
   zt[i] = valid ? height_out : 0.0;
-  r2[i] = valid ? exact_Ftz(r) : 0.0;
+  r2[i] = valid ? r : 0.0;
   inten[i] = valid ? in_out : 0.0;
 }

@@ -43,4 +43,7 @@ void main() {
   Put64(base + kExactOutFloorToInt, exact_FloorToInt(c));
   Put64(base + kExactOutIsqrt, int64_t(exact_Isqrt(u)));
   Put64(base + kExactOutDivToZero, exact_DivToZero(v, int64_t(u >> 2) + int64_t(1)));
+  results[base + kExactOutFtz0] = exact_Bits(exact_Ftz0(a));
+  precise float product = a * b;
+  results[base + kExactOutMul] = exact_Bits(product);
 }

@@ -14,10 +14,10 @@
 // FlushingLavapipe runs clouds on lavapipe made to flush fp32 subnormals as such a device would
 // (MXCSR's FTZ and DAZ bits on the thread that creates its instance and device: its worker
 // threads inherit them, pthread_create's floating-point environment rule) against the reference
-// on the test thread: ordinary scans give the same bytes, and each hostile case lists the buffers
-// that still depend on the device's mode (docs/decisions/denormals.md), so the list can only
-// shrink.
-#include <gtest/gtest-spi.h>
+// on the test thread: ordinary scans and every subnormal case give the same bytes in every buffer
+// there and on the ordinary lavapipe, the reference holds no subnormal in any float buffer (the
+// stages flush every result that can be one: docs/decisions/denormals.md), and each case checks
+// that its cloud still drives the reference's arithmetic into the subnormal range.
 #include <gtest/gtest.h>
 #if defined(__SSE__)
 #include <xmmintrin.h>
@@ -30,7 +30,6 @@
 #include <cstring>
 #include <limits>
 #include <memory>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,7 +38,14 @@
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
 #include "host/segmenter.h"
+#include "host/vk/buffer.h"
+#include "host/vk/command_buffer.h"
+#include "host/vk/context.h"
+#include "host/vk/fence.h"
+#include "host/vk/kernel.h"
+#include "reference_cpu/exact.h"
 #include "reference_cpu/frame.h"
+#include "shaders/common/test_exact.h"
 #include "tests/frame_compare.h"
 #include "tests/stage_test_util.h"
 #include "tests/test_util.h"
@@ -47,6 +53,7 @@
 
 namespace lpir {
 namespace {
+#include "shaders/test_exact.spv.h"  // kTestExactSpv
 
 constexpr size_t kMaxPoints = 4096;  // the small sensor's 16 x 256 pixels
 const float kNan = std::numeric_limits<float>::quiet_NaN();
@@ -388,42 +395,138 @@ TEST_F(HostileVk, SubnormalHeightsReachTheStages) {
   }
 }
 
-// One case for FlushingLavapipe: the cloud, its sensor, and the buffers (frame_compare.h's
-// names) that differ on a flushing device today.
+// How many subnormal intermediate results the reference meets on a cloud (its frame at hand),
+// and the least a case must show.
+struct Probe {
+  size_t count;
+  size_t at_least;
+};
+
+// One case for FlushingLavapipe: the cloud, its sensor, and what shows that the cloud reaches the
+// subnormal range.
 struct FlushCase {
   const char* name;
   Cloud (*make)();
   SensorProfile (*sensor)();
-  std::set<std::string> open;
+  Probe (*probe)(const Params& p, const Cloud& cloud, const Frame& f);
 };
 
-// The buffers that ExpectSameFrame reports as different (its failures intercepted).
-std::set<std::string> DifferingBuffers(const Params& p, const Frame& cpu, const Frame& gpu,
-                                       const Cloud& cloud) {
-  ::testing::TestPartResultArray results;
-  {
-    ::testing::ScopedFakeTestPartResultReporter reporter(
-        ::testing::ScopedFakeTestPartResultReporter::INTERCEPT_ONLY_CURRENT_THREAD, &results);
-    test::ExpectSameFrame(p, cpu, gpu, &cloud, "");
-  }
-  std::set<std::string> names;
-  for (int k = 0; k < results.size(); ++k) {
-    const std::string message = results.GetTestPartResult(k).message();
-    const size_t at = message.find("buffer ");
-    if (at == std::string::npos) {
-      names.insert("(" + message + ")");
-      continue;
+// Horizontally neighbouring measured pixels whose heights (and intensities, when `inten`) differ
+// by a subnormal amount: the edges (stage 5) and growing steps (stage 8) subtract them.
+size_t SubnormalNeighbourSteps(const Params& p, const Frame& f, bool inten) {
+  size_t n = 0;
+  for (uint32_t v = 0; v < p.beams; ++v)
+    for (uint32_t u = 0; u + 1 < p.width; ++u) {
+      const size_t a = v * p.width + u, b = a + 1;
+      if (f.pixel_filled[a] != 1 || f.pixel_filled[b] != 1) continue;
+      n += Subnormal(f.f_height[b] - f.f_height[a]);
+      if (inten) n += Subnormal(f.f_inten[b] - f.f_inten[a]);
     }
-    const size_t begin = at + 7, end = message.find_first_of(" ,", begin);
-    names.insert(message.substr(begin, end - begin));
-  }
-  return names;
+  return n;
 }
 
-std::string Joined(const std::set<std::string>& names) {
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : " ") + n;
-  return s.empty() ? "(none)" : s;
+Probe CoordinatesProbe(const Params&, const Cloud& cloud, const Frame& f) {
+  size_t n = 0;  // valid points with a subnormal coordinate, or a subnormal square of one
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    if (!(f.flags[i] & kPointValid)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const float c = cloud.xyzi[4 * i + k];
+      n += Subnormal(c) || Subnormal(c * c);
+    }
+  }
+  return {n, 50};
+}
+Probe StepsProbe(const Params& p, const Cloud&, const Frame& f) {
+  return {SubnormalNeighbourSteps(p, f, false), 50};
+}
+Probe StepsAndIntensitiesProbe(const Params& p, const Cloud&, const Frame& f) {
+  return {SubnormalNeighbourSteps(p, f, true), 100};
+}
+// Filled pixels (2) whose neighbours' heights or intensities sum to a subnormal value.
+Probe FillProbe(const Params& p, const Cloud&, const Frame& f) {
+  size_t n = 0;
+  for (uint32_t v = 0; v < p.beams; ++v)
+    for (uint32_t u = 0; u < p.width; ++u) {
+      const size_t at = v * p.width + u;
+      if (f.pixel_filled[at] != 2) continue;
+      const size_t l = v * p.width + (u == 0 ? p.width - 1 : u - 1);
+      const size_t r = v * p.width + (u + 1 == p.width ? 0 : u + 1);
+      n += Subnormal(f.f_height[l] + f.f_height[r]) + Subnormal(f.f_inten[l] + f.f_inten[r]);
+    }
+  return {n, 50};
+}
+// Valid points whose tilt term k_xz * x is subnormal.
+Probe TiltProbe(const Params& p, const Cloud& cloud, const Frame& f) {
+  size_t n = 0;
+  for (size_t i = 0; i < cloud.size(); ++i)
+    n += (f.flags[i] & kPointValid) && Subnormal(p.k_xz * cloud.x(i));
+  return {n, 100};
+}
+
+// The reference's float buffers that hold a subnormal value, with their counts ("" when none).
+std::string SubnormalValues(const Frame& f) {
+  std::string found;
+  auto count = [&](const char* name, const std::vector<float>& buffer) {
+    size_t n = 0;
+    for (float x : buffer) n += Subnormal(x);
+    if (n) found += std::string(found.empty() ? "" : ", ") + name + " " + std::to_string(n);
+  };
+  count("zt", f.zt), count("r2", f.r2), count("inten", f.inten), count("f_range", f.f_range);
+  count("f_inten", f.f_inten), count("f_height", f.f_height), count("f_slope", f.f_slope);
+  count("f_edge_l", f.f_edge_l), count("f_edge_r", f.f_edge_r), count("f_varz", f.f_varz);
+  count("f_vari", f.f_vari);
+  return found;
+}
+
+// Sets the MXCSR bits in `or_bits` for its lifetime (none without SSE).
+class ScopedMxcsr {
+ public:
+#if defined(__SSE__)
+  explicit ScopedMxcsr(unsigned or_bits) : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | or_bits); }
+  ~ScopedMxcsr() { _mm_setcsr(saved_); }
+#else
+  explicit ScopedMxcsr(unsigned) {}
+#endif
+  ScopedMxcsr(const ScopedMxcsr&) = delete;
+  ScopedMxcsr& operator=(const ScopedMxcsr&) = delete;
+
+ private:
+  unsigned saved_ = 0;
+};
+constexpr unsigned kFtzDaz = 0x8040u;  // FTZ (bit 15) | DAZ (bit 6)
+
+// shaders/test_exact.comp's outputs for `cases` on `dev` (kExactOutputs words a case).
+void RunTestExact(const vk::Device& dev, const std::vector<ExactCase>& cases,
+                  std::vector<uint32_t>* out_words) {
+  const uint32_t n = uint32_t(cases.size());
+  vk::Result<vk::Buffer> in =
+      vk::Buffer::Create(dev, sizeof(ExactCase) * n, vk::MemoryKind::kHostVisible);
+  ASSERT_TRUE(in.ok()) << in.message();
+  const size_t out_bytes = sizeof(uint32_t) * kExactOutputs * size_t(n);
+  vk::Result<vk::Buffer> out = vk::Buffer::Create(dev, out_bytes, vk::MemoryKind::kHostVisible);
+  ASSERT_TRUE(out.ok()) << out.message();
+  std::memcpy(in->mapped(), cases.data(), sizeof(ExactCase) * n);
+  vk::PipelineDesc desc;
+  desc.name = "test_exact";
+  desc.code = vk::SpirvOf(kTestExactSpv);
+  desc.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  desc.push_constant_bytes = sizeof(uint32_t);
+  desc.local_size_x = 64;
+  vk::Result<vk::Kernel> kernel = vk::Kernel::Create(dev, desc, {&in.value(), &out.value()});
+  ASSERT_TRUE(kernel.ok()) << kernel.message();
+  vk::Result<vk::CommandBuffer> cmd = vk::CommandBuffer::Create(dev);
+  ASSERT_TRUE(cmd.ok()) << cmd.message();
+  vk::Result<vk::Fence> fence = vk::Fence::Create(dev);
+  ASSERT_TRUE(fence.ok()) << fence.message();
+  ASSERT_TRUE(cmd->Begin().ok());
+  vk::Status recorded = kernel->Record(cmd.value(), n, &n);
+  ASSERT_TRUE(recorded.ok()) << recorded.message();
+  cmd->ComputeToHost();
+  ASSERT_TRUE(cmd->End().ok());
+  vk::Status ran = cmd->SubmitAndWait(fence.value());
+  ASSERT_TRUE(ran.ok()) << ran.message();
+  const uint32_t* words = static_cast<const uint32_t*>(out->mapped());
+  out_words->assign(words, words + kExactOutputs * size_t(n));
 }
 
 class FlushingLavapipe : public test::VkTest {
@@ -442,20 +545,17 @@ class FlushingLavapipe : public test::VkTest {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
   }
-  // A Vulkan segmenter whose lavapipe flushes subnormals (see the top of the file).
-  static std::unique_ptr<Segmenter> Flushing(const SensorProfile& sensor, size_t max_points) {
+  // A Vulkan segmenter whose lavapipe flushes subnormals when `flush` (see the top of the file).
+  static std::unique_ptr<Segmenter> Vulkan(const SensorProfile& sensor, size_t max_points,
+                                           bool flush) {
     SegmenterOptions o = SegmenterOptions::For(Backend::kVulkan);
     o.all_buffers = true;
     o.max_points = max_points;
-#if defined(__SSE__)
-    const unsigned saved = _mm_getcsr();
-    _mm_setcsr(saved | 0x8040u);  // FTZ (bit 15) | DAZ (bit 6)
-    auto s = std::make_unique<Segmenter>(sensor, o);
-    _mm_setcsr(saved);
-    return s;
-#else
+    ScopedMxcsr mode(flush ? kFtzDaz : 0u);
     return std::make_unique<Segmenter>(sensor, o);
-#endif
+  }
+  static std::unique_ptr<Segmenter> Flushing(const SensorProfile& sensor, size_t max_points) {
+    return Vulkan(sensor, max_points, true);
   }
   static std::unique_ptr<Segmenter> Reference(const SensorProfile& sensor, size_t max_points) {
     SegmenterOptions o = SegmenterOptions::For(Backend::kCpu);
@@ -465,17 +565,36 @@ class FlushingLavapipe : public test::VkTest {
   }
 };
 
-// The emulation works: where the reference keeps subnormal edges, the device has none.
+// The emulation works: lavapipe set up as Flushing() sets it up flushes a subnormal product and a
+// subnormal operand (test_exact.comp's own a * b, which no stage computes unflushed), where the
+// ordinary lavapipe keeps them; Ftz0 gives the reference's bits on both.
 TEST_F(FlushingLavapipe, TheDeviceFlushes) {
-  const Cloud cloud = TinyHeights();
-  const Frame gpu = Flushing(test::SmallSensor(), kMaxPoints)->Segment(cloud);
-  const Frame cpu = Reference(test::SmallSensor(), kMaxPoints)->Segment(cloud);
-  size_t cpu_subnormal = 0, gpu_subnormal = 0;
-  for (size_t k = 0; k < cpu.f_edge_l.size(); ++k)
-    cpu_subnormal += Subnormal(cpu.f_edge_l[k]), gpu_subnormal += Subnormal(gpu.f_edge_l[k]);
-  EXPECT_GT(cpu_subnormal, 100u);
-  EXPECT_EQ(gpu_subnormal, 0u) << "lavapipe's threads kept subnormals: the MXCSR bits did not "
-                                  "reach them, so FlushingLavapipe tests nothing";
+  std::vector<ExactCase> cases(2, ExactCase{});
+  cases[0].a = 0x0D800000u, cases[0].b = 0x30800000u;  // 2^-100 * 2^-30 = 2^-130: subnormal
+  cases[1].a = 0x00400000u, cases[1].b = 0x4B000000u;  // 2^-127 (subnormal) * 2^23 = 2^-104
+  for (ExactCase& c : cases) c.s = 0x3F800000u, c.u_lo = 1u;
+  std::vector<uint32_t> flushed, kept;
+  {
+    ScopedMxcsr mode(kFtzDaz);
+    vk::Result<vk::Context> flushing = vk::Context::Create(vk::ContextOptions::FromEnvironment());
+    ASSERT_TRUE(flushing.ok()) << flushing.message();
+    ASSERT_NO_FATAL_FAILURE(RunTestExact(flushing->device(), cases, &flushed));
+  }
+  ASSERT_NO_FATAL_FAILURE(RunTestExact(device(), cases, &kept));
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const float a = exact::FromBits(cases[k].a), b = exact::FromBits(cases[k].b);
+    const uint32_t cpu = exact::Bits(a * b);
+    const uint32_t* f = &flushed[k * kExactOutputs];
+    const uint32_t* o = &kept[k * kExactOutputs];
+    EXPECT_EQ(f[kExactOutMul] & 0x7FFFFFFFu, 0u)
+        << "case " << k << ": lavapipe's threads kept a subnormal (" << f[kExactOutMul]
+        << "): the MXCSR bits did not reach them, so FlushingLavapipe tests nothing";
+    EXPECT_EQ(o[kExactOutMul], cpu) << "case " << k << ": the ordinary lavapipe flushed";
+    EXPECT_EQ(f[kExactOutFtz0], exact::Bits(exact::Ftz0(a))) << "case " << k;
+    EXPECT_EQ(o[kExactOutFtz0], exact::Bits(exact::Ftz0(a))) << "case " << k;
+  }
+  EXPECT_TRUE(Subnormal(exact::FromBits(cases[0].a) * exact::FromBits(cases[0].b)));
+  EXPECT_TRUE(Subnormal(exact::FromBits(cases[1].a)));
 }
 
 // Ordinary scans do not reach the subnormal range: the same bytes on a flushing device.
@@ -504,47 +623,44 @@ TEST_F(FlushingLavapipe, OrdinaryScansGiveTheSameBytes) {
   }
 }
 
-// The hostile cases on a flushing device: exactly the listed buffers differ (every other one is
-// byte for byte the reference's). The labels differ only with thresholds of 0.
+// The subnormal cases: every buffer is byte for byte the reference's on a flushing lavapipe and on
+// the ordinary one, the reference holds no subnormal value in any float buffer, and the cloud
+// still drives the reference's arithmetic into the subnormal range (the probe).
 class FlushingLavapipeCases : public FlushingLavapipe,
                               public ::testing::WithParamInterface<FlushCase> {};
 
-TEST_P(FlushingLavapipeCases, OnlyTheOpenBuffersDiffer) {
+TEST_P(FlushingLavapipeCases, EveryBufferIsTheReferences) {
   const FlushCase& c = GetParam();
   const Cloud cloud = c.make();
   const SensorProfile sensor = c.sensor();
   const std::unique_ptr<Segmenter> cpu = Reference(sensor, kMaxPoints);
-  const Frame gpu = Flushing(sensor, kMaxPoints)->Segment(cloud);
   const Frame ref = cpu->Segment(cloud);
-  const std::set<std::string> differ = DifferingBuffers(cpu->params(), ref, gpu, cloud);
-  EXPECT_EQ(Joined(differ), Joined(c.open))
-      << c.name << ": a buffer not listed now differs, or a listed one became equal (then "
-      << "shorten the list)";
-  std::printf("[hostile] %s on a flushing device: differ %s\n", c.name, Joined(differ).c_str());
+  const Probe probe = c.probe(cpu->params(), cloud, ref);
+  EXPECT_GE(probe.count, probe.at_least)
+      << c.name << ": the cloud no longer reaches the subnormal range";
+  EXPECT_EQ(SubnormalValues(ref), "") << c.name << ": subnormal values left in the reference";
+  for (bool flush : {true, false}) {
+    const std::string what = std::string(c.name) + (flush ? ", flushing lavapipe" : ", lavapipe");
+    const std::unique_ptr<Segmenter> gpu = Vulkan(sensor, kMaxPoints, flush);
+    const uint64_t bytes =
+        test::ExpectSameFrame(cpu->params(), ref, gpu->Segment(cloud), &cloud, what);
+    std::printf("[hostile] %s: %zu subnormal intermediates in the reference, %llu bytes %s\n",
+                what.c_str(), probe.count, static_cast<unsigned long long>(bytes),
+                HasFailure() ? "compared, FAILED (see above)" : "equal");
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Clouds, FlushingLavapipeCases,
     ::testing::Values(
-        FlushCase{"subnormal_coordinates", SubnormalCoordinates, test::SmallSensor, {}},
-        FlushCase{"tiny_heights", TinyHeights, test::SmallSensor, {"f_edge_l", "f_edge_r"}},
-        FlushCase{"subnormal_height_steps",
-                  SubnormalHeightSteps,
-                  test::SmallSensor,
-                  {"f_edge_l", "f_edge_r"}},
-        FlushCase{"fill_opposite_signs",
-                  FillOppositeSigns,
-                  test::SmallSensor,
-                  {"f_edge_l", "f_edge_r", "f_height", "f_inten"}},
-        FlushCase{"tilt_tiny_x",
-                  TinyXTinyHeights,
-                  TiltedSensor,
-                  {"cell_zmax", "cell_zmin", "f_height", "f_slope", "zt"}},
-        FlushCase{"zero_thresholds",
-                  TinyHeightsAndIntensities,
-                  ZeroThresholdsSensor,
-                  {"cell_seed_mode", "f_edge_l", "f_edge_r", "label", "label_why", "pixel_comp",
-                   "pixel_grown", "pixel_label", "why"}}),
+        FlushCase{"subnormal_coordinates", SubnormalCoordinates, test::SmallSensor,
+                  CoordinatesProbe},
+        FlushCase{"tiny_heights", TinyHeights, test::SmallSensor, StepsProbe},
+        FlushCase{"subnormal_height_steps", SubnormalHeightSteps, test::SmallSensor, StepsProbe},
+        FlushCase{"fill_opposite_signs", FillOppositeSigns, test::SmallSensor, FillProbe},
+        FlushCase{"tilt_tiny_x", TinyXTinyHeights, TiltedSensor, TiltProbe},
+        FlushCase{"zero_thresholds", TinyHeightsAndIntensities, ZeroThresholdsSensor,
+                  StepsAndIntensitiesProbe}),
     [](const ::testing::TestParamInfo<FlushCase>& info) { return std::string(info.param.name); });
 
 // Every point of OnePixel lands on one pixel, so the nearest-point rule and its ties decide.

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -302,6 +303,51 @@ TEST(SensorProfile, ParamsForSensorBoundsTheGridTiltAndRange) {
   s = good;
   s.max_range = 1e6f;
   EXPECT_NE(message(s).find("max_range be at most 1000 m"), std::string::npos) << message(s);
+}
+
+// A subnormal parameter (a device may flush it) is an error naming it; 0 and the smallest normal
+// float are fine.
+TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
+  const SensorProfile good = LoadSensorProfile("hdl64e", test::SensorsDir());
+  auto message = [](const SensorProfile& s) -> std::string {
+    try {
+      ParamsForSensor(s);
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "no exception";
+  };
+  for (const std::string& name : ParamNames()) {
+    if (name == "rings_near" || name == "rings_far" || name == "sectors_near" ||
+        name == "sectors_far" || name == "min_component" || name == "occ_rows" ||
+        name == "ring_res_near" || name == "ring_res_far")
+      continue;  // whole numbers, or must be positive (checked before)
+    for (float tiny : {1e-40f, -3e-39f}) {
+      SensorProfile s = good;
+      s.overrides.push_back({name, tiny});
+      const std::string m = message(s);
+      EXPECT_NE(m.find("parameter " + name + " is "), std::string::npos) << name << ": " << m;
+      EXPECT_NE(m.find("subnormal"), std::string::npos) << name << ": " << m;
+    }
+    for (float fine : {0.0f, std::numeric_limits<float>::min()}) {
+      SensorProfile s = good;
+      s.overrides.push_back({name, fine});
+      EXPECT_NO_THROW(ParamsForSensor(s)) << name << " = " << fine;
+    }
+  }
+  SensorProfile s = good;
+  s.overrides.push_back({"ring_res_far", 1e-40f});
+  EXPECT_NE(message(s).find("parameter ring_res_far is "), std::string::npos) << message(s);
+  s = good;
+  s.k_yz = 1e-40f;
+  EXPECT_NE(message(s).find("parameter k_yz is "), std::string::npos) << message(s);
+  s = good;
+  s.min_range = 1e-20f;  // its square is subnormal
+  EXPECT_NE(message(s).find("parameter min_range2 (min_range squared) is "), std::string::npos)
+      << message(s);
+  s = good;
+  s.intensity_scale = 2e-39f;
+  EXPECT_NE(message(s).find("parameter intensity_scale is "), std::string::npos) << message(s);
 }
 
 }  // namespace

@@ -11,8 +11,8 @@ using uint = uint32_t;
 
 // One test case: float bit patterns and two 64-bit integers as (lo, hi) halves.
 struct ExactCase {
-  uint a;     // Div numerator; Sqrt (of |a|), Key, FromKey, Ftz, Exponent argument
-  uint b;     // Div denominator
+  uint a;     // Div numerator; Sqrt (of |a|), Key, FromKey, Ftz, Ftz0, Exponent argument
+  uint b;     // Div denominator; Mul's second factor
   uint c;     // ToFixed x and FloorToInt argument (|c * s| and |c| below 2^62)
   uint s;     // ToFixed scale
   uint v_lo;  // I64ToFloat argument, DivToZero numerator
@@ -34,7 +34,9 @@ struct ExactCase {
 #define kExactOutFloorToInt 10  // FloorToInt(c): lo, hi
 #define kExactOutIsqrt 12       // Isqrt(u): lo, hi
 #define kExactOutDivToZero 14   // DivToZero(v, (u >> 2) + 1): lo, hi
-#define kExactOutputs 16
+#define kExactOutFtz0 16        // Bits(Ftz0(a))
+#define kExactOutMul 17         // Bits(a * b), the device's own product: shows its denormal mode
+#define kExactOutputs 18
 
 #ifdef __cplusplus
 static_assert(sizeof(ExactCase) == 32, "ExactCase is 8 uints (std430)");
