@@ -231,6 +231,16 @@ std::string ScanName(const ::testing::TestParamInfo<RealScan>& info) {
 }
 INSTANTIATE_TEST_SUITE_P(Data, RealScanVk, ::testing::ValuesIn(kRealScans), ScanName);
 
+// A simulated street of seed `seed` (with ring fields when `rings`), or with `random` a small
+// random cloud (RandomCloud, 500 + seed % 7 * 100 points).
+Cloud StreetOrRandom(const SensorSetup& s, uint32_t seed, bool random, bool rings) {
+  if (random) return RandomCloud(500 + seed % 7 * 100, 1.7f, seed);
+  SimOptions o;
+  o.seed = seed;
+  o.emit_rings = rings;
+  return Simulate(s.sensor, o).cloud;
+}
+
 // Three slots, six frames of different sizes submitted ahead of their collection, slots reused:
 // every frame's labels equal the reference's, and every buffer of any frame in flight (each
 // slot owns its frame buffers) does.
@@ -238,12 +248,7 @@ TEST_F(FramePipelineVk, FramesInFlight) {
   const SensorSetup s = MakeSetup("vlp16");
   vk::FramePipeline pipeline = MakePipeline(context(), s, 60000, 3);
   std::vector<Cloud> clouds;
-  for (uint32_t k = 0; k < 6; ++k) {
-    SimOptions o;
-    o.seed = 10 + k;
-    o.emit_rings = k % 2 == 1;
-    clouds.push_back(k == 3 ? RandomCloud(500, 1.7f, k) : Simulate(s.sensor, o).cloud);
-  }
+  for (uint32_t k = 0; k < 6; ++k) clouds.push_back(StreetOrRandom(s, 10 + k, k == 3, k % 2 == 1));
   auto check = [&](uint32_t k, bool all) {
     Frame cpu, gpu;
     RunReference(clouds[k], s.params, s.tables, cpu);
@@ -275,12 +280,7 @@ TEST_F(FramePipelineVk, BatchesEqualTheReference) {
   const SensorSetup s = MakeSetup("vlp16");
   vk::FramePipeline pipeline = MakePipeline(context(), s, 60000, 4);
   std::vector<Cloud> clouds;
-  for (uint32_t k = 0; k < 4; ++k) {
-    SimOptions o;
-    o.seed = 30 + k;
-    o.emit_rings = k == 2;
-    clouds.push_back(k == 1 ? RandomCloud(700, 1.7f, k) : Simulate(s.sensor, o).cloud);
-  }
+  for (uint32_t k = 0; k < 4; ++k) clouds.push_back(StreetOrRandom(s, 30 + k, k == 1, k == 2));
   ASSERT_TRUE(pipeline.Submit(0, clouds[0]).ok());
   const vk::RecordCounts one = pipeline.last_counts();
   Frame f;

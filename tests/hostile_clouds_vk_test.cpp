@@ -49,11 +49,11 @@
 #include "tests/frame_compare.h"
 #include "tests/stage_test_util.h"
 #include "tests/test_util.h"
+#include "tests/vk_exact_run.h"
 #include "tests/vk_test_util.h"
 
 namespace lpir {
 namespace {
-#include "shaders/test_exact.spv.h"  // kTestExactSpv
 
 constexpr size_t kMaxPoints = 4096;  // the small sensor's 16 x 256 pixels
 const float kNan = std::numeric_limits<float>::quiet_NaN();
@@ -495,40 +495,6 @@ class ScopedMxcsr {
 };
 constexpr unsigned kFtzDaz = 0x8040u;  // FTZ (bit 15) | DAZ (bit 6)
 
-// shaders/test_exact.comp's outputs for `cases` on `dev` (kExactOutputs words a case).
-void RunTestExact(const vk::Device& dev, const std::vector<ExactCase>& cases,
-                  std::vector<uint32_t>* out_words) {
-  const uint32_t n = uint32_t(cases.size());
-  vk::Result<vk::Buffer> in =
-      vk::Buffer::Create(dev, sizeof(ExactCase) * n, vk::MemoryKind::kHostVisible);
-  ASSERT_TRUE(in.ok()) << in.message();
-  const size_t out_bytes = sizeof(uint32_t) * kExactOutputs * size_t(n);
-  vk::Result<vk::Buffer> out = vk::Buffer::Create(dev, out_bytes, vk::MemoryKind::kHostVisible);
-  ASSERT_TRUE(out.ok()) << out.message();
-  std::memcpy(in->mapped(), cases.data(), sizeof(ExactCase) * n);
-  vk::PipelineDesc desc;
-  desc.name = "test_exact";
-  desc.code = vk::SpirvOf(kTestExactSpv);
-  desc.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-  desc.push_constant_bytes = sizeof(uint32_t);
-  desc.local_size_x = 64;
-  vk::Result<vk::Kernel> kernel = vk::Kernel::Create(dev, desc, {&in.value(), &out.value()});
-  ASSERT_TRUE(kernel.ok()) << kernel.message();
-  vk::Result<vk::CommandBuffer> cmd = vk::CommandBuffer::Create(dev);
-  ASSERT_TRUE(cmd.ok()) << cmd.message();
-  vk::Result<vk::Fence> fence = vk::Fence::Create(dev);
-  ASSERT_TRUE(fence.ok()) << fence.message();
-  ASSERT_TRUE(cmd->Begin().ok());
-  vk::Status recorded = kernel->Record(cmd.value(), n, &n);
-  ASSERT_TRUE(recorded.ok()) << recorded.message();
-  cmd->ComputeToHost();
-  ASSERT_TRUE(cmd->End().ok());
-  vk::Status ran = cmd->SubmitAndWait(fence.value());
-  ASSERT_TRUE(ran.ok()) << ran.message();
-  const uint32_t* words = static_cast<const uint32_t*>(out->mapped());
-  out_words->assign(words, words + kExactOutputs * size_t(n));
-}
-
 class FlushingLavapipe : public test::VkTest {
  protected:
   void SetUp() override {
@@ -578,9 +544,9 @@ TEST_F(FlushingLavapipe, TheDeviceFlushes) {
     ScopedMxcsr mode(kFtzDaz);
     vk::Result<vk::Context> flushing = vk::Context::Create(vk::ContextOptions::FromEnvironment());
     ASSERT_TRUE(flushing.ok()) << flushing.message();
-    ASSERT_NO_FATAL_FAILURE(RunTestExact(flushing->device(), cases, &flushed));
+    ASSERT_NO_FATAL_FAILURE(test::RunTestExact(flushing->device(), cases, 64, &flushed, nullptr));
   }
-  ASSERT_NO_FATAL_FAILURE(RunTestExact(device(), cases, &kept));
+  ASSERT_NO_FATAL_FAILURE(test::RunTestExact(device(), cases, 64, &kept, nullptr));
   for (size_t k = 0; k < cases.size(); ++k) {
     const float a = exact::FromBits(cases[k].a), b = exact::FromBits(cases[k].b);
     const uint32_t cpu = exact::Bits(a * b);

@@ -278,45 +278,39 @@ TEST(SensorProfile, MissingFileIsUnknownAndUnwritableFolderAnIoError) {
                IoError);
 }
 
+// ParamsForSensor's std::invalid_argument message for `s`, or "no exception".
+std::string ParamsError(const SensorProfile& s) {
+  try {
+    ParamsForSensor(s);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
 // Profiles built in code get the bounds the reader enforces, and a grid that fits its integers.
 TEST(SensorProfile, ParamsForSensorBoundsTheGridTiltAndRange) {
   const SensorProfile good = LoadSensorProfile("hdl64e", test::SensorsDir());
   EXPECT_NO_THROW(ParamsForSensor(good));
-  auto message = [](const SensorProfile& s) -> std::string {
-    try {
-      ParamsForSensor(s);
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "no exception";
-  };
   SensorProfile s = good;
   s.overrides.push_back({"rings_near", 4e9f});
-  EXPECT_NE(message(s).find("at most 4096 rings"), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("at most 4096 rings"), std::string::npos) << ParamsError(s);
   s = good;
   s.overrides.push_back({"sectors_far", 2048.0f});
   s.overrides.push_back({"rings_far", 4000.0f});
-  EXPECT_NE(message(s).find("4194304 cells"), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("4194304 cells"), std::string::npos) << ParamsError(s);
   s = good;
   s.k_xz = 1e30f;
-  EXPECT_NE(message(s).find("k_xz and k_yz must lie in -1..1"), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("k_xz and k_yz must lie in -1..1"), std::string::npos) << ParamsError(s);
   s = good;
   s.max_range = 1e6f;
-  EXPECT_NE(message(s).find("max_range be at most 1000 m"), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("max_range be at most 1000 m"), std::string::npos) << ParamsError(s);
 }
 
 // A subnormal parameter (a device may flush it) is an error naming it; 0 and the smallest normal
 // float are fine.
 TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
   const SensorProfile good = LoadSensorProfile("hdl64e", test::SensorsDir());
-  auto message = [](const SensorProfile& s) -> std::string {
-    try {
-      ParamsForSensor(s);
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
-    return "no exception";
-  };
   for (const std::string& name : ParamNames()) {
     if (name == "rings_near" || name == "rings_far" || name == "sectors_near" ||
         name == "sectors_far" || name == "min_component" || name == "occ_rows" ||
@@ -325,7 +319,7 @@ TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
     for (float tiny : {1e-40f, -3e-39f}) {
       SensorProfile s = good;
       s.overrides.push_back({name, tiny});
-      const std::string m = message(s);
+      const std::string m = ParamsError(s);
       EXPECT_NE(m.find("parameter " + name + " is "), std::string::npos) << name << ": " << m;
       EXPECT_NE(m.find("subnormal"), std::string::npos) << name << ": " << m;
     }
@@ -337,17 +331,17 @@ TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
   }
   SensorProfile s = good;
   s.overrides.push_back({"ring_res_far", 1e-40f});
-  EXPECT_NE(message(s).find("parameter ring_res_far is "), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("parameter ring_res_far is "), std::string::npos) << ParamsError(s);
   s = good;
   s.k_yz = 1e-40f;
-  EXPECT_NE(message(s).find("parameter k_yz is "), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("parameter k_yz is "), std::string::npos) << ParamsError(s);
   s = good;
   s.min_range = 1e-20f;  // its square is subnormal
-  EXPECT_NE(message(s).find("parameter min_range2 (min_range squared) is "), std::string::npos)
-      << message(s);
+  EXPECT_NE(ParamsError(s).find("parameter min_range2 (min_range squared) is "), std::string::npos)
+      << ParamsError(s);
   s = good;
   s.intensity_scale = 2e-39f;
-  EXPECT_NE(message(s).find("parameter intensity_scale is "), std::string::npos) << message(s);
+  EXPECT_NE(ParamsError(s).find("parameter intensity_scale is "), std::string::npos) << ParamsError(s);
 }
 
 }  // namespace

@@ -20,11 +20,11 @@
 #include "host/vk/kernel.h"
 #include "reference_cpu/exact.h"
 #include "shaders/common/test_exact.h"
+#include "tests/vk_exact_run.h"
 #include "tests/vk_test_util.h"
 
 namespace lpir {
 namespace {
-#include "shaders/test_exact.spv.h"  // kTestExactSpv
 
 using exact::Bits;
 using exact::FromBits;
@@ -277,46 +277,6 @@ std::string CaseText(const ExactCase& t) {
 
 class VkExact : public test::VkTest {};
 
-// Runs test_exact.comp over the cases with a workgroup of `local_size` asked for: *out_words gets
-// its outputs (kExactOutputs words a case; the buffer is filled with 0xAB bytes before), *used the
-// workgroup size the pipeline got.
-void RunOnDevice(const vk::Device& dev, const std::vector<ExactCase>& cases, uint32_t local_size,
-                 std::vector<uint32_t>* out_words, uint32_t* used) {
-  const uint32_t n = uint32_t(cases.size());
-  vk::Result<vk::Buffer> in =
-      vk::Buffer::Create(dev, sizeof(ExactCase) * n, vk::MemoryKind::kHostVisible);
-  ASSERT_TRUE(in.ok()) << in.message();
-  const size_t out_bytes = sizeof(uint32_t) * kExactOutputs * size_t(n);
-  vk::Result<vk::Buffer> out = vk::Buffer::Create(dev, out_bytes, vk::MemoryKind::kHostVisible);
-  ASSERT_TRUE(out.ok()) << out.message();
-  std::memcpy(in->mapped(), cases.data(), sizeof(ExactCase) * n);
-  std::memset(out->mapped(), 0xAB, out_bytes);
-
-  vk::PipelineDesc desc;
-  desc.name = "test_exact";
-  desc.code = vk::SpirvOf(kTestExactSpv);
-  desc.bindings = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-  desc.push_constant_bytes = sizeof(uint32_t);
-  desc.local_size_x = local_size;
-  vk::Result<vk::Kernel> kernel = vk::Kernel::Create(dev, desc, {&in.value(), &out.value()});
-  ASSERT_TRUE(kernel.ok()) << kernel.message();
-  if (used) *used = kernel->pipeline().local_size_x();
-  vk::Result<vk::CommandBuffer> cmd = vk::CommandBuffer::Create(dev);
-  ASSERT_TRUE(cmd.ok()) << cmd.message();
-  vk::Result<vk::Fence> fence = vk::Fence::Create(dev);
-  ASSERT_TRUE(fence.ok()) << fence.message();
-
-  ASSERT_TRUE(cmd->Begin().ok());
-  vk::Status recorded = kernel->Record(cmd.value(), n, &n);
-  ASSERT_TRUE(recorded.ok()) << recorded.message();
-  cmd->ComputeToHost();
-  ASSERT_TRUE(cmd->End().ok());
-  vk::Status ran = cmd->SubmitAndWait(fence.value());
-  ASSERT_TRUE(ran.ok()) << ran.message();
-  const uint32_t* words = static_cast<const uint32_t*>(out->mapped());
-  out_words->assign(words, words + kExactOutputs * size_t(n));
-}
-
 TEST_F(VkExact, EveryHelperMatchesTheCpuBitForBit) {
   constexpr uint32_t kCases = 1u << 20;  // 1,048,576
   std::vector<ExactCase> cases(kCases);
@@ -324,7 +284,7 @@ TEST_F(VkExact, EveryHelperMatchesTheCpuBitForBit) {
   for (uint32_t k = 0; k < kCases; ++k) cases[k] = maker.Make(k);
 
   std::vector<uint32_t> gpu_out;
-  ASSERT_NO_FATAL_FAILURE(RunOnDevice(device(), cases, 64, &gpu_out, nullptr));
+  ASSERT_NO_FATAL_FAILURE(test::RunTestExact(device(), cases, 64, &gpu_out, nullptr));
   const uint32_t* gpu = gpu_out.data();
   uint64_t compared = 0, mismatches = 0;
   uint64_t per_slot[kExactOutputs] = {};
@@ -375,8 +335,8 @@ TEST_F(VkExact, AnOversizedWorkgroupIsTheDevicesLargest) {
   const VkPhysicalDeviceLimits& limits = device().limits();
   std::vector<uint32_t> small, large;
   uint32_t used = 0;
-  ASSERT_NO_FATAL_FAILURE(RunOnDevice(device(), cases, 64, &small, nullptr));
-  ASSERT_NO_FATAL_FAILURE(RunOnDevice(device(), cases, 1u << 20, &large, &used));
+  ASSERT_NO_FATAL_FAILURE(test::RunTestExact(device(), cases, 64, &small, nullptr));
+  ASSERT_NO_FATAL_FAILURE(test::RunTestExact(device(), cases, 1u << 20, &large, &used));
   EXPECT_EQ(used,
             std::min(limits.maxComputeWorkGroupSize[0], limits.maxComputeWorkGroupInvocations));
   ASSERT_EQ(small.size(), large.size());
