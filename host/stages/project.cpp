@@ -41,15 +41,15 @@ Result<ProjectStage> ProjectStage::Create(const Device& device, const ProjectBuf
 Status ProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
   cmd.FillBuffer(*pixel_key_, 0xFFFFFFFFu);  // kNone
   cmd.FillBuffer(*pixel_point_, 0xFFFFFFFFu);
-  const uint32_t header[4] = {0, 1, 1, 0};  // pass 2's dispatch arguments, the list's length
+  const uint32_t header[4] = {0, 1, 1, 0};  // pass 1's dispatch arguments, the list's length
   cmd.UpdateBuffer(*exact_list_, header, sizeof(header));
   cmd.TransferToCompute();
   const Push push{n};
   LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, kernel_.Chunks(n), &push, 0));
   cmd.ComputeToIndirect();
-  kernel_.RecordIndirect(cmd, *exact_list_, 0, &push, 2);
+  kernel_.RecordIndirect(cmd, *exact_list_, 0, &push, 1);
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, n, &push, 1);
+  return kernel_.Record(cmd, n, &push, 2);
 }
 
 Status RunProject(const Context& context, const Cloud& cloud, const Params& p, const Tables& t,

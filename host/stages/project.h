@@ -44,10 +44,10 @@ class ProjectStage {
   static Result<ProjectStage> Create(const Device& device, const ProjectBuffers& buffers);
 
   // Records the clear of pixel_key and pixel_point to kNone and of the exact list's header, the
-  // pixel pass, its exact pass over the listed points (indirect), and the winner pass over n
-  // points, with barriers between them. No barrier before the clear or after the last dispatch: the caller
-  // orders them with the stages around (stage 1's writes must be visible to compute and the
-  // clear must not overtake earlier reads of the pixel buffers).
+  // pixel pass 0, the exact pass 1 over the listed points (indirect), and the winner pass 2 over
+  // n points, with barriers between them. No barrier before the clear or after the last
+  // dispatch: the caller orders them with the stages around (stage 1's writes must be visible
+  // to compute and the clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
