@@ -50,8 +50,9 @@ class FeatureMapsStage {
 
   // Records the measure-and-fill pass over the width x beams image (pass 1, one invocation per
   // four pixels, when the width is a multiple of 4, else pass 0, one per pixel), a compute ->
-  // compute barrier and the features pass 2 (one invocation per run of the shape's items, kCpuItems or 1, pixels of a
-  // row), with no barrier before or after (the caller orders it with the stages around).
+  // compute barrier and the features pass 2 (one invocation per run of the shape's items,
+  // kCpuItems or 1, pixels of a row), with no barrier before or after (the caller orders it with
+  // the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
