@@ -9,8 +9,8 @@
 // Out: 8 point_pixel (per point: v * width + u, kNone when invalid), 9 pixel_key (per pixel:
 //     exact_Key of the smallest r2 among its valid non-noise points, kNone when none), 10
 //     pixel_point (per pixel: the lowest point index among those whose key equals pixel_key).
-// Scratch: 11 the exact list: words 0-2 the indirect dispatch arguments of pass 1, word 3 its
-//     length, then point indices.
+// Scratch: 11 project_exact, the exact list: words 0-2 the indirect dispatch arguments of pass 1,
+//     word 3 its length, then point indices.
 // Pass 0, one invocation per kItems consecutive points (the device's shape, specialization
 // constant 2: host/vk/shape.h): column and row of every valid point with
 // the device's float products (MulFast), point_pixel and atomicMin of the key; a point for which
@@ -52,7 +52,7 @@ layout(std430, set = 0, binding = 7) readonly buffer BeamOrigin { float beam_ori
 layout(std430, set = 0, binding = 8) buffer PointPixel { uint point_pixel[]; };
 layout(std430, set = 0, binding = 9) buffer PixelKey { uint pixel_key[]; };
 layout(std430, set = 0, binding = 10) buffer PixelPoint { uint pixel_point[]; };
-layout(std430, set = 0, binding = 11) buffer ExactList { uint exact_list[]; };
+layout(std430, set = 0, binding = 11) buffer ProjectExact { uint project_exact[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 layout(constant_id = 2) const uint kItems = 1u;  // points per invocation of pass 0 (the shape)
@@ -64,7 +64,7 @@ layout(push_constant) uniform Push {
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
 const uint kPointNoise = 2u;
-const uint kListLength = 3u, kListStart = 4u;  // exact_list words (0-2: dispatch arguments)
+const uint kListLength = 3u, kListStart = 4u;  // project_exact words (0-2: dispatch arguments)
 
 // --- float predicates by their bits (no device float op touches a subnormal) ---
 
@@ -235,9 +235,9 @@ void PixelOf(uint i, uint f, inout uint row) {
   }
   if (g_inexact) {
     row = kNone;
-    uint slot = atomicAdd(exact_list[kListLength], 1u);
-    exact_list[kListStart + slot] = i;
-    atomicMax(exact_list[0], slot / gl_WorkGroupSize.x + 1u);
+    uint slot = atomicAdd(project_exact[kListLength], 1u);
+    project_exact[kListStart + slot] = i;
+    atomicMax(project_exact[0], slot / gl_WorkGroupSize.x + 1u);
     return;
   }
   row = v;
@@ -251,8 +251,8 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   uint row = kNone;
   if (kPass == 1u) {
-    if (i >= exact_list[kListLength]) return;
-    i = exact_list[kListStart + i];
+    if (i >= project_exact[kListLength]) return;
+    i = project_exact[kListStart + i];
     PixelOf(i, flags[i], row);
     return;
   }
