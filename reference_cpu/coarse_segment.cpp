@@ -47,10 +47,7 @@ constexpr float kDistUnit = 16384000.0f;  // metres -> mm * 2^14
 // length) lie on a line and get the horizontal plane instead.
 constexpr float kMinPlanarity = 1e-3f;
 // Fewer seeds than this get the horizontal plane through their mean: a plane fitted to a handful
-// of points tilts freely (a car parked beside the sensor: 10 seeds under its body gave a 25-degree
-// plane its roof lay within 0.3 m of). Measured (DG F1 07/000964 | 000056; car points labelled
-// ground in the demo street, seed 13): 3 seeds 95.56 | 95.17, 1932; 10: 95.56 | 95.15, 1932;
-// 16: 95.56 | 95.15, 1; 24: 95.57 | 95.15, 1.
+// of points tilts freely (docs/decisions/coarse_segment.md).
 constexpr int32_t kMinPlaneSeeds = 16;
 
 struct CellGeometry {

@@ -58,8 +58,7 @@ inline float Sqrt(float a) { return Ftz(std::sqrt(Ftz(a))); }
 
 // floor(y) as an integer, exactly, for |y| < 2^62 (GLSL floor() is exact too). Truncation, then
 // one step down for negative non-integers: a float of magnitude >= 2^23 is an integer already, and
-// below that the truncated value converts back exactly. (No libm call: without SSE4.1 std::floor
-// is a function call, a third of the cost of a stage that converts every point.)
+// below that the truncated value converts back exactly. No libm call (docs/decisions/exact.md).
 inline int64_t FloorToInt(float y) {
   const int64_t t = static_cast<int64_t>(y);
   return static_cast<float>(t) > y ? t - 1 : t;

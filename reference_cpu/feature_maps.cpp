@@ -9,18 +9,14 @@
 // Then on measured and filled pixels, columns wrapping around (360 degrees), rows not:
 //   slope  = |z(v+1) - z| / |r(v+1) - r| toward the next row down (ground slope shows between
 //            rings), Div; -1 when that neighbour is empty or the ranges are equal (no evidence).
-//            The paper's u+1, measured (final P/R/F1, 07/000964 | unknown/000056, measured table):
-//            at a set tuned for v+1 (search seed 11): v+1 97.16/91.67/94.33 | 95.53/93.19/94.35,
-//            u+1 95.13/91.88/93.48 | 94.67/93.36/94.01; lead's set: v+1 94.32 | 92.04, u+1 93.38 |
-//            91.45 F1. A random search re-tuned for u+1 reached min-F1 94.39 after 741 draws, v+1
-//            94.35 after 983 and 94.56 after 1151: within noise once tuned; v+1 kept.
+//            v+1, not the paper's u+1 (docs/decisions/feature_maps.md).
 //   edge_l = |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when the neighbour is empty);
 //   var_z, var_i = variance over the filled pixels of the 3x3 window, from exact integer moments:
 //            heights quantised to 0.1 mm and intensities to 1e-4 (ToFixed), n, sum q and sum q^2 in
 //            int64 (associative, so window sums are shared: three-column row sums, then three
 //            rows), var = I64ToFloat(n * sum q^2 - (sum q)^2) / n^2 (Div), times the squared
 //            quantum. Order-independent by construction, and unlike a float two-pass sum free of
-//            rounding in the sums. (5x fewer instructions than the float window it replaced.)
+//            rounding in the sums (docs/decisions/feature_maps.md).
 // Results that can be subnormal go through exact::Ftz0 (subnormals and -0 to +0), so that a device
 // that flushes agrees: the filled intensity and height (sum and product), the edges.
 // Float operations, each rounded on its own, in this order: fill (l + r) * 0.5; slope

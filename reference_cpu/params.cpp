@@ -68,13 +68,7 @@ Params DefaultParams() {
   p.sectors_far = 64;
   p.ring_res_near = 2.0f;
   p.ring_res_far = 4.0f;
-  // Tuned on the two labelled scans (07/000964, unknown/000056) with the measured HDL-64E table
-  // and rows measured from each laser's origin (beam_origin_z): random search + hill climb over
-  // every threshold of stages 4-9 (objective: the lower F1 of the two scans, precision kept above
-  // 95.5), then rounded to the values below. DG P/R/F1 at these defaults: 07/000964
-  // 99.35/92.06/95.56, unknown/000056 95.66/94.69/95.17 (before the re-tune, with the defaults
-  // tuned for the old rows: 98.39/91.29/94.71 | 95.32/92.81/94.05). The stage contracts say what
-  // each rule is worth.
+  // Stages 4-9: tuned on the two labelled scans, then rounded (docs/decisions/params.md).
   p.slope_max = 0.10f;
   p.seed_margin = 0.06f;
   p.h_athr = 0.12f;
@@ -82,9 +76,8 @@ Params DefaultParams() {
   p.plane_dist_floor = 0.3f;
   p.plane_dist_scale = 2.5f;
   p.normal_min_z2 = 0.7f;  // normal within ~33 degrees of vertical
-  // No effect on the two KITTI scans anywhere in 0.2 .. 0.6 (identical labels); 0.3 keeps the roof
-  // of a car parked beside the sensor out of the seeds (simulated scene, seed 3: 2678 car points
-  // labelled ground at 0.6, 1371 at 0.4, 0 at 0.3).
+  // 0.3 keeps the roof of a car parked beside the sensor out of the seeds
+  // (docs/decisions/coarse_segment.md).
   p.ground_max_above = 0.3f;
   p.hole_gap = 0.25f;
   p.t_edge = 0.12f;
@@ -144,13 +137,8 @@ Params ParamsForSensor(const SensorProfile& s) {
   p.k_yz = s.k_yz;
   p.intensity_scale = s.intensity_scale;
   p.sensor_height = s.sensor_height;
-  // Reflection noise lies under the road; 1 m under the sensor's own ground plane, not 0.5 m: a
-  // road falling away at 2-2.5 % is 0.5-1 m under that plane 25-45 m out, and its dim far points
-  // were flagged as noise. DG P/R/F1 at the final defaults, 07/000964 | unknown/000056: margin
-  // 0.5 m 99.34/91.66/95.35 | 95.66/93.85/94.75; 0.8 m 95.44 | 94.98 F1; 1.0 m 99.35/92.06/95.56 |
-  // 95.66/94.69/95.17; 1.2 m 95.61 | 95.21 F1. The ~240 ground points still flagged lie 40-50 m
-  // out, 1.0-1.5 m under the plane (the far noise there is unlabelled, 50-80 m out): a
-  // range-dependent bound (z_t < h_noise - slope_max * range, in prepare) would keep them.
+  // Reflection noise lies under the road: 1 m under the sensor's own ground plane, so that a road
+  // falling away is not flagged (docs/decisions/prepare.md).
   p.h_noise = -s.sensor_height - 1.0f;
   for (const auto& [name, value] : s.overrides) {
     if (!ApplyOverride(p, name, value))

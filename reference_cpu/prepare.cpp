@@ -4,7 +4,7 @@
 // z^2 <= max_range2; ring (when present) inside [0, beams). Everything of an invalid point is
 // written as 0.
 // inten is clamped to [-kMaxIntensity, kMaxIntensity] (1e4, far beyond any sensor's [0, 1]): stage
-// 5 quantises it to 1e-4 steps and squares it in int64, which a raw intensity of 1e30 overflowed.
+// 5 quantises it to 1e-4 steps and squares it in int64, which a raw 1e30 would overflow.
 // Inputs (x, y, z, intensity) and every result that can be subnormal (xx, yy, zz, tx, ty, tilt,
 // zt, the scaled intensity) go through exact::Ftz0 (subnormals and -0 to +0), so that a device
 // that flushes gives the same bytes (docs/decisions/denormals.md).

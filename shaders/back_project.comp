@@ -1,7 +1,6 @@
 // Stage 9, back-project (paper III-D.2): the GPU twin of reference_cpu/back_project.cpp, same
 // values. One invocation per four points 4j .. 4j + 3 (n, the points, a push constant), read as
-// vectors (on a CPU driver every buffer access is a loop over the SIMD lanes, and one uvec4
-// access costs about a third of four), the last n % 4 one by one, and written as one word.
+// vectors (docs/decisions/back_project.md), the last n % 4 one by one, and written as one word.
 // In: binding 0 Params (uniform), 1 flags, 2 point_pixel, 3 pixel_point, 4 pixel_label (per
 //     pixel), 5 f_range, 6 f_height (per pixel, floats), 7 r2, 8 zt (per point, floats), 9 coarse
 //     (per point).
@@ -53,8 +52,7 @@ const uint kWhyInvalid = 2u;
 const uint kWhyNoise = 3u;
 
 // Point i's byte, label | why << 1, from its flag, pixel, coarse label, r2 and zt. The output is
-// written once, after the branches (lavapipe runs every branch under a lane mask: a write in an
-// early return would be paid by every point).
+// written once, after the branches, no early return (docs/decisions/back_project.md).
 uint Classify(uint i, uint flag, uint pix, uint coarse_i, float r2_i, float zt_i) {
   bool counted = (flag & (kPointValid | kPointNoise)) == kPointValid;  // valid, not noise
   bool ground = false;

@@ -1,9 +1,7 @@
 // Stage 6, classify pixels (paper eqs. 8-12): the GPU twin of reference_cpu/classify_pixels.cpp,
 // same bytes. Two passes (specialization constant kPass): 0, one invocation per quad of pixels
-// 4q .. 4q + 3 < pixels (push constant), read and written as vec4 / uvec4 (on a CPU driver each
-// buffer access is a loop over the SIMD lanes, so one access for four pixels costs about a
-// third of four: 2.0 -> 1.2 ms a KITTI frame on one lavapipe thread); 1, one invocation
-// per pixel of the last pixels % 4.
+// 4q .. 4q + 3 < pixels (push constant), read and written as vec4 / uvec4
+// (docs/decisions/classify_pixels.md); 1, one invocation per pixel of the last pixels % 4.
 // In: binding 0 Params (uniform: t_edge, t_slope_*, t_stdz_*, t_stdi_*), 1 pixel_filled (uint),
 //     2 f_edge_l, 3 f_edge_r, 4 f_slope, 5 f_varz, 6 f_vari (floats per pixel).
 // Out: 7 pixel_class (kPixNonGround 0, kPixGround 1, kPixUnknown 2, kPixEmpty 3).

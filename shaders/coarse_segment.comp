@@ -28,7 +28,7 @@
 // In: binding 0 Params (uniform), 1 xyzi (4 floats per point), 2 zt, 3 point_cell (per point),
 //     4 cell_zmin, 5 cell_zmax (ordered keys), 6 cell_count (per cell), 7 ring_inner (per ring).
 // Out: 8 cell_seed_mode, 9 cell_plane (8 ints per cell), 10 coarse (per point).
-// Scratch: 11 cell_scratch, kScratch uints per cell (written by pass 0 before any read).
+// Scratch: 11 coarse_scratch, kScratch uints per cell (written by pass 0 before any read).
 //
 // Exactness. Coordinates: int(exact_ToFixed(v, 1000)) (the CPU's int32 of ToFixed). Sums: every
 // per-cell sum is an integer modulo 2^64 (the CPU keeps the products' sums in uint64, the others
@@ -60,13 +60,13 @@ layout(std430, set = 0, binding = 7) readonly buffer RingInner { float ring_inne
 layout(std430, set = 0, binding = 8) buffer CellSeedMode { uint cell_seed_mode[]; };
 layout(std430, set = 0, binding = 9) buffer CellPlane { int cell_plane[]; };
 layout(std430, set = 0, binding = 10) writeonly buffer Coarse { uint coarse[]; };
-layout(std430, set = 0, binding = 11) buffer CellScratch { uint scratch[]; };
+layout(std430, set = 0, binding = 11) buffer CoarseScratch { uint coarse_scratch[]; };
 // Cell c's plane as two vectors, a = cell_plane[8c .. 8c + 3] (normal, mean x) and b =
 // cell_plane[8c + 4 .. 8c + 7] (mean y, mean z, threshold, seeds): two loads instead of eight (on a
 // CPU driver each buffer access is a loop over the SIMD lanes, and every branch runs).
 layout(std430, set = 0, binding = 9) readonly buffer CellPlane4 { ivec4 cell_plane4[]; };
 // The seed test (h, lambda): words kTestH, kTestLambda = components z, w of the cell's sixth uvec4.
-layout(std430, set = 0, binding = 11) readonly buffer CellScratch4 { uvec4 scratch4[]; };
+layout(std430, set = 0, binding = 11) readonly buffer CoarseScratch4 { uvec4 coarse_scratch4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 layout(constant_id = 2) const uint kItems = 1u;  // points per invocation, passes 1, 3, 5 (shape)
@@ -93,14 +93,14 @@ uint Base(uint cell) { return cell * kScratch; }
 void AtomicAdd64(uint word, uint64_t v) {
   if (v == uint64_t(0)) return;
   uint lo = uint(v), hi = uint(v >> 32);
-  uint old = atomicAdd(scratch[word], lo);
+  uint old = atomicAdd(coarse_scratch[word], lo);
   uint carry = (old + lo < old) ? 1u : 0u;
   hi += carry;
-  if (hi != 0u) atomicAdd(scratch[word + 1u], hi);
+  if (hi != 0u) atomicAdd(coarse_scratch[word + 1u], hi);
 }
 uint64_t Sum(uint cell, uint k) {
   uint w = Base(cell) + 2u * k;
-  return (uint64_t(scratch[w + 1u]) << 32) | uint64_t(scratch[w]);
+  return (uint64_t(coarse_scratch[w + 1u]) << 32) | uint64_t(coarse_scratch[w]);
 }
 
 // ---- pass 0: seed mode -----------------------------------------------------------------------
@@ -113,7 +113,7 @@ uint CellIndex(uint ring, uint sector) {
 
 void SeedMode(uint c) {
   for (uint k = 0u; k < 8u; ++k) cell_plane[8u * c + k] = 0;
-  for (uint k = 0u; k < 22u; ++k) scratch[Base(c) + k] = 0u;
+  for (uint k = 0u; k < 22u; ++k) coarse_scratch[Base(c) + k] = 0u;
   float inf = uintBitsToFloat(0x7F800000u);
   uint mode = 0u;
   float h = -inf, lam_out = 0.0;
@@ -168,8 +168,8 @@ void SeedMode(uint c) {
     }
   }
   cell_seed_mode[c] = mode;
-  scratch[Base(c) + kTestH] = floatBitsToUint(h);
-  scratch[Base(c) + kTestLambda] = floatBitsToUint(lam_out);
+  coarse_scratch[Base(c) + kTestH] = floatBitsToUint(h);
+  coarse_scratch[Base(c) + kTestLambda] = floatBitsToUint(lam_out);
 }
 
 // ---- per-point helpers -----------------------------------------------------------------------
@@ -182,7 +182,7 @@ struct SeedTest {
   float h, lam;
 };
 SeedTest SeedTestOf(uint c) {
-  uvec2 test = scratch4[(Base(c) + kTestH) / 4u].zw;  // kTestH = 22, kTestLambda = 23
+  uvec2 test = coarse_scratch4[(Base(c) + kTestH) / 4u].zw;  // kTestH = 22, kTestLambda = 23
   return SeedTest(cell_seed_mode[c], uintBitsToFloat(test.x), uintBitsToFloat(test.y));
 }
 
@@ -339,7 +339,7 @@ int64_t Distance(uint i, float z, ivec4 a, ivec4 b) {
 // Adds one run's sums (s[0] = seeds, then x, y, z, xx, xy, xz, yy, yz, zz) to cell c.
 void FlushSeedSums(uint c, uint64_t s[10]) {
   uint b = Base(c);
-  atomicAdd(scratch[b], uint(s[0]));  // n < 2^32: its high word stays 0
+  atomicAdd(coarse_scratch[b], uint(s[0]));  // n < 2^32: its high word stays 0
   for (uint k = 1u; k < 10u; ++k) AtomicAdd64(b + 2u * k, s[k]);
 }
 

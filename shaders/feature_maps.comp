@@ -1,25 +1,26 @@
 // Stage 5, feature maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
-// reference_cpu/feature_maps.cpp, same bytes. Two passes of this one shader, chosen by the
-// specialization constant kPass (one pipeline each), with a compute -> compute barrier between
-// them; pass 0 one invocation per pixel < pixels (push constant), pixel = v * width + u, or
-// instead, when the width is a multiple of 4, pass 2 one per quad of pixels (pixels / 4 of them);
-// pass 1 one per run of kItems pixels of a row (the device's shape, specialization constant 2:
-// host/vk/shape.h; its 3x3 window's columns sliding along the run, each column's three pixels
-// loaded once; a run's first pixel loads its three columns, so with kItems = 1 every pixel loads
-// its own, and the integers summed are the same for every kItems).
+// reference_cpu/feature_maps.cpp, same bytes. Two dispatches of this one shader, the pass chosen
+// by the specialization constant kPass (one pipeline each), with a compute -> compute barrier
+// between them. First, measure and fill: pass 0 one invocation per pixel < pixels (push
+// constant), pixel = v * width + u, or instead, when the width is a multiple of 4, pass 1 one per
+// quad of pixels (pixels / 4 of them). Then pass 2, one invocation per run of kItems pixels of a
+// row (the device's shape, specialization constant 2: host/vk/shape.h; its 3x3 window's columns
+// sliding along the run, each column's three pixels loaded once; a run's first pixel loads its
+// three columns, so with kItems = 1 every pixel loads its own, and the integers summed are the
+// same for every kItems).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
 //     2 r2, 3 zt, 4 inten (floats per point).
-// Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height (pass 0),
-//     9 f_slope, 10 f_edge_l, 11 f_edge_r, 12 f_varz, 13 f_vari (pass 1).
-// Scratch: 14 pixel_pack, per pixel (filled, range, intensity, height bits), written by pass 0
-//     beside the four maps: pass 1 reads a pixel with one vector load instead of four (on a CPU
-//     driver each buffer access is a loop over the SIMD lanes, whatever its width).
-// Pass 0 (or 2), measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height
+// Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height
+//     (pass 0 or 1), 9 f_slope, 10 f_edge_l, 11 f_edge_r, 12 f_varz, 13 f_vari (pass 2).
+// Scratch: 14 feature_pack, per pixel (filled, range, intensity, height bits), written by pass 0
+//     or 1 beside the four maps, so that pass 2 reads a pixel with one vector load
+//     (docs/decisions/feature_maps.md).
+// Pass 0 (or 1), measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height
 //   z_t of its winning point; an empty pixel whose left and right neighbours (columns wrap) are
 //   measured and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The
 //   neighbours' values are recomputed from pixel_point and the per-point buffers (read-only), so
 //   no invocation reads what another one writes in this pass.
-// Pass 1, on measured and filled pixels (0 everywhere else): slope = Div(|z(v+1) - z|,
+// Pass 2, on measured and filled pixels (0 everywhere else): slope = Div(|z(v+1) - z|,
 //   |r(v+1) - r|), -1 when the pixel below is empty (or absent) or the ranges are equal; edge_l =
 //   |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when that neighbour is empty); var_z, var_i over the
 //   3x3 window (rows clipped, columns wrapping) from the int64 moments n, sum q, sum q^2 of the
@@ -53,8 +54,8 @@ layout(std430, set = 0, binding = 10) writeonly buffer EdgeL { float f_edge_l[];
 layout(std430, set = 0, binding = 11) writeonly buffer EdgeR { float f_edge_r[]; };
 layout(std430, set = 0, binding = 12) writeonly buffer VarZ { float f_varz[]; };
 layout(std430, set = 0, binding = 13) writeonly buffer VarI { float f_vari[]; };
-layout(std430, set = 0, binding = 14) buffer PixelPack { uvec4 pixel_pack[]; };
-// Pass 2's views, four pixels at a time.
+layout(std430, set = 0, binding = 14) buffer FeaturePack { uvec4 feature_pack[]; };
+// Pass 1's views, four pixels at a time.
 layout(std430, set = 0, binding = 1) readonly buffer PixelPoint4 { uvec4 pixel_point4[]; };
 layout(std430, set = 0, binding = 5) writeonly buffer Filled4 { uvec4 pixel_filled4[]; };
 layout(std430, set = 0, binding = 6) writeonly buffer Range4 { vec4 f_range4[]; };
@@ -62,7 +63,7 @@ layout(std430, set = 0, binding = 7) writeonly buffer InMap4 { vec4 f_inten4[]; 
 layout(std430, set = 0, binding = 8) writeonly buffer Height4 { vec4 f_height4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
-layout(constant_id = 2) const uint kItems = 1u;  // pass 1: pixels of one row per invocation
+layout(constant_id = 2) const uint kItems = 1u;  // pass 2: pixels of one row per invocation
 
 layout(push_constant) uniform Push {
   uint pixels;
@@ -83,9 +84,8 @@ bool AbsPositive(float x) {
 
 // A pixel's maps from its winning point i, or when it has none from the winning points `left`
 // and `right` of its neighbours (kNone: none).
-// (Two square roots in the code, not three, and one load of each value: lavapipe runs both
-// branches of every `if` under a lane mask, so the measured pixel's values are read where the
-// empty pixel's left neighbour's are.)
+// Two square roots in the code, not three, and one load of each value: the measured pixel's
+// values are read where the empty pixel's left neighbour's are (docs/decisions/feature_maps.md).
 struct Maps {
   uint filled;
   float range, in_map, height;
@@ -134,17 +134,16 @@ void MeasureAndFill(uint pix) {
   uint left = i != kNone ? kNone : pixel_point[row + (u == 0u ? w - 1u : u - 1u)];
   uint right = i != kNone ? kNone : pixel_point[row + (u + 1u == w ? 0u : u + 1u)];
   Maps m = Fill(i, left, right);
-  // One write of each output (as in pass 1).
+  // One write of each output (as in pass 2).
   pixel_filled[pix] = m.filled;
   f_range[pix] = m.range;
   f_inten[pix] = m.in_map;
   f_height[pix] = m.height;
-  pixel_pack[pix] = Packed(m);
+  feature_pack[pix] = Packed(m);
 }
 
-// Pass 2, a width that is a multiple of 4: pixels 4e .. 4e + 3 (one row), their winning points
-// one vector load, the maps four vector stores (on a CPU driver each buffer access is a loop over
-// the SIMD lanes, and one vector access costs about a third of four).
+// Pass 1, a width that is a multiple of 4: pixels 4e .. 4e + 3 (one row), their winning points
+// one vector load, the maps four vector stores (docs/decisions/feature_maps.md).
 void MeasureAndFillQuad(uint e) {
   uint w = p.width, first = 4u * e;
   uint v = first / w, u0 = first - v * w, row = v * w;
@@ -157,13 +156,13 @@ void MeasureAndFillQuad(uint e) {
   f_range4[e] = vec4(a.range, b.range, c.range, d.range);
   f_inten4[e] = vec4(a.in_map, b.in_map, c.in_map, d.in_map);
   f_height4[e] = vec4(a.height, b.height, c.height, d.height);
-  pixel_pack[first] = Packed(a);
-  pixel_pack[first + 1u] = Packed(b);
-  pixel_pack[first + 2u] = Packed(c);
-  pixel_pack[first + 3u] = Packed(d);
+  feature_pack[first] = Packed(a);
+  feature_pack[first + 1u] = Packed(b);
+  feature_pack[first + 2u] = Packed(c);
+  feature_pack[first + 3u] = Packed(d);
 }
 
-// A pixel as pass 0 packed it.
+// A pixel as pass 0 or 1 packed it.
 bool IsFilled(uvec4 e) { return e.x != 0u; }
 float RangeOf(uvec4 e) { return uintBitsToFloat(e.y); }
 float IntensityOf(uvec4 e) { return uintBitsToFloat(e.z); }
@@ -189,7 +188,7 @@ Column ColumnAt(uint col, uint v) {
   for (int dv = -1; dv <= 1; ++dv) {
     int vv = int(v) + dv;
     if (vv < 0 || vv >= int(h)) continue;
-    uvec4 e = pixel_pack[uint(vv) * w + col];
+    uvec4 e = feature_pack[uint(vv) * w + col];
     if (dv == 0) c.mid = e;
     if (dv == 1) c.below = e;
     if (IsFilled(e)) c.m.n += int64_t(1);
@@ -203,11 +202,10 @@ Column ColumnAt(uint col, uint v) {
   return c;
 }
 
-// Pass 1 for pixel pix = v * w + u of columns l, c, r (u - 1, u, u + 1, wrapping), the 3x3
+// Pass 2 for pixel pix = v * w + u of columns l, c, r (u - 1, u, u + 1, wrapping), the 3x3
 // moments being the sum of the three columns'.
 // An empty pixel gets 0 everywhere: computed like the others and replaced at the one write of
-// each output (lavapipe runs every branch under a lane mask: an early return with its own writes
-// cost five more stores a pixel).
+// each output, no early return (docs/decisions/feature_maps.md).
 void Features(uint pix, uint v, Column l, Column c, Column r) {
   uint h = p.beams;
   bool filled = IsFilled(c.mid);
@@ -240,7 +238,7 @@ void Features(uint pix, uint v, Column l, Column c, Column r) {
   f_vari[pix] = filled ? vari : 0.0;
 }
 
-// Pass 1 over run `run` (kItems consecutive pixels of one row): the window's column moments slide
+// Pass 2 over run `run` (kItems consecutive pixels of one row): the window's column moments slide
 // along the row, each column's computed once instead of three times.
 void FeaturesRun(uint run) {
   uint w = p.width;
@@ -259,8 +257,8 @@ void FeaturesRun(uint run) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= pc.pixels) return;  // pass 1: i is a run, pass 2 a quad, and pc.pixels their count
+  if (i >= pc.pixels) return;  // pass 2: i is a run, pass 1 a quad, and pc.pixels their count
   if (kPass == 0u) MeasureAndFill(i);
-  else if (kPass == 2u) MeasureAndFillQuad(i);
+  else if (kPass == 1u) MeasureAndFillQuad(i);
   else FeaturesRun(i);
 }

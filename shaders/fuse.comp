@@ -1,9 +1,9 @@
 // Stage 7, fuse (paper III-D.2): the GPU twin of reference_cpu/fuse.cpp, same bytes.
-// Pass 1 (specialization constant kPass), for a width that is a multiple of 4: one invocation per
-// quad of pixels 4q .. 4q + 3 < pixels (push constant), every per-pixel buffer read and written
-// as vec4 / uvec4 (a quad never straddles rows, and its rows above are quads too; on a CPU driver
-// each buffer access is a loop over the SIMD lanes, and one vector access costs about a third of
-// four scalar ones). Pass 0, any width: one invocation per pixel, the same code on component x.
+// One dispatch, of one of two passes (specialization constant kPass): pass 0, any width, one
+// invocation per pixel < pixels (push constant), pass 1's code on component x; or instead, for a
+// width that is a multiple of 4, pass 1, one invocation per quad of pixels 4q .. 4q + 3, every
+// per-pixel buffer read and written as vec4 / uvec4 (a quad never straddles rows, and its rows
+// above are quads too; docs/decisions/fuse.md).
 // In: binding 0 Params (uniform), 1 pixel_class, 2 pixel_point (kNone: no point), 3 coarse (per
 //     point; any buffer of at least one element when there are no points), 4 pixel_filled,
 //     5 f_range, 6 f_height (floats). Out: 7 pixel_fused (kPix*).

@@ -49,8 +49,8 @@ const uint kPointValid = 1u;
 // reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
 // The reference searches by halves; here a guess from the rings' widths (ring_res_near over
 // rings_near rings, then ring_res_far: how reference_cpu/params.cpp lays out ring_bound2) walks to
-// the same index, as Less(r, ring_bound2[k]) only turns from false to true once along k. On
-// lavapipe every loop iteration costs its gather for all lanes: two tests instead of six.
+// the same index, as Less(r, ring_bound2[k]) only turns from false to true once along k: two
+// tests where the search by halves takes six (docs/decisions/grid_reduce.md).
 uint RingOf(float r2, uint rings) {
   float r = sqrt(max(r2, 0.0)), near = p.ring_res_near * float(p.rings_near);
   float guess = r < near ? r / p.ring_res_near : float(p.rings_near) + (r - near) / p.ring_res_far;

@@ -4,26 +4,26 @@
 // unknown pixels that grow are those whose component of the allowed-step graph (nodes: ground
 // and unknown pixels; edges: 8-neighbours, columns wrapping, whose step is allowed) holds a
 // ground pixel. Two union-finds with lowest-index roots (parents only decrease: links and path
-// halving by atomicMin), each correct in any schedule: `reach` over the allowed-step graph, in
+// halving by atomicMin), each correct in any schedule: `grow_reach` over the allowed-step graph, in
 // which every ground pixel starts under the virtual node 0 (node x + 1 is pixel x), so a
 // component holds a seed exactly when its root is 0; `comp` (pixel_comp) over the 8-connected
 // ground pixels after growing, whose roots are the components' lowest pixels.
 // Five passes, one pixel an invocation, chosen by the specialization constant kPass, one
 // pipeline each, recorded in this order with a compute-to-compute barrier between them
 // (host/stages/grow.cpp):
-//   0 init    reach[x + 1] = 0 for ground, x + 1 for unknown, kNone otherwise; reach[0] = 0;
-//             pixel_comp[x] = x; sizes[x] = 0.
+//   0 init    grow_reach[x + 1] = 0 for ground, x + 1 for unknown, kNone otherwise;
+//             grow_reach[0] = 0; pixel_comp[x] = x; grow_sizes[x] = 0.
 //   1 reach   for each node x and each forward neighbour y (right, below-left, below,
 //             below-right) that is a node, not both ground, with an allowed step: union of
-//             x + 1 and y + 1 in reach.
-//   2 join    x grows when it is ground, or unknown with reach root 0; pixel_grown[x] = ground
+//             x + 1 and y + 1 in grow_reach.
+//   2 join    x grows when it is ground, or unknown with grow_reach root 0; pixel_grown[x] = ground
 //             then, non-ground for an unknown pixel that did not grow, pixel_fused[x] otherwise.
 //             A grown x is joined in pixel_comp with each forward neighbour that grows (the
 //             neighbour's test is made here too, so no pass sits between growing and joining).
 //   3 count   for a grown x: root = Find(x) in pixel_comp, pixel_comp[x] = root,
-//             sizes[root] += 1.
+//             grow_sizes[root] += 1.
 //   4 finish  pixel_comp[x] = kNone off ground; pixel_label[x] = pixel_grown[x], ground ->
-//             non-ground where sizes[pixel_comp[x]] < min_component.
+//             non-ground where grow_sizes[pixel_comp[x]] < min_component.
 // Step test from pixel a to pixel b (the reference's StepAllowed, each op rounded: `precise`):
 // di = |ib - ia|, dz = |zb - za|, step = |rb - ra|, + min(ra, rb) * column_arc when the column
 // changes; allowed = grow_dz + grow_grade * step; di <= grow_di && dz <= allowed. Every term is
@@ -46,8 +46,8 @@ layout(std430, set = 0, binding = 4) readonly buffer Range { float f_range[]; };
 layout(std430, set = 0, binding = 5) buffer PixelGrown { uint pixel_grown[]; };
 layout(std430, set = 0, binding = 6) buffer PixelComp { uint pixel_comp[]; };
 layout(std430, set = 0, binding = 7) buffer PixelLabel { uint pixel_label[]; };
-layout(std430, set = 0, binding = 8) buffer Reach { uint reach[]; };  // pixels + 1 nodes
-layout(std430, set = 0, binding = 9) buffer Sizes { uint sizes[]; };
+layout(std430, set = 0, binding = 8) buffer GrowReach { uint grow_reach[]; };  // pixels + 1 nodes
+layout(std430, set = 0, binding = 9) buffer GrowSizes { uint grow_sizes[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;
 
@@ -59,7 +59,7 @@ const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPixNonGround = 0u;
 const uint kPixGround = 1u;
 const uint kPixUnknown = 2u;
-const uint kSeed = 0u;  // reach's virtual node: the root of every component holding a seed
+const uint kSeed = 0u;  // grow_reach's virtual node: the root of every component holding a seed
 
 const uint kInit = 0u, kReach = 1u, kJoin = 2u, kCount = 3u, kFinish = 4u;
 
@@ -96,7 +96,7 @@ const uint kInit = 0u, kReach = 1u, kJoin = 2u, kCount = 3u, kFinish = 4u;
       b = old;                                          \
     }                                                   \
   }
-UNION_FIND(FindReach, UnionReach, reach)
+UNION_FIND(FindReach, UnionReach, grow_reach)
 UNION_FIND(FindComp, UnionComp, pixel_comp)
 
 // The step test between pixels a and b (columns ca, cb), the reference's StepAllowed op for op.
@@ -117,7 +117,7 @@ bool StepAllowed(uint a, uint b, uint ca, uint cb) {
 
 bool Node(uint c) { return c == kPixGround || c == kPixUnknown; }
 
-// Does pixel x grow (join pass: reach is final)?
+// Does pixel x grow (join pass: grow_reach is final)?
 bool Grows(uint x) {
   uint c = pixel_fused[x];
   return c == kPixGround || (c == kPixUnknown && FindReach(x + 1u) == kSeed);
@@ -143,10 +143,10 @@ void main() {
   if (x >= pc.count) return;
   if (pass == kInit) {
     uint c = pixel_fused[x];
-    reach[x + 1u] = c == kPixGround ? kSeed : c == kPixUnknown ? x + 1u : kNone;
-    if (x == 0u) reach[0] = kSeed;
+    grow_reach[x + 1u] = c == kPixGround ? kSeed : c == kPixUnknown ? x + 1u : kNone;
+    if (x == 0u) grow_reach[0] = kSeed;
     pixel_comp[x] = x;
-    sizes[x] = 0u;
+    grow_sizes[x] = 0u;
     return;
   }
   uint v = x / p.width, u = x - v * p.width;
@@ -179,7 +179,7 @@ void main() {
     if (pixel_grown[x] != kPixGround) return;
     uint root = FindComp(x);
     atomicMin(pixel_comp[x], root);
-    atomicAdd(sizes[root], 1u);
+    atomicAdd(grow_sizes[root], 1u);
     return;
   }
   if (pass == kFinish) {
@@ -189,6 +189,6 @@ void main() {
       pixel_label[x] = g;
       return;
     }
-    pixel_label[x] = sizes[pixel_comp[x]] < p.min_component ? kPixNonGround : kPixGround;
+    pixel_label[x] = grow_sizes[pixel_comp[x]] < p.min_component ? kPixNonGround : kPixGround;
   }
 }

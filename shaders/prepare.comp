@@ -37,8 +37,8 @@ const uint kPointNoise = 2u;
 
 bool Finite(float f) { return (floatBitsToUint(f) & 0x7F800000u) != 0x7F800000u; }
 
-// One write of the point's four outputs, after every test (lavapipe runs the code of every
-// branch under a lane mask: a write in each early return cost six writes a point).
+// One write of the point's four outputs, after every test, no early return
+// (docs/decisions/prepare.md).
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.n) return;

@@ -1,5 +1,5 @@
 // Stage 2, project (paper eq. 1): the GPU twin of reference_cpu/project.cpp, same bytes.
-// Three passes of this shader (specialization constant kPass) in the order 0, 2, 1, with barriers
+// Three passes of this shader (specialization constant kPass) in the order 0, 1, 2, with barriers
 // between them, pixel_key and pixel_point cleared to kNone and the exact list's header to
 // (0, 1, 1, 0) before the first (vkCmdFillBuffer, vkCmdUpdateBuffer).
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
@@ -9,28 +9,26 @@
 // Out: 8 point_pixel (per point: v * width + u, kNone when invalid), 9 pixel_key (per pixel:
 //     exact_Key of the smallest r2 among its valid non-noise points, kNone when none), 10
 //     pixel_point (per pixel: the lowest point index among those whose key equals pixel_key).
-// Scratch: 11 the exact list: words 0-2 the indirect dispatch arguments of pass 2, word 3 its
-//     length, then point indices.
+// Scratch: 11 project_exact, the exact list: words 0-2 the indirect dispatch arguments of pass 1,
+//     word 3 its length, then point indices.
 // Pass 0, one invocation per kItems consecutive points (the device's shape, specialization
 // constant 2: host/vk/shape.h): column and row of every valid point with
 // the device's float products (MulFast), point_pixel and atomicMin of the key; a point for which
 // one of them may differ from IEEE's (a subnormal operand, or a product under 2^-125 that the
-// device may flush) goes on the exact list instead. Pass 2, one invocation per listed point: the
-// same with the products by integer arithmetic (MulExact). Pass 1: among valid non-noise points
+// device may flush) goes on the exact list instead. Pass 1, one invocation per listed point: the
+// same with the products by integer arithmetic (MulExact). Pass 2: among valid non-noise points
 // whose key equals the pixel's, atomicMin of the index. Both reductions are integer minima,
-// order-independent. (lavapipe runs every branch under a lane mask: with the exact products in pass
-// 0, their integer code cost every point ~4 ms on a KITTI frame; real scans list none.)
+// order-independent. The exact products run in pass 1 only (docs/decisions/project.md).
 // Column: the reference starts from the previous point's column; here every point starts from
 // GuessColumn's polynomial (exact_Div, exact_FloorToInt) and walks to the unique k with
 // AngleBelow(p, dir_k) and not AngleBelow(p, dir_{k+1}): the same k, as the predicate is a prefix
-// over k. (A guess one column off costs a KITTI frame some 3 ms more in walking on lavapipe than
-// the exact division costs.) Row: as the reference's RowNear, the previous point's row of the
-// chunk when it passes both boundary tests (two tests where the binary search takes six; scans
-// // come ring by ring), else RowOf's binary search: the same row, so the bytes do not depend on
-// kItems (with kItems = 1 no point has a hint).
+// over k. The guess uses the exact division (docs/decisions/project.md). Row: as the reference's
+// RowNear, the previous point's row of the chunk when it passes both boundary tests (two tests
+// where the binary search takes six; scans come ring by ring), else RowOf's binary search: the
+// same row, so the bytes do not depend on kItems (with kItems = 1 no point has a hint).
 // Exactness against the CPU (gradual underflow): the raw cloud is read, so a coordinate may be
 // subnormal, and products such as x * sin(phi) or h * |h| may round into the subnormal range.
-// A device may flush those (lavapipe does), so every float the predicates compare is produced by
+// A device may flush those, so every float the predicates compare is produced by
 // Mul() below (the device's product where it is IEEE's, else the point is recomputed with
 // MulExact: IEEE binary32 product, round to nearest even, gradual underflow, by integer
 // arithmetic) and compared by its bits; `a - b > 0` of the reference is `a > b` for finite floats
@@ -54,7 +52,7 @@ layout(std430, set = 0, binding = 7) readonly buffer BeamOrigin { float beam_ori
 layout(std430, set = 0, binding = 8) buffer PointPixel { uint point_pixel[]; };
 layout(std430, set = 0, binding = 9) buffer PixelKey { uint pixel_key[]; };
 layout(std430, set = 0, binding = 10) buffer PixelPoint { uint pixel_point[]; };
-layout(std430, set = 0, binding = 11) buffer ExactList { uint exact_list[]; };
+layout(std430, set = 0, binding = 11) buffer ProjectExact { uint project_exact[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 layout(constant_id = 2) const uint kItems = 1u;  // points per invocation of pass 0 (the shape)
@@ -66,7 +64,7 @@ layout(push_constant) uniform Push {
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPointValid = 1u;
 const uint kPointNoise = 2u;
-const uint kListLength = 3u, kListStart = 4u;  // exact_list words (0-2: dispatch arguments)
+const uint kListLength = 3u, kListStart = 4u;  // project_exact words (0-2: dispatch arguments)
 
 // --- float predicates by their bits (no device float op touches a subnormal) ---
 
@@ -126,7 +124,7 @@ uint MulFast(uint ua, uint ub) {
   return ur;
 }
 
-uint Mul(uint ua, uint ub) { return kPass == 2u ? MulExact(ua, ub) : MulFast(ua, ub); }
+uint Mul(uint ua, uint ub) { return kPass == 1u ? MulExact(ua, ub) : MulFast(ua, ub); }
 
 // --- eq. 1, column ---
 
@@ -141,7 +139,8 @@ bool AngleBelow(uint px, uint py, uint bx, uint by) {
 }
 
 bool BelowDir(uint x, uint y, int k) {
-  return AngleBelow(x, y, floatBitsToUint(column_dir[2 * k]), floatBitsToUint(column_dir[2 * k + 1]));
+  return AngleBelow(x, y, floatBitsToUint(column_dir[2 * k]),
+                    floatBitsToUint(column_dir[2 * k + 1]));
 }
 
 // The reference's GuessColumn, operation for operation (only a starting point: any guess walks
@@ -220,7 +219,7 @@ uint RowNear(float z, float r2f, uint beams, uint hint) {
   return RowOf(z, r2u, beams);
 }
 
-// Pass 0 (through MulFast) and pass 2 (MulExact) for valid point i: its pixel and key; in pass 0
+// Pass 0 (through MulFast) and pass 1 (MulExact) for valid point i: its pixel and key; in pass 0
 // a point whose products may not be IEEE's goes on the exact list instead. `row` is a hint for
 // RowNear (kNone: none), then the point's row when it has one.
 void PixelOf(uint i, uint f, inout uint row) {
@@ -236,9 +235,9 @@ void PixelOf(uint i, uint f, inout uint row) {
   }
   if (g_inexact) {
     row = kNone;
-    uint slot = atomicAdd(exact_list[kListLength], 1u);
-    exact_list[kListStart + slot] = i;
-    atomicMax(exact_list[0], slot / gl_WorkGroupSize.x + 1u);
+    uint slot = atomicAdd(project_exact[kListLength], 1u);
+    project_exact[kListStart + slot] = i;
+    atomicMax(project_exact[0], slot / gl_WorkGroupSize.x + 1u);
     return;
   }
   row = v;
@@ -251,9 +250,9 @@ void PixelOf(uint i, uint f, inout uint row) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint row = kNone;
-  if (kPass == 2u) {
-    if (i >= exact_list[kListLength]) return;
-    i = exact_list[kListStart + i];
+  if (kPass == 1u) {
+    if (i >= project_exact[kListLength]) return;
+    i = project_exact[kListStart + i];
     PixelOf(i, flags[i], row);
     return;
   }
@@ -266,7 +265,7 @@ void main() {
     }
     return;
   }
-  if (i >= pc.n) return;  // pass 1
+  if (i >= pc.n) return;  // pass 2
   uint f = flags[i];
   if ((f & kPointValid) == 0u || (f & kPointNoise) != 0u) return;
   uint pix = point_pixel[i];

@@ -166,7 +166,7 @@ TEST_F(ShapeTest, WorkgroupsFollowTheShape) {
     ASSERT_TRUE(project && grid && coarse && features);
     for (const Recorded* r : {&*project, &*grid, &*coarse, &*features}) EXPECT_EQ(r->shape, shape);
 
-    // project: pass 0 over chunks, pass 2 indirect (not counted), pass 1 one per point.
+    // project: pass 0 over chunks, pass 1 indirect (not counted), pass 2 one per point.
     const uint64_t project_0 = Groups(
         (n + items(vk::ProjectStage::kCpuItems) - 1) / items(vk::ProjectStage::kCpuItems), local);
     EXPECT_EQ(project->dispatches, 3u);
@@ -183,23 +183,23 @@ TEST_F(ShapeTest, WorkgroupsFollowTheShape) {
                                        local);
     EXPECT_EQ(coarse->dispatches, 6u);
     EXPECT_EQ(coarse->workgroups, 3 * Groups(cells, local) + 3 * coarse_odd);
-    // feature_maps: quads, then runs of items(kCpuItems) pixels of a row.
-    const uint64_t features_1 = Groups((width + items(vk::FeatureMapsStage::kCpuItems) - 1) /
+    // feature_maps: quads (pass 1), then runs of items(kCpuItems) pixels of a row (pass 2).
+    const uint64_t features_2 = Groups((width + items(vk::FeatureMapsStage::kCpuItems) - 1) /
                                            items(vk::FeatureMapsStage::kCpuItems) * beams,
                                        local);
     EXPECT_EQ(features->dispatches, 2u);
-    EXPECT_EQ(features->workgroups, Groups(uint64_t(width) * beams / 4, local) + features_1);
+    EXPECT_EQ(features->workgroups, Groups(uint64_t(width) * beams / 4, local) + features_2);
 
     std::printf(
-        "[shape %s] workgroups, n = %u, %u cells, %u x %u: project pass 0 %llu, pass 1 %llu; "
+        "[shape %s] workgroups, n = %u, %u cells, %u x %u: project pass 0 %llu, pass 2 %llu; "
         "grid_reduce pass 0 %llu, pass 1 %llu; coarse_segment passes 0/2/4 %llu each, 1/3/5 %llu "
-        "each; feature_maps pass 2 %llu, pass 1 %llu; the four stages %llu\n",
+        "each; feature_maps pass 1 %llu, pass 2 %llu; the four stages %llu\n",
         vk::ShapeName(shape), n, cells, beams, width, (unsigned long long)project_0,
         (unsigned long long)Groups(n, local), (unsigned long long)Groups(cells, local),
         (unsigned long long)grid_1, (unsigned long long)Groups(cells, local),
         (unsigned long long)coarse_odd,
         (unsigned long long)Groups(uint64_t(width) * beams / 4, local),
-        (unsigned long long)features_1,
+        (unsigned long long)features_2,
         (unsigned long long)(project->workgroups + grid->workgroups + coarse->workgroups +
                              features->workgroups));
   }

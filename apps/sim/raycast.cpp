@@ -2,7 +2,7 @@
 // with analytic intersections (planes, boxes, cylinders, ellipsoids), adds range noise, surface
 // roughness and reflection noise, and writes the points beam by beam with their classes.
 // Primitives are culled per column by the azimuth interval of their footprint and per ray by a
-// bounding sphere, so one HDL-64E scan costs a few tens of milliseconds.
+// bounding sphere (docs/decisions/apps.md).
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -70,9 +70,8 @@ void CheckSize(const char* buffer, size_t have, size_t want) {
   }
 }
 
-// A BGR picture as PNG through libpng's simplified API. (OpenCV's imgcodecs would do it in one
-// call, but loading it pulls GDAL and some hundred other libraries into every start of the
-// program: 90 ms of the 100 it took to print --help.)
+// A BGR picture as PNG through libpng's simplified API, not OpenCV's imgcodecs, which loads some
+// hundred libraries at every start of the program (docs/decisions/apps.md).
 void Write(const std::string& path, const cv::Mat& image, std::vector<std::string>* written) {
   if (image.type() != CV_8UC3) throw std::logic_error("WriteImages: a picture that is not 8-bit BGR");
   const cv::Mat pixels = image.isContinuous() ? image : image.clone();

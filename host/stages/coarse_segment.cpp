@@ -39,7 +39,7 @@ Result<CoarseSegmentStage> CoarseSegmentStage::Create(const Device& device,
       Kernel kernel,
       Kernel::Create(device, desc,
                      {b.params, b.xyzi, b.zt, b.point_cell, b.cell_zmin, b.cell_zmax, b.cell_count,
-                      b.ring_inner, b.cell_seed_mode, b.cell_plane, b.coarse, b.scratch}));
+                      b.ring_inner, b.cell_seed_mode, b.cell_plane, b.coarse, b.coarse_scratch}));
   return CoarseSegmentStage(std::move(kernel));
 }
 
@@ -84,7 +84,7 @@ Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params
   LPIR_VK_ASSIGN_OR_RETURN(Buffer cell_seed_mode, Buffer::Create(device, per_cell, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer cell_plane, Buffer::Create(device, 8 * per_cell, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer coarse, Buffer::Create(device, per_point, kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer scratch,
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer coarse_scratch,
                            Buffer::Create(device, CoarseSegmentStage::ScratchBytes(cells), kind));
 
   LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
@@ -111,7 +111,7 @@ Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params
   bindings.cell_seed_mode = &cell_seed_mode;
   bindings.cell_plane = &cell_plane;
   bindings.coarse = &coarse;
-  bindings.scratch = &scratch;
+  bindings.coarse_scratch = &coarse_scratch;
   LPIR_VK_ASSIGN_OR_RETURN(CoarseSegmentStage stage, CoarseSegmentStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
       RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n), cells); }, gpu_ns));

@@ -31,7 +31,7 @@ struct CoarseSegmentBuffers {
   const Buffer* cell_seed_mode = nullptr;  // out: uint32 per cell, 0 / 1 / 2
   const Buffer* cell_plane = nullptr;      // out: int32, 8 per cell
   const Buffer* coarse = nullptr;          // out: uint32 per point, 1 ground
-  const Buffer* scratch = nullptr;         // ScratchBytes(cells): per-cell sums, the stage's own
+  const Buffer* coarse_scratch = nullptr;  // ScratchBytes(cells): per-cell sums, the stage's own
 };
 
 class CoarseSegmentStage {

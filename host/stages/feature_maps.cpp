@@ -41,18 +41,18 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
       Kernel::Create(device, desc,
                      {b.params, b.pixel_point, b.r2, b.zt, b.inten, b.pixel_filled, b.f_range,
                       b.f_inten, b.f_height, b.f_slope, b.f_edge_l, b.f_edge_r, b.f_varz,
-                      b.f_vari, b.pixel_pack}));
+                      b.f_vari, b.feature_pack}));
   return FeatureMapsStage(std::move(kernel));
 }
 
 Status FeatureMapsStage::Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const {
   const uint32_t pixels = width * beams, runs = kernel_.Chunks(width) * beams;
-  // Pass 2 measures four pixels an invocation where no quad straddles rows, pass 0 one.
+  // Pass 1 measures four pixels an invocation where no quad straddles rows, pass 0 one.
   const bool quads = width % 4 == 0;
   const Push measure{quads ? pixels / 4 : pixels}, features{runs};
-  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, measure.pixels, &measure, quads ? 2 : 0));
+  LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, measure.pixels, &measure, quads ? 1 : 0));
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, runs, &features, 1);
+  return kernel_.Record(cmd, runs, &features, 2);
 }
 
 Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double* gpu_ns) {
@@ -79,7 +79,7 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
   std::vector<float>* maps_out[8] = {&f.f_range,  &f.f_inten,  &f.f_height, &f.f_slope,
                                      &f.f_edge_l, &f.f_edge_r, &f.f_varz,   &f.f_vari};
   LPIR_VK_ASSIGN_OR_RETURN(Buffer filled, Buffer::Create(device, per_pixel, kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer pack,
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer feature_pack,
                            Buffer::Create(device, FeatureMapsStage::PackBytes(pixels), kind));
   std::vector<Buffer> maps;
   for (int k = 0; k < 8; ++k) {
@@ -111,7 +111,7 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
   bindings.f_edge_r = &maps[5];
   bindings.f_varz = &maps[6];
   bindings.f_vari = &maps[7];
-  bindings.pixel_pack = &pack;
+  bindings.feature_pack = &feature_pack;
   LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage stage, FeatureMapsStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
       RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));

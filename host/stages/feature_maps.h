@@ -33,25 +33,26 @@ struct FeatureMapsBuffers {
   const Buffer* f_edge_r = nullptr;
   const Buffer* f_varz = nullptr;
   const Buffer* f_vari = nullptr;
-  const Buffer* pixel_pack = nullptr;  // scratch: PackBytes(pixels), pass 0 -> pass 1
+  const Buffer* feature_pack = nullptr;  // scratch: PackBytes(pixels), pass 0 or 1 -> pass 2
 };
 
 class FeatureMapsStage {
  public:
   static constexpr uint32_t kLocalSize = 64;
-  // Pixels of a row per invocation of pass 1 in the CPU shape (host/vk/shape.h; the GPU's is 1).
+  // Pixels of a row per invocation of pass 2 in the CPU shape (host/vk/shape.h; the GPU's is 1).
   static constexpr uint32_t kCpuItems = 32;
 
   // The scratch buffer's size: a uvec4 per pixel (filled, and the bits of range, intensity and
-  // height), so that pass 1 reads a pixel with one load instead of four.
+  // height), so that pass 2 reads a pixel with one load (docs/decisions/feature_maps.md).
   static VkDeviceSize PackBytes(uint64_t pixels) { return 16 * (pixels == 0 ? 1 : pixels); }
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
 
-  // Records the measure-and-fill pass over the width x beams image (one invocation per four
-  // pixels when the width is a multiple of 4, else per pixel), a compute -> compute barrier and
-  // the features pass (one invocation per run of the shape's items, kCpuItems or 1, pixels of a
-  // row), with no barrier before or after (the caller orders it with the stages around).
+  // Records the measure-and-fill pass over the width x beams image (pass 1, one invocation per
+  // four pixels, when the width is a multiple of 4, else pass 0, one per pixel), a compute ->
+  // compute barrier and the features pass 2 (one invocation per run of the shape's items,
+  // kCpuItems or 1, pixels of a row), with no barrier before or after (the caller orders it with
+  // the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.

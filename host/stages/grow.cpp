@@ -33,7 +33,7 @@ Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b) 
       Kernel kernel,
       Kernel::Create(device, desc,
                      {b.params, b.pixel_fused, b.f_inten, b.f_height, b.f_range, b.pixel_grown,
-                      b.pixel_comp, b.pixel_label, b.reach, b.sizes}));
+                      b.pixel_comp, b.pixel_label, b.grow_reach, b.grow_sizes}));
   return GrowStage(std::move(kernel));
 }
 
@@ -73,9 +73,9 @@ Status RunGrow(const Context& context, const Params& p, Frame& f, double* gpu_ns
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_grown, Buffer::Create(device, per_pixel, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_comp, Buffer::Create(device, per_pixel, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_label, Buffer::Create(device, per_pixel, kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer reach,
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer grow_reach,
                            Buffer::Create(device, GrowStage::ReachBytes(pixels), kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer sizes, Buffer::Create(device, per_pixel, kind));
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer grow_sizes, Buffer::Create(device, per_pixel, kind));
 
   LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
   LPIR_VK_RETURN_IF_ERROR(transfer.Upload(params_buffer, &p, sizeof(Params)));
@@ -88,7 +88,7 @@ Status RunGrow(const Context& context, const Params& p, Frame& f, double* gpu_ns
   }
 
   const GrowBuffers bindings{&params_buffer, &pixel_fused, &f_inten,     &f_height, &f_range,
-                             &pixel_grown,   &pixel_comp,  &pixel_label, &reach,    &sizes};
+                             &pixel_grown,   &pixel_comp,  &pixel_label, &grow_reach, &grow_sizes};
   LPIR_VK_ASSIGN_OR_RETURN(GrowStage stage, GrowStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(RunOnce(
       device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));

@@ -26,8 +26,8 @@ struct GrowBuffers {
   const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel
   const Buffer* pixel_comp = nullptr;   // out: uint32 component label per pixel, kNone off ground
   const Buffer* pixel_label = nullptr;  // out: uint32 kPix* per pixel
-  const Buffer* reach = nullptr;        // uint32 per pixel + 1 (ReachBytes): growing's union-find
-  const Buffer* sizes = nullptr;        // uint32 per pixel: component sizes
+  const Buffer* grow_reach = nullptr;   // uint32 per pixel + 1 (ReachBytes): growing's union-find
+  const Buffer* grow_sizes = nullptr;   // uint32 per pixel: component sizes
 };
 
 class GrowStage {
@@ -35,7 +35,7 @@ class GrowStage {
   static constexpr uint32_t kLocalSize = 64;
   static constexpr uint32_t kPasses = 5;  // dispatches a frame
 
-  // The reach buffer's size for an image of `pixels` pixels.
+  // The grow_reach buffer's size for an image of `pixels` pixels.
   static VkDeviceSize ReachBytes(uint64_t pixels) { return 4 * (VkDeviceSize(pixels) + 1); }
 
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers);

@@ -34,22 +34,22 @@ Result<ProjectStage> ProjectStage::Create(const Device& device, const ProjectBuf
       Kernel kernel,
       Kernel::Create(device, desc,
                      {b.params, b.points, b.ring, b.flags, b.r2, b.column_dir, b.beam_bound,
-                      b.beam_origin, b.point_pixel, b.pixel_key, b.pixel_point, b.exact_list}));
-  return ProjectStage(std::move(kernel), b.pixel_key, b.pixel_point, b.exact_list);
+                      b.beam_origin, b.point_pixel, b.pixel_key, b.pixel_point, b.project_exact}));
+  return ProjectStage(std::move(kernel), b.pixel_key, b.pixel_point, b.project_exact);
 }
 
 Status ProjectStage::Record(CommandBuffer& cmd, uint32_t n) const {
   cmd.FillBuffer(*pixel_key_, 0xFFFFFFFFu);  // kNone
   cmd.FillBuffer(*pixel_point_, 0xFFFFFFFFu);
-  const uint32_t header[4] = {0, 1, 1, 0};  // pass 2's dispatch arguments, the list's length
-  cmd.UpdateBuffer(*exact_list_, header, sizeof(header));
+  const uint32_t header[4] = {0, 1, 1, 0};  // pass 1's dispatch arguments, the list's length
+  cmd.UpdateBuffer(*project_exact_, header, sizeof(header));
   cmd.TransferToCompute();
   const Push push{n};
   LPIR_VK_RETURN_IF_ERROR(kernel_.Record(cmd, kernel_.Chunks(n), &push, 0));
   cmd.ComputeToIndirect();
-  kernel_.RecordIndirect(cmd, *exact_list_, 0, &push, 2);
+  kernel_.RecordIndirect(cmd, *project_exact_, 0, &push, 1);
   cmd.ComputeToCompute();
-  return kernel_.Record(cmd, n, &push, 1);
+  return kernel_.Record(cmd, n, &push, 2);
 }
 
 Status RunProject(const Context& context, const Cloud& cloud, const Params& p, const Tables& t,
@@ -89,7 +89,7 @@ Status RunProject(const Context& context, const Cloud& cloud, const Params& p, c
   LPIR_VK_ASSIGN_OR_RETURN(Buffer point_pixel, Buffer::Create(device, per_point, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_key, Buffer::Create(device, per_pixel, kind));
   LPIR_VK_ASSIGN_OR_RETURN(Buffer pixel_point, Buffer::Create(device, per_pixel, kind));
-  LPIR_VK_ASSIGN_OR_RETURN(Buffer exact_list,
+  LPIR_VK_ASSIGN_OR_RETURN(Buffer project_exact,
                            Buffer::Create(device, ProjectStage::ExactListBytes(n), kind));
 
   LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
@@ -114,7 +114,7 @@ Status RunProject(const Context& context, const Cloud& cloud, const Params& p, c
   bindings.point_pixel = &point_pixel;
   bindings.pixel_key = &pixel_key;
   bindings.pixel_point = &pixel_point;
-  bindings.exact_list = &exact_list;
+  bindings.project_exact = &project_exact;
   LPIR_VK_ASSIGN_OR_RETURN(ProjectStage stage, ProjectStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(
       RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));

@@ -29,7 +29,7 @@ struct ProjectBuffers {
   const Buffer* point_pixel = nullptr;  // out: uint32 per point
   const Buffer* pixel_key = nullptr;    // out: uint32 per pixel (exactly width * beams of them:
   const Buffer* pixel_point = nullptr;  // out: uint32 per pixel  Record fills the whole buffers)
-  const Buffer* exact_list = nullptr;   // scratch: ProjectStage::ExactListBytes(n)
+  const Buffer* project_exact = nullptr;  // scratch: ProjectStage::ExactListBytes(n)
 };
 
 class ProjectStage {
@@ -44,10 +44,10 @@ class ProjectStage {
   static Result<ProjectStage> Create(const Device& device, const ProjectBuffers& buffers);
 
   // Records the clear of pixel_key and pixel_point to kNone and of the exact list's header, the
-  // pixel pass, its exact pass over the listed points (indirect), and the winner pass over n
-  // points, with barriers between them. No barrier before the clear or after the last dispatch: the caller
-  // orders them with the stages around (stage 1's writes must be visible to compute and the
-  // clear must not overtake earlier reads of the pixel buffers).
+  // pixel pass 0, the exact pass 1 over the listed points (indirect), and the winner pass 2 over
+  // n points, with barriers between them. No barrier before the clear or after the last
+  // dispatch: the caller orders them with the stages around (stage 1's writes must be visible
+  // to compute and the clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
@@ -55,16 +55,16 @@ class ProjectStage {
 
  private:
   ProjectStage(Kernel kernel, const Buffer* pixel_key, const Buffer* pixel_point,
-               const Buffer* exact_list)
+               const Buffer* project_exact)
       : kernel_(std::move(kernel)),
         pixel_key_(pixel_key),
         pixel_point_(pixel_point),
-        exact_list_(exact_list) {}
+        project_exact_(project_exact) {}
 
   Kernel kernel_;
   const Buffer* pixel_key_;
   const Buffer* pixel_point_;
-  const Buffer* exact_list_;
+  const Buffer* project_exact_;
 };
 
 // Stage 2 on the GPU, the twin of lpir::Project(cloud, p, t, f): reads f.n, f.flags and f.r2

@@ -88,8 +88,7 @@ float exact_Div(float a, float b) {
 }
 
 // floor(sqrt(v)), exact for every v. The same value as exact.h's bit-by-bit loop, computed
-// another way (32 iterations of 64-bit work cost more than the rest of a pass on a CPU driver,
-// and a 64-bit division is one scalar instruction per lane there): the device's float square root
+// another way (docs/decisions/exact.md): the device's float square root
 // as a guess g (error under 2^12 for any square root within a few ulp, as Vulkan requires), one
 // Newton step g + (v - g^2) / 2g with the exact residual and a float quotient (within 2 of the
 // root), then integer checks that step to the exact value.
