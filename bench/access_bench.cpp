@@ -1,7 +1,7 @@
 // Buffer-access patterns on the Vulkan device (lavapipe unless LPIR_VK_DEVICE names another):
 // shaders/access_bench.comp's four ways of writing b = a + 1 over 2^20 uints, timed by GPU
 // timestamps, median of 20 dispatches, reported as nanoseconds per element. They explain the
-// shapes of the stage shaders (README, Speed): on Mesa 22.3's lavapipe each buffer access of an
+// shapes of the stage shaders (docs/speed.md): on Mesa 22.3's lavapipe each buffer access of an
 // invocation is a loop over the SIMD lanes, so a uvec4 access for four elements is much cheaper
 // than four scalar ones, and code under an `if` costs even when no lane takes it.
 // Each benchmark checks b before it times anything.

@@ -97,7 +97,7 @@ class Segmenter {
   Backend backend() const { return backend_; }
   const std::string& backend_note() const { return backend_note_; }
   // The Vulkan device is a CPU driver (lavapipe; only kVulkan or a named device takes one: the
-  // CPU reference is faster there, README Speed). False on the CPU backend.
+  // CPU reference is faster there, docs/speed.md). False on the CPU backend.
   bool on_cpu_driver() const;
   // Device memory allocated for the frame buffers, in bytes: constant for the segmenter's life
   // (everything is allocated at construction); 0 on the CPU.

@@ -3,7 +3,7 @@
 // selector is a case-insensitive substring of the device name; an empty one takes the first
 // usable device, discrete GPUs first, then integrated, virtual, CPU (lavapipe), other; with
 // gpu_only, the same without CPU drivers (Backend::kAuto: the CPU reference beats lavapipe on the
-// same cores, README Speed). Usable: Vulkan 1.2, shaderInt64 (the exact helpers of
+// same cores, docs/speed.md). Usable: Vulkan 1.2, shaderInt64 (the exact helpers of
 // shaders/common/exact.glsl), a compute queue.
 #pragma once
 #include <vulkan/vulkan.h>
