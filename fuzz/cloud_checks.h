@@ -50,8 +50,7 @@ inline void CheckRoundTrip(
 // Any bytes either read with `read` as a well-formed cloud that survives the round trip through
 // `write` (binary and ASCII), or throw IoError; anything else is a finding.
 inline int FuzzCloudFormat(
-    const uint8_t* data, size_t size,
-    const std::function<Cloud(const std::string&)>& read,
+    const uint8_t* data, size_t size, const std::function<Cloud(const std::string&)>& read,
     const std::function<void(const std::string&, const Cloud&, const Labels*, bool)>& write) {
   static FuzzFile in, out;
   in.Write(data, size);

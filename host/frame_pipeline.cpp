@@ -45,8 +45,7 @@ DeviceLimits DeviceLimits::Of(const Device& device) {
   // The heaps of the memory types Buffer::Create takes (every type allowed: a buffer's own
   // memoryTypeBits are only known once it exists).
   const VkPhysicalDeviceMemoryProperties& memory = device.memory_properties();
-  const Result<uint32_t> local =
-      device.FindMemoryType(~0u, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+  const Result<uint32_t> local = device.FindMemoryType(~0u, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
   const Result<uint32_t> host = device.FindMemoryType(
       ~0u, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
       VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
@@ -64,15 +63,15 @@ struct FramePipeline::TableBuffers {
 
 struct FramePipeline::Buffers {
   Buffer params, points, ring;
-  Buffer flags, zt, r2, inten;                                           // 1 prepare
-  Buffer point_pixel, pixel_key, pixel_point, project_exact;             // 2 project
-  Buffer point_cell, cell_zmin, cell_zmax, cell_count;                   // 3 grid reduce
-  Buffer cell_seed_mode, cell_plane, coarse, coarse_scratch;             // 4 coarse segment
-  Buffer pixel_filled, f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz,
-      f_vari, feature_pack;                                              // 5 feature maps
-  Buffer pixel_class, pixel_fused;                                       // 6 classify, 7 fuse
+  Buffer flags, zt, r2, inten;                                // 1 prepare
+  Buffer point_pixel, pixel_key, pixel_point, project_exact;  // 2 project
+  Buffer point_cell, cell_zmin, cell_zmax, cell_count;        // 3 grid reduce
+  Buffer cell_seed_mode, cell_plane, coarse, coarse_scratch;  // 4 coarse segment
+  Buffer pixel_filled, f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz, f_vari,
+      feature_pack;                                                     // 5 feature maps
+  Buffer pixel_class, pixel_fused;                                      // 6 classify, 7 fuse
   Buffer pixel_grown, pixel_comp, pixel_label, grow_reach, grow_sizes;  // 8 grow
-  Buffer label_why;                                                      // 9 back-project
+  Buffer label_why;                                                     // 9 back-project
 };
 
 struct FramePipeline::Stages {
@@ -116,31 +115,30 @@ FramePipeline& FramePipeline::operator=(FramePipeline&& other) noexcept {
 
 // The nine stages bound to one slot's buffers and the shared tables.
 Result<std::unique_ptr<FramePipeline::Stages>> FramePipeline::MakeStages(const Device& device,
-                                                                          const TableBuffers& t,
-                                                                          Buffers& b) {
+                                                                         const TableBuffers& t,
+                                                                         Buffers& b) {
   PrepareBuffers prepare{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten};
   ProjectBuffers project{&b.params,      &b.points,     &b.ring,        &b.flags,
                          &b.r2,          &t.column_dir, &t.beam_bound,  &t.beam_origin,
                          &b.point_pixel, &b.pixel_key,  &b.pixel_point, &b.project_exact};
-  GridReduceBuffers grid{&b.params,      &b.flags,      &b.r2,        &b.zt,       &b.point_pixel,
+  GridReduceBuffers grid{&b.params,      &b.flags,      &b.r2,        &b.zt,        &b.point_pixel,
                          &t.ring_bound2, &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count};
-  CoarseSegmentBuffers coarse{&b.params,     &b.points,         &b.zt,         &b.point_cell,
-                              &b.cell_zmin,  &b.cell_zmax,      &b.cell_count, &t.ring_inner,
+  CoarseSegmentBuffers coarse{&b.params,         &b.points,     &b.zt,         &b.point_cell,
+                              &b.cell_zmin,      &b.cell_zmax,  &b.cell_count, &t.ring_inner,
                               &b.cell_seed_mode, &b.cell_plane, &b.coarse,     &b.coarse_scratch};
-  FeatureMapsBuffers features{&b.params,   &b.pixel_point, &b.r2,       &b.zt,     &b.inten,
-                              &b.pixel_filled, &b.f_range, &b.f_inten,  &b.f_height,
-                              &b.f_slope,  &b.f_edge_l,    &b.f_edge_r, &b.f_varz, &b.f_vari,
-                              &b.feature_pack};
-  ClassifyPixelsBuffers classify{&b.params,   &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
-                                 &b.f_slope,  &b.f_varz,       &b.f_vari,   &b.pixel_class};
+  FeatureMapsBuffers features{&b.params,   &b.pixel_point,  &b.r2,          &b.zt,
+                              &b.inten,    &b.pixel_filled, &b.f_range,     &b.f_inten,
+                              &b.f_height, &b.f_slope,      &b.f_edge_l,    &b.f_edge_r,
+                              &b.f_varz,   &b.f_vari,       &b.feature_pack};
+  ClassifyPixelsBuffers classify{&b.params,  &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
+                                 &b.f_slope, &b.f_varz,       &b.f_vari,   &b.pixel_class};
   FuseBuffers fuse{&b.params,       &b.pixel_class, &b.pixel_point, &b.coarse,
                    &b.pixel_filled, &b.f_range,     &b.f_height,    &b.pixel_fused};
-  GrowBuffers grow{&b.params,      &b.pixel_fused, &b.f_inten,      &b.f_height,
-                   &b.f_range,     &b.pixel_grown, &b.pixel_comp,   &b.pixel_label,
-                   &b.grow_reach,  &b.grow_sizes};
-  BackProjectBuffers back{&b.params, &b.flags,  &b.point_pixel, &b.pixel_point,
-                          &b.pixel_label, &b.f_range, &b.f_height, &b.r2,
-                          &b.zt,     &b.coarse, &b.label_why};
+  GrowBuffers grow{&b.params,      &b.pixel_fused, &b.f_inten,     &b.f_height,   &b.f_range,
+                   &b.pixel_grown, &b.pixel_comp,  &b.pixel_label, &b.grow_reach, &b.grow_sizes};
+  BackProjectBuffers back{&b.params,      &b.flags,   &b.point_pixel, &b.pixel_point,
+                          &b.pixel_label, &b.f_range, &b.f_height,    &b.r2,
+                          &b.zt,          &b.coarse,  &b.label_why};
   LPIR_VK_ASSIGN_OR_RETURN(PrepareStage s1, PrepareStage::Create(device, prepare));
   LPIR_VK_ASSIGN_OR_RETURN(ProjectStage s2, ProjectStage::Create(device, project));
   LPIR_VK_ASSIGN_OR_RETURN(GridReduceStage s3, GridReduceStage::Create(device, grid));
@@ -200,23 +198,43 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
   };
   // Every frame buffer of a slot and its size.
   auto sizes_of = [&](Buffers& x) {
-    return std::vector<Sized>{
-      {&x.params, sizeof(Params)},  {&x.points, 4 * point},      {&x.ring, point},
-      {&x.flags, point},            {&x.zt, point},              {&x.r2, point},
-      {&x.inten, point},            {&x.point_pixel, point},     {&x.pixel_key, pixel},
-      {&x.pixel_point, pixel},      {&x.point_cell, point},      {&x.cell_zmin, cell},
-      {&x.project_exact, ProjectStage::ExactListBytes(max_points)},
-      {&x.cell_zmax, cell},         {&x.cell_count, cell},       {&x.cell_seed_mode, cell},
-      {&x.cell_plane, 8 * cell},    {&x.coarse, point},
-      {&x.coarse_scratch, CoarseSegmentStage::ScratchBytes(cells)},
-      {&x.pixel_filled, pixel},     {&x.f_range, pixel},         {&x.f_inten, pixel},
-      {&x.f_height, pixel},         {&x.f_slope, pixel},         {&x.f_edge_l, pixel},
-      {&x.f_edge_r, pixel},         {&x.f_varz, pixel},          {&x.f_vari, pixel},
-      {&x.feature_pack, FeatureMapsStage::PackBytes(pixels)},
-      {&x.pixel_class, pixel},      {&x.pixel_fused, pixel},     {&x.pixel_grown, pixel},
-      {&x.pixel_comp, pixel},       {&x.pixel_label, pixel},
-      {&x.grow_reach, GrowStage::ReachBytes(pixels)},           {&x.grow_sizes, pixel},
-      {&x.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
+    return std::vector<Sized>{{&x.params, sizeof(Params)},
+                              {&x.points, 4 * point},
+                              {&x.ring, point},
+                              {&x.flags, point},
+                              {&x.zt, point},
+                              {&x.r2, point},
+                              {&x.inten, point},
+                              {&x.point_pixel, point},
+                              {&x.pixel_key, pixel},
+                              {&x.pixel_point, pixel},
+                              {&x.point_cell, point},
+                              {&x.cell_zmin, cell},
+                              {&x.project_exact, ProjectStage::ExactListBytes(max_points)},
+                              {&x.cell_zmax, cell},
+                              {&x.cell_count, cell},
+                              {&x.cell_seed_mode, cell},
+                              {&x.cell_plane, 8 * cell},
+                              {&x.coarse, point},
+                              {&x.coarse_scratch, CoarseSegmentStage::ScratchBytes(cells)},
+                              {&x.pixel_filled, pixel},
+                              {&x.f_range, pixel},
+                              {&x.f_inten, pixel},
+                              {&x.f_height, pixel},
+                              {&x.f_slope, pixel},
+                              {&x.f_edge_l, pixel},
+                              {&x.f_edge_r, pixel},
+                              {&x.f_varz, pixel},
+                              {&x.f_vari, pixel},
+                              {&x.feature_pack, FeatureMapsStage::PackBytes(pixels)},
+                              {&x.pixel_class, pixel},
+                              {&x.pixel_fused, pixel},
+                              {&x.pixel_grown, pixel},
+                              {&x.pixel_comp, pixel},
+                              {&x.pixel_label, pixel},
+                              {&x.grow_reach, GrowStage::ReachBytes(pixels)},
+                              {&x.grow_sizes, pixel},
+                              {&x.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
   };
   const std::vector<Sized> sizes = sizes_of(b);
   {
@@ -231,19 +249,23 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
       const Buffer* buffer;
       const char* name;
       const std::string* need;
-    } names[] = {
-        {&b.points, "points", &points_need},      {&b.ring, "ring", &points_need},
-        {&b.flags, "flags", &points_need},        {&b.zt, "zt", &points_need},
-        {&b.r2, "r2", &points_need},              {&b.inten, "inten", &points_need},
-        {&b.point_pixel, "point_pixel", &points_need},
-        {&b.project_exact, "project_exact", &points_need},
-        {&b.point_cell, "point_cell", &points_need},
-        {&b.coarse, "coarse", &points_need},      {&b.label_why, "label_why", &points_need},
-        {&b.pixel_key, "pixel_key", &pixels_need}, {&b.pixel_point, "pixel_point", &pixels_need},
-        {&b.feature_pack, "feature_pack", &pixels_need},
-        {&b.grow_reach, "grow_reach", &pixels_need},
-        {&b.cell_plane, "cell_plane", &cells_need},
-        {&b.coarse_scratch, "coarse_scratch", &cells_need}};
+    } names[] = {{&b.points, "points", &points_need},
+                 {&b.ring, "ring", &points_need},
+                 {&b.flags, "flags", &points_need},
+                 {&b.zt, "zt", &points_need},
+                 {&b.r2, "r2", &points_need},
+                 {&b.inten, "inten", &points_need},
+                 {&b.point_pixel, "point_pixel", &points_need},
+                 {&b.project_exact, "project_exact", &points_need},
+                 {&b.point_cell, "point_cell", &points_need},
+                 {&b.coarse, "coarse", &points_need},
+                 {&b.label_why, "label_why", &points_need},
+                 {&b.pixel_key, "pixel_key", &pixels_need},
+                 {&b.pixel_point, "pixel_point", &pixels_need},
+                 {&b.feature_pack, "feature_pack", &pixels_need},
+                 {&b.grow_reach, "grow_reach", &pixels_need},
+                 {&b.cell_plane, "cell_plane", &cells_need},
+                 {&b.coarse_scratch, "coarse_scratch", &cells_need}};
     const std::string other_need = points_need + " and " + pixels_need;
     uint64_t total = 0;
     for (const auto& s : sizes) {
@@ -305,8 +327,7 @@ Result<FramePipeline> FramePipeline::Create(const Context& context, const Params
                    {&t.ring_inner, &tables.ring_inner}};
     for (const auto& u : uploads)
       if (!u.values->empty())
-        LPIR_VK_RETURN_IF_ERROR(
-            transfer.Upload(*u.buffer, u.values->data(), 4 * u.values->size()));
+        LPIR_VK_RETURN_IF_ERROR(transfer.Upload(*u.buffer, u.values->data(), 4 * u.values->size()));
   }
 
   const bool timed = device.timestamp_valid_bits() != 0;
@@ -353,8 +374,7 @@ Status FramePipeline::Submit(uint32_t slot, const Cloud& cloud) {
 }
 
 Status FramePipeline::Stage(uint32_t index, const Cloud& cloud) {
-  if (index >= slots_.size() || slots_[index].busy || slots_[index].staged ||
-      slots_[index].frames)
+  if (index >= slots_.size() || slots_[index].busy || slots_[index].staged || slots_[index].frames)
     return PipelineError("slot " + std::to_string(index) + " is not free");
   const uint64_t n = cloud.size();
   if (n > max_points_)
@@ -507,8 +527,7 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
     Status status;
     auto read = [&](const Buffer& src, auto& dst, size_t count) {
       dst.resize(count);
-      if (status.ok() && count)
-        status = transfer.Download(src, dst.data(), count * sizeof(dst[0]));
+      if (status.ok() && count) status = transfer.Download(src, dst.data(), count * sizeof(dst[0]));
     };
     const size_t px = pixels_, cells = cells_;
     read(b.flags, out.flags, n);

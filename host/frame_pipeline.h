@@ -85,8 +85,8 @@ class FramePipeline {
 
  private:
   struct TableBuffers;  // the tables' device buffers, shared by the slots
-  struct Buffers;  // one slot's frame buffers, at stable addresses (the stages keep pointers)
-  struct Stages;   // the nine stages bound to one slot's buffers
+  struct Buffers;       // one slot's frame buffers, at stable addresses (the stages keep pointers)
+  struct Stages;        // the nine stages bound to one slot's buffers
   struct Slot {
     CommandBuffer cmd;
     Fence fence;

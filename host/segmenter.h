@@ -39,9 +39,9 @@ Backend ParseBackend(const std::string& name);
 
 struct SegmenterOptions {
   Backend backend = Backend::kAuto;
-  std::string device;  // Vulkan device: "" the first usable (discrete first; kAuto: no CPU
-                       // driver), digits an index, else a part of its name (`lpir-gseg devices`
-                       // lists them; a named device may be a CPU driver)
+  std::string device;     // Vulkan device: "" the first usable (discrete first; kAuto: no CPU
+                          // driver), digits an index, else a part of its name (`lpir-gseg devices`
+                          // lists them; a named device may be a CPU driver)
   size_t max_points = 0;  // a larger cloud is an error; 0: DefaultMaxPoints(sensor)
   // Submit may run this many frames (batch > 1: batches) ahead of Collect.
   uint32_t frames_in_flight = 2;
@@ -122,13 +122,13 @@ class Segmenter {
   uint32_t batch_ = 1;       // slots a block (1 on the CPU)
   uint32_t staged_ = 0;      // Vulkan: the newest pending frames, staged but not yet submitted
   uint32_t next_block_ = 0;  // where the next batch starts
-  std::unique_ptr<vk::Context> context_;          // Vulkan only
-  std::unique_ptr<vk::FramePipeline> pipeline_;   // Vulkan only; uses *context_
-  std::vector<Frame> cpu_frames_;                 // CPU: the frames computed at Submit, per slot
-  std::vector<FrameTimes> cpu_times_;             // and their times
-  std::deque<uint32_t> pending_;                  // slots submitted, oldest first
+  std::unique_ptr<vk::Context> context_;         // Vulkan only
+  std::unique_ptr<vk::FramePipeline> pipeline_;  // Vulkan only; uses *context_
+  std::vector<Frame> cpu_frames_;                // CPU: the frames computed at Submit, per slot
+  std::vector<FrameTimes> cpu_times_;            // and their times
+  std::deque<uint32_t> pending_;                 // slots submitted, oldest first
   uint32_t next_slot_ = 0;
-  Frame frame_;                                   // what Segment and Collect return
+  Frame frame_;  // what Segment and Collect return
 };
 
 }  // namespace lpir

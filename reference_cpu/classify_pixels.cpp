@@ -36,10 +36,13 @@ void ClassifyPixels(const Params& p, Frame& f) {
     const int s = (slope < 0.0f ? 0 : Vote(slope, q.t_slope_low, q.t_slope_high)) +  // eq. 9
                   Vote(varz[pix], q.t_stdz_low, q.t_stdz_high) +                     // eq. 10
                   Vote(vari[pix], q.t_stdi_low, q.t_stdi_high);                      // eq. 11
-    uint32_t c;  // eq. 12
-    if (s > 0) c = kPixNonGround;
-    else if (!edge && s < 0) c = kPixGround;
-    else c = kPixUnknown;
+    uint32_t c;                                                                      // eq. 12
+    if (s > 0)
+      c = kPixNonGround;
+    else if (!edge && s < 0)
+      c = kPixGround;
+    else
+      c = kPixUnknown;
     out[pix] = filled[pix] ? c : kPixEmpty;
   }
 }

@@ -40,8 +40,8 @@
 namespace lpir {
 namespace {
 
-constexpr float kMm = 1000.0f;        // metres -> mm
-constexpr int64_t kQ = 16384;         // Q14 unit normal
+constexpr float kMm = 1000.0f;            // metres -> mm
+constexpr int64_t kQ = 16384;             // Q14 unit normal
 constexpr float kDistUnit = 16384000.0f;  // metres -> mm * 2^14
 // Seeds whose second eigenvalue is below this fraction of the first (width below ~3 % of their
 // length) lie on a line and get the horizontal plane instead.
@@ -64,9 +64,9 @@ CellGeometry Geometry(const Params& p, uint32_t cell) {
 }
 
 uint32_t CellIndex(const Params& p, uint32_t ring, uint32_t sector) {
-  return ring < p.rings_near ? ring * p.sectors_near + sector
-                             : p.rings_near * p.sectors_near +
-                                   (ring - p.rings_near) * p.sectors_far + sector;
+  return ring < p.rings_near
+             ? ring * p.sectors_near + sector
+             : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far + sector;
 }
 
 // Lowest h_min key among the non-empty cells of the 3x3 neighbourhood (excluding the cell).
@@ -121,12 +121,24 @@ bool PlaneNormal(const int64_t m[6], int64_t n[3]) {
   const float c00 = c[0], c01 = c[1], c02 = c[2], c11 = c[3], c12 = c[4], c22 = c[5];
   // Adjugate (symmetric): a_ij, each two products and one difference.
   float t0, t1;
-  t0 = c11 * c22; t1 = c12 * c12; const float a00 = t0 - t1;
-  t0 = c02 * c12; t1 = c01 * c22; const float a01 = t0 - t1;
-  t0 = c01 * c12; t1 = c02 * c11; const float a02 = t0 - t1;
-  t0 = c00 * c22; t1 = c02 * c02; const float a11 = t0 - t1;
-  t0 = c01 * c02; t1 = c00 * c12; const float a12 = t0 - t1;
-  t0 = c00 * c11; t1 = c01 * c01; const float a22 = t0 - t1;
+  t0 = c11 * c22;
+  t1 = c12 * c12;
+  const float a00 = t0 - t1;
+  t0 = c02 * c12;
+  t1 = c01 * c22;
+  const float a01 = t0 - t1;
+  t0 = c01 * c12;
+  t1 = c02 * c11;
+  const float a02 = t0 - t1;
+  t0 = c00 * c22;
+  t1 = c02 * c02;
+  const float a11 = t0 - t1;
+  t0 = c01 * c02;
+  t1 = c00 * c12;
+  const float a12 = t0 - t1;
+  t0 = c00 * c11;
+  t1 = c01 * c01;
+  const float a22 = t0 - t1;
   const float a[3][3] = {{a00, a01, a02}, {a01, a11, a12}, {a02, a12, a22}};
   // Seeds on a line do not span a plane (their normal could point anywhere across the line):
   // the adjugate's trace is l1 l2 + l1 l3 + l2 l3 ~ l1 l2 and the trace squared ~ l1^2, so their
@@ -246,8 +258,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   constexpr float kInf = std::numeric_limits<float>::infinity();
 
   // Seed mode per cell (eq. 5); cells that may have seeds get a slot (slot 0: none).
-  const float lambda_near =
-      exact::Ftz0(exact::Ftz0(p.ring_res_near * p.slope_max) + p.seed_margin);
+  const float lambda_near = exact::Ftz0(exact::Ftz0(p.ring_res_near * p.slope_max) + p.seed_margin);
   const float lambda_far = exact::Ftz0(exact::Ftz0(p.ring_res_far * p.slope_max) + p.seed_margin);
   const uint32_t near_cells = p.rings_near * p.sectors_near;
   const float base = exact::Ftz0(-p.sensor_height + p.ground_max_above);
@@ -365,9 +376,9 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
       continue;
     }
     // n . (q - mean) = n . q - n . mean exactly (int64, far from overflow).
-    s.fit[size_t(s.cell_of[k]) + 1] = Fit{plane[0], plane[1], plane[2],
-                   plane[0] * int64_t(plane[3]) + plane[1] * int64_t(plane[4]) +
-                       plane[2] * int64_t(plane[5])};
+    s.fit[size_t(s.cell_of[k]) + 1] = Fit{
+        plane[0], plane[1], plane[2],
+        plane[0] * int64_t(plane[3]) + plane[1] * int64_t(plane[4]) + plane[2] * int64_t(plane[5])};
     s.ground[k] = 1;
   }
 

@@ -1,6 +1,7 @@
 // The only arithmetic helpers the stages may use beyond float add/sub/mul/compare/floor and
-// integer operations (SPEC section 3). The shaders use their GLSL mirror, shaders/common/exact.glsl,
-// function for function; both sides must produce the same bits for the same inputs.
+// integer operations (SPEC section 3). The shaders use their GLSL mirror,
+// shaders/common/exact.glsl, function for function; both sides must produce the same bits for the
+// same inputs.
 //
 // Division and square root: IEEE-754 binary32 `/` and `sqrt` on the CPU are correctly rounded
 // (round to nearest even), which is the definition the shader helpers implement with integer

@@ -43,7 +43,6 @@ constexpr float kIntensityScale = 10000.0f;  // intensity -> 1e-4
 constexpr float kHeightQuantum2 = 1e-8f;     // (0.1 mm)^2 in m^2
 constexpr float kIntensityQuantum2 = 1e-8f;  // (1e-4)^2
 
-
 // Three-column sums of one pixel of an image row (columns wrap): count, sum and sum of squares of
 // the quantised height and intensity.
 struct Sums {
@@ -126,8 +125,10 @@ void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
     load(0, n1, q1, qq1);
     const int64_t nf = n1, qf = q1, qqf = qq1;
     for (uint32_t u = 0; u < w; ++u) {
-      if (u + 1 < w) load(u + 1, n2, q2, qq2);
-      else n2 = nf, q2 = qf, qq2 = qqf;
+      if (u + 1 < w)
+        load(u + 1, n2, q2, qq2);
+      else
+        n2 = nf, q2 = qf, qq2 = qqf;
       out[u].n = n0 + n1 + n2, out[u].z = q0 + q1 + q2, out[u].zz = qq0 + qq1 + qq2;
       n0 = n1, q0 = q1, qq0 = qq1, n1 = n2, q1 = q2, qq1 = qq2;
     }
@@ -142,8 +143,10 @@ void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
     load(0, q1, qq1);
     const int64_t qf = q1, qqf = qq1;
     for (uint32_t u = 0; u < w; ++u) {
-      if (u + 1 < w) load(u + 1, q2, qq2);
-      else q2 = qf, qq2 = qqf;
+      if (u + 1 < w)
+        load(u + 1, q2, qq2);
+      else
+        q2 = qf, qq2 = qqf;
       out[u].i = q0 + q1 + q2, out[u].ii = qq0 + qq1 + qq2;
       q0 = q1, qq0 = qq1, q1 = q2, qq1 = qq2;
     }
@@ -202,8 +205,9 @@ void FeatureMaps(const Params& p, Frame& f) {
   s.empty_value.assign(w, 0.0f);
 
   auto row_of = [&](uint32_t v) {
-    if (v >= h) return Row{s.empty_filled.data(), s.empty_value.data(), s.empty_value.data(),
-                           s.empty_value.data()};
+    if (v >= h)
+      return Row{s.empty_filled.data(), s.empty_value.data(), s.empty_value.data(),
+                 s.empty_value.data()};
     const size_t o = size_t(v) * w;
     return Row{f.pixel_filled.data() + o, f.f_range.data() + o, f.f_inten.data() + o,
                f.f_height.data() + o};

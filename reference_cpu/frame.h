@@ -30,10 +30,10 @@ struct Frame {
   uint32_t n = 0;  // points
 
   // 1 prepare: per point.
-  std::vector<uint32_t> flags;   // kPoint* bits
-  std::vector<float> zt;         // corrected height, eq. 3
-  std::vector<float> r2;         // squared planar range x^2 + y^2
-  std::vector<float> inten;      // intensity * intensity_scale
+  std::vector<uint32_t> flags;  // kPoint* bits
+  std::vector<float> zt;        // corrected height, eq. 3
+  std::vector<float> r2;        // squared planar range x^2 + y^2
+  std::vector<float> inten;     // intensity * intensity_scale
 
   // 2 project: per point and per pixel (row-major, width columns).
   std::vector<uint32_t> point_pixel;  // v * width + u, or kNone when invalid
@@ -41,9 +41,9 @@ struct Frame {
   std::vector<uint32_t> pixel_point;  // winning point (nearest, then lowest index), kNone empty
 
   // 3 grid reduce: per point and per cell.
-  std::vector<uint32_t> point_cell;   // cell index, kNone for invalid and noise points
-  std::vector<uint32_t> cell_zmin;    // ordered key of min z_t, kNone when empty
-  std::vector<uint32_t> cell_zmax;    // ordered key of max z_t, 0 when empty
+  std::vector<uint32_t> point_cell;  // cell index, kNone for invalid and noise points
+  std::vector<uint32_t> cell_zmin;   // ordered key of min z_t, kNone when empty
+  std::vector<uint32_t> cell_zmax;   // ordered key of max z_t, 0 when empty
   std::vector<uint32_t> cell_count;
 
   // 4 coarse segment: per cell and per point.
@@ -59,9 +59,9 @@ struct Frame {
   // 6 classify, 7 fuse, 8 grow: per pixel class kPix*.
   std::vector<uint32_t> pixel_class;
   std::vector<uint32_t> pixel_fused;
-  std::vector<uint32_t> pixel_grown;    // after growing, before the connectivity constraint
-  std::vector<uint32_t> pixel_comp;     // component label (lowest pixel index) of ground pixels
-  std::vector<uint32_t> pixel_label;    // final, kPixGround or kPixNonGround (kPixEmpty when empty)
+  std::vector<uint32_t> pixel_grown;  // after growing, before the connectivity constraint
+  std::vector<uint32_t> pixel_comp;   // component label (lowest pixel index) of ground pixels
+  std::vector<uint32_t> pixel_label;  // final, kPixGround or kPixNonGround (kPixEmpty when empty)
 
   // 9 back-project: per point.
   std::vector<uint8_t> label;      // 1 ground, 0 non-ground

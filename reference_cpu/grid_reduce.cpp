@@ -19,8 +19,10 @@ uint32_t RingOf(float r2, const float* bound2, uint32_t rings) {
   uint32_t lo = 0, hi = rings;  // first index with r2 < bound2[index], rings when none
   while (lo < hi) {
     const uint32_t mid = (lo + hi) >> 1;
-    if (r2 < bound2[mid]) hi = mid;
-    else lo = mid + 1;
+    if (r2 < bound2[mid])
+      hi = mid;
+    else
+      lo = mid + 1;
   }
   return lo;
 }
@@ -51,7 +53,8 @@ void GridReduce(const Params& p, const Tables& t, Frame& f) {
   const uint32_t* __restrict sn = sector_near.data();
   const uint32_t* __restrict sf = sector_far.data();
   const uint32_t far_base = rings_near * sectors_near;
-  uint32_t hint = 0;  // the previous point's ring: the ring is unique, so a right hint is the answer
+  uint32_t hint =
+      0;  // the previous point's ring: the ring is unique, so a right hint is the answer
   for (uint32_t i = 0; i < n; ++i) {
     point_cell[i] = kNone;
     if (flags[i] != kPointValid) continue;  // invalid or noise
@@ -66,9 +69,8 @@ void GridReduce(const Params& p, const Tables& t, Frame& f) {
     while (v * width > pix) --v;
     while ((v + 1) * width <= pix) ++v;
     const uint32_t u = pix - v * width;
-    const uint32_t cell = ring < rings_near
-                              ? ring * sectors_near + sn[u]
-                              : far_base + (ring - rings_near) * sectors_far + sf[u];
+    const uint32_t cell = ring < rings_near ? ring * sectors_near + sn[u]
+                                            : far_base + (ring - rings_near) * sectors_far + sf[u];
     point_cell[i] = cell;
     const uint32_t key = exact::Key(zt[i]);
     zmin[cell] = std::min(zmin[cell], key);

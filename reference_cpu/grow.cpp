@@ -56,8 +56,8 @@ inline uint64_t Word(const uint8_t* s) {
 
 // The step test of the contract between pixels q and r (features i, z, r): symmetric in them,
 // each result through Ftz0 as the shader does (a device may flush a subnormal one).
-inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float ir, float zr,
-                        float rr, bool column_changes) {
+inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float ir, float zr, float rr,
+                        bool column_changes) {
   const float di = exact::Ftz0(std::fabs(ir - iq));
   const float dz = exact::Ftz0(std::fabs(zr - zq));
   float step = exact::Ftz0(std::fabs(rr - rq));
@@ -74,8 +74,10 @@ uint32_t Find(uint32_t* __restrict up, uint32_t x) {
 // Joins two runs' sets; the root is the lower run index, i.e. the run with the lowest pixel.
 inline void Union(uint32_t* __restrict up, uint32_t a, uint32_t b) {
   a = Find(up, a), b = Find(up, b);
-  if (a < b) up[b] = a;
-  else if (b < a) up[a] = b;
+  if (a < b)
+    up[b] = a;
+  else if (b < a)
+    up[a] = b;
 }
 
 // The growing state of every pixel (separate functions, so that the loops vectorise: a byte
@@ -201,8 +203,10 @@ void Grow(const Params& p, Frame& f) {
       }
       const bool ground = g[u] == kGround;
       if (ground == in_run) continue;
-      if (ground) u0 = u;
-      else runs.push_back({row + u0, u0, u - 1});
+      if (ground)
+        u0 = u;
+      else
+        runs.push_back({row + u0, u0, u - 1});
       in_run = ground;
     }
     if (in_run) runs.push_back({row + u0, u0, w - 1});
@@ -231,8 +235,10 @@ void Grow(const Params& p, Frame& f) {
         ++j;
       } else {
         Union(up, i, j);
-        if (run[i].u1 < run[j].u1) ++i;
-        else ++j;
+        if (run[i].u1 < run[j].u1)
+          ++i;
+        else
+          ++j;
       }
     }
   }

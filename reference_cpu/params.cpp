@@ -15,8 +15,10 @@ struct Field {
   bool is_uint;
 };
 
-#define LPIR_F(name) {#name, offsetof(Params, name), false}
-#define LPIR_U(name) {#name, offsetof(Params, name), true}
+#define LPIR_F(name) \
+  { #name, offsetof(Params, name), false }
+#define LPIR_U(name) \
+  { #name, offsetof(Params, name), true }
 // Fields a profile may override (the image geometry comes from the profile itself).
 const Field kFields[] = {
     LPIR_F(h_noise),          LPIR_F(i_noise),          LPIR_U(rings_near),
@@ -27,8 +29,8 @@ const Field kFields[] = {
     LPIR_F(ground_max_above), LPIR_F(hole_gap),         LPIR_F(t_edge),
     LPIR_F(t_slope_low),      LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),
     LPIR_F(t_stdz_high),      LPIR_F(t_stdi_low),       LPIR_F(t_stdi_high),
-    LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),  LPIR_U(min_component),
-    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
+    LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),
+    LPIR_U(min_component),    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
     LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
     LPIR_F(occ_grade),
 };
@@ -83,8 +85,8 @@ Params DefaultParams() {
   p.t_edge = 0.12f;
   p.t_slope_low = 0.09f;
   p.t_slope_high = 0.25f;
-  p.t_stdz_low = 0.000025f;  // (5 mm)^2
-  p.t_stdz_high = 0.000144f; // (12 mm)^2
+  p.t_stdz_low = 0.000025f;   // (5 mm)^2
+  p.t_stdz_high = 0.000144f;  // (12 mm)^2
   p.t_stdi_low = 0.035f;
   p.t_stdi_high = 0.1f;
   p.grow_di = 0.35f;
@@ -160,15 +162,16 @@ Params ParamsForSensor(const SensorProfile& s) {
     throw std::invalid_argument("sensor profile '" + s.name + "': a grid of " +
                                 std::to_string(rings) + " rings and " + std::to_string(cells) +
                                 " cells (at most 4096 rings and 4194304 cells)");
-  if (!(std::fabs(s.k_xz) <= kMaxProfileTiltSlope) || !(std::fabs(s.k_yz) <= kMaxProfileTiltSlope) ||
-      !(s.max_range <= kMaxProfileRange))
+  if (!(std::fabs(s.k_xz) <= kMaxProfileTiltSlope) ||
+      !(std::fabs(s.k_yz) <= kMaxProfileTiltSlope) || !(s.max_range <= kMaxProfileRange))
     throw std::invalid_argument("sensor profile '" + s.name +
                                 "': k_xz and k_yz must lie in -1..1 and max_range be at most "
                                 "1000 m");
   for (const Field& f : kFields)
     if (!f.is_uint)
-      RejectSubnormal(s.name, f.name,
-                      *reinterpret_cast<const float*>(reinterpret_cast<const char*>(&p) + f.offset));
+      RejectSubnormal(
+          s.name, f.name,
+          *reinterpret_cast<const float*>(reinterpret_cast<const char*>(&p) + f.offset));
   RejectSubnormal(s.name, "min_range2 (min_range squared)", p.min_range2);
   RejectSubnormal(s.name, "max_range2 (max_range squared)", p.max_range2);
   RejectSubnormal(s.name, "k_xz", p.k_xz);
@@ -194,9 +197,9 @@ Tables MakeTables(const SensorProfile& s, const Params& p) {
     double mid = 0.5 * (double(s.elevation_deg[b]) + double(s.elevation_deg[b + 1])) * kPi / 180;
     double tn = std::tan(mid);
     t.beam_bound.push_back(float(tn * std::fabs(tn)));
-    t.beam_origin.push_back(s.beam_origin_z.empty()
-                                ? 0.0f
-                                : float(0.5 * (double(s.beam_origin_z[b]) + s.beam_origin_z[b + 1])));
+    t.beam_origin.push_back(s.beam_origin_z.empty() ? 0.0f
+                                                    : float(0.5 * (double(s.beam_origin_z[b]) +
+                                                                   s.beam_origin_z[b + 1])));
   }
   t.column_dir.resize(2 * size_t(p.width));
   for (unsigned k = 0; k < p.width; ++k) {

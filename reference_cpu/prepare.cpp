@@ -75,8 +75,10 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   f.zt.resize(n);
   f.r2.resize(n);
   f.inten.resize(n);
-  if (cloud.ring.empty()) PrepareAll<false>(cloud, p, f);
-  else PrepareAll<true>(cloud, p, f);
+  if (cloud.ring.empty())
+    PrepareAll<false>(cloud, p, f);
+  else
+    PrepareAll<true>(cloud, p, f);
 }
 
 }  // namespace lpir

@@ -124,8 +124,10 @@ uint32_t RowOf(float z, float r2, const float* bound, const float* origin, uint3
   uint32_t lo = 0, hi = beams - 1;
   while (lo < hi) {
     const uint32_t mid = (lo + hi + 1) >> 1;  // boundary index mid - 1
-    if (BoundAbove(z, r2, bound, origin, mid - 1)) lo = mid;
-    else hi = mid - 1;
+    if (BoundAbove(z, r2, bound, origin, mid - 1))
+      lo = mid;
+    else
+      hi = mid - 1;
   }
   return lo;
 }

@@ -13,23 +13,23 @@ constexpr float kMaxProfileRange = 1000.0f;   // m, the largest max_range
 constexpr float kMaxProfileTiltSlope = 1.0f;  // |k_xz|, |k_yz|: a mount tilt of at most 45 degrees
 
 struct SensorProfile {
-  std::string name;                   // e.g. "hdl64e"
-  unsigned beams = 64;                // image rows
-  unsigned width = 2048;              // image columns (one per azimuth step, 360 degrees)
+  std::string name;       // e.g. "hdl64e"
+  unsigned beams = 64;    // image rows
+  unsigned width = 2048;  // image columns (one per azimuth step, 360 degrees)
   // Largest cloud a segmenter takes unless told (0: beams x width x 2, a point a pixel and as
   // many second returns); for a sensor that fires more often a turn than the image has columns.
   unsigned max_points = 0;
-  std::vector<float> elevation_deg;   // beam elevations, degrees, row 0 (top) first, descending
+  std::vector<float> elevation_deg;  // beam elevations, degrees, row 0 (top) first, descending
   // Height of each beam's laser origin above the sensor frame's origin, m, row 0 first (empty:
   // all 0). The HDL-64E fires from 0.1-0.2 m above its centre, which bends near elevations.
   std::vector<float> beam_origin_z;
-  bool ring_zero_is_top = false;      // when the file has a ring field: true if ring 0 is the top beam
-  float intensity_scale = 1.0f;       // raw intensity * scale = intensity in [0, 1]
-  float sensor_height = 1.73f;        // m, sensor above the ground it stands on
-  float min_range = 2.5f;             // m, planar range below which points are invalid (the car)
-  float max_range = 120.0f;           // m, planar range above which points are invalid
-  float k_xz = 0.0f, k_yz = 0.0f;     // mount tilt, eq. 2-3 (from `calibrate`)
-  float b_x = 0.0f, b_y = 0.0f;       // m, fitted sensor height at the origin, eq. 2 (informative)
+  bool ring_zero_is_top = false;   // when the file has a ring field: true if ring 0 is the top beam
+  float intensity_scale = 1.0f;    // raw intensity * scale = intensity in [0, 1]
+  float sensor_height = 1.73f;     // m, sensor above the ground it stands on
+  float min_range = 2.5f;          // m, planar range below which points are invalid (the car)
+  float max_range = 120.0f;        // m, planar range above which points are invalid
+  float k_xz = 0.0f, k_yz = 0.0f;  // mount tilt, eq. 2-3 (from `calibrate`)
+  float b_x = 0.0f, b_y = 0.0f;    // m, fitted sensor height at the origin, eq. 2 (informative)
   // Parameter overrides, "name value" pairs applied over the defaults (see ApplyOverride).
   std::vector<std::pair<std::string, float>> overrides;
 };

@@ -8,8 +8,8 @@
 
 namespace lpir {
 
-void Prepare(const Cloud& cloud, const Params& p, Frame& f);                        // 1
-void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f);       // 2
+void Prepare(const Cloud& cloud, const Params& p, Frame& f);                         // 1
+void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f);        // 2
 void GridReduce(const Params& p, const Tables& t, Frame& f);                         // 3
 void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f);  // 4
 void FeatureMaps(const Params& p, Frame& f);                                         // 5
@@ -21,7 +21,7 @@ void BackProject(const Params& p, Frame& f);                                    
 // Exact geometric lookups shared by the stages and their tests.
 uint32_t ColumnOf(float x, float y, const float* column_dir, uint32_t width);  // eq. 1, u
 uint32_t RowOf(float z, float r2, const float* beam_bound, const float* beam_origin,
-               uint32_t beams);                                                 // eq. 1, v
-uint32_t RingOf(float r2, const float* ring_bound2, uint32_t rings);           // eq. 4, i
+               uint32_t beams);                                       // eq. 1, v
+uint32_t RingOf(float r2, const float* ring_bound2, uint32_t rings);  // eq. 4, i
 
 }  // namespace lpir

@@ -51,7 +51,8 @@ TEST_P(AccuracyKitti, ScoresStayAboveTheFloors) {
   LPIR_REQUIRE_DATA(scan.labels);
   const Cloud cloud = ReadKittiBin(test::DataFile(scan.cloud));
   const std::vector<uint32_t> truth = ReadLabelFile(test::DataFile(scan.labels), cloud.size());
-  Segmenter seg(LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR), SegmenterOptions::For(Backend::kCpu));
+  Segmenter seg(LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR),
+                SegmenterOptions::For(Backend::kCpu));
   const Frame& f = seg.Segment(cloud);
   ASSERT_EQ(f.label.size(), cloud.size());
   const Labels pred(f.label.begin(), f.label.end());

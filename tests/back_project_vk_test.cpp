@@ -330,9 +330,9 @@ TEST_F(BackProjectVk, HandMadeEveryCase) {
       for (float zz : gate_z)
         for (uint32_t c2 : {0u, 1u}) add(kPointValid, pix, r, zz, c2);
       // Ranges whose exact Sqrt lands exactly on, and just beyond, f_range +- gate.
-      for (float target : {sr + p.bp_range_gate, sr - p.bp_range_gate,
-                           std::nextafter(sr + p.bp_range_gate, 1e9f),
-                           std::nextafter(sr - p.bp_range_gate, 0.0f)})
+      for (float target :
+           {sr + p.bp_range_gate, sr - p.bp_range_gate, std::nextafter(sr + p.bp_range_gate, 1e9f),
+            std::nextafter(sr - p.bp_range_gate, 0.0f)})
         for (uint32_t c2 : {0u, 1u}) add(kPointValid, pix, target, z, c2);
       for (uint32_t flags : {0u, 2u, 3u, 4u, 5u, 7u, 0x80000001u}) add(flags, pix, r, z, coarse);
       ++pix;

@@ -42,11 +42,11 @@ std::string ValueText(uint32_t u) {
 }
 
 std::string PixelText(const Frame& f, const Params& p, size_t pix) {
-  return "pixel " + std::to_string(pix) + " (row " + std::to_string(pix / p.width) +
-         ", column " + std::to_string(pix % p.width) + "): filled " +
-         std::to_string(f.pixel_filled[pix]) + ", edge_l " + FloatText(f.f_edge_l[pix]) +
-         ", edge_r " + FloatText(f.f_edge_r[pix]) + ", slope " + FloatText(f.f_slope[pix]) +
-         ", varz " + FloatText(f.f_varz[pix]) + ", vari " + FloatText(f.f_vari[pix]);
+  return "pixel " + std::to_string(pix) + " (row " + std::to_string(pix / p.width) + ", column " +
+         std::to_string(pix % p.width) + "): filled " + std::to_string(f.pixel_filled[pix]) +
+         ", edge_l " + FloatText(f.f_edge_l[pix]) + ", edge_r " + FloatText(f.f_edge_r[pix]) +
+         ", slope " + FloatText(f.f_slope[pix]) + ", varz " + FloatText(f.f_varz[pix]) + ", vari " +
+         FloatText(f.f_vari[pix]);
 }
 
 // `in` holds the stage 5 buffers; runs stage 6 on both sides from them and compares pixel_class.
@@ -97,8 +97,8 @@ void Around(float t, std::vector<float>& out) {
 Frame HandMadeImage(const Params& p, uint32_t seed, size_t* combinations) {
   const float inf = std::numeric_limits<float>::infinity();
   const float sub = exact::FromBits(0x00000101u);
-  const std::vector<float> common = {0.0f, -0.0f, sub, -sub, inf, -inf, 1e30f,
-                                     std::numeric_limits<float>::quiet_NaN()};
+  const std::vector<float> common = {0.0f, -0.0f, sub,   -sub,
+                                     inf,  -inf,  1e30f, std::numeric_limits<float>::quiet_NaN()};
   auto candidates = [&](float low, float high) {
     std::vector<float> v;
     Around(low, v);
@@ -202,8 +202,8 @@ TEST_F(ClassifyPixelsVkHand, PixelCountsThatAreNotMultiplesOfFour) {
     p.width = size[0], p.beams = size[1];
     const size_t pixels = size_t(p.width) * p.beams;
     Frame cut = f;
-    for (auto* v : {&cut.f_edge_l, &cut.f_edge_r, &cut.f_slope, &cut.f_varz, &cut.f_vari,
-                    &cut.f_range})
+    for (auto* v :
+         {&cut.f_edge_l, &cut.f_edge_r, &cut.f_slope, &cut.f_varz, &cut.f_vari, &cut.f_range})
       v->resize(pixels);
     cut.pixel_filled.resize(pixels);
     const std::string what = std::to_string(size[0]) + " x " + std::to_string(size[1]);
@@ -235,12 +235,24 @@ Cloud RandomCloud(size_t n, uint32_t seed) {
     float x = r * std::cos(a), y = r * std::sin(a), z = -1.73f + 0.02f * unit(rng);
     float in = 40.0f + 20.0f * unit(rng);
     switch (rng() % 12) {
-      case 0: z += 2.0f * unit(rng); in = 255.0f * unit(rng); break;  // objects
-      case 1: z = -1.73f + 0.3f * std::sin(x); break;                 // a slope
-      case 2: x = std::numeric_limits<float>::quiet_NaN(); break;
-      case 3: z = -3.0f, in = 0.0f; break;                            // reflection noise
-      case 4: z += 0.2f * unit(rng); break;                           // rough ground
-      default: break;
+      case 0:
+        z += 2.0f * unit(rng);
+        in = 255.0f * unit(rng);
+        break;  // objects
+      case 1:
+        z = -1.73f + 0.3f * std::sin(x);
+        break;  // a slope
+      case 2:
+        x = std::numeric_limits<float>::quiet_NaN();
+        break;
+      case 3:
+        z = -3.0f, in = 0.0f;
+        break;  // reflection noise
+      case 4:
+        z += 0.2f * unit(rng);
+        break;  // rough ground
+      default:
+        break;
     }
     cloud.Push(x, y, z, in);
   }

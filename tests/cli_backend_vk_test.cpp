@@ -41,11 +41,11 @@ void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
     GTEST_SKIP() << "none of the scans is under " << test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR);
   const std::string out = test::TempDir();
   std::string log;
-  ASSERT_EQ(test::RunCommand("LPIR_VK_VALIDATION=1 " + test::CliPath() + " segment" + inputs +
-                                 " --sensor " + sensor + " --backend vulkan --out " + out +
-                                 "/vulkan",
-                             &log),
-            0)
+  ASSERT_EQ(
+      test::RunCommand("LPIR_VK_VALIDATION=1 " + test::CliPath() + " segment" + inputs +
+                           " --sensor " + sensor + " --backend vulkan --out " + out + "/vulkan",
+                       &log),
+      0)
       << log;
   EXPECT_NE(log.find("on Vulkan on "), std::string::npos) << log;
   EXPECT_EQ(log.find("[vulkan"), std::string::npos) << "validation messages:\n" << log;
@@ -59,8 +59,8 @@ void ExpectSameLabelsOnBothBackends(const std::vector<std::string>& files,
     const std::string vulkan = test::ReadFileBytes(out + "/vulkan/" + stem + ".label");
     const std::string cpu = test::ReadFileBytes(out + "/cpu/" + stem + ".label");
     EXPECT_GT(cpu.size(), 0u) << stem;
-    EXPECT_TRUE(vulkan == cpu) << stem << ": the .label files differ (" << vulkan.size()
-                               << " and " << cpu.size() << " bytes)";
+    EXPECT_TRUE(vulkan == cpu) << stem << ": the .label files differ (" << vulkan.size() << " and "
+                               << cpu.size() << " bytes)";
     std::printf("[cli_backend] %s (%s): %zu labels identical on vulkan and cpu\n", stem.c_str(),
                 sensor.c_str(), cpu.size() / 4);
   }
@@ -95,16 +95,15 @@ TEST(CliBackend, TimingsNameEveryStage) {
   LPIR_REQUIRE_VULKAN();
   LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
   std::string log;
-  ASSERT_EQ(test::RunCommand(test::CliPath() + " segment " +
-                                 test::DataFile("kitti/07/velodyne/000964.bin") +
-                                 " --sensor hdl64e --backend vulkan --timings --out " +
-                                 test::TempDir(),
-                             &log),
+  ASSERT_EQ(test::RunCommand(
+                test::CliPath() + " segment " + test::DataFile("kitti/07/velodyne/000964.bin") +
+                    " --sensor hdl64e --backend vulkan --timings --out " + test::TempDir(),
+                &log),
             0)
       << log;
-  for (const char* stage : {"upload", "prepare", "project", "grid_reduce", "coarse_segment",
-                            "feature_maps", "classify_pixels", "fuse", "grow", "back_project",
-                            "download", "total"})
+  for (const char* stage :
+       {"upload", "prepare", "project", "grid_reduce", "coarse_segment", "feature_maps",
+        "classify_pixels", "fuse", "grow", "back_project", "download", "total"})
     EXPECT_EQ(Count(log, std::string(" ") + stage + " "), 2u) << stage << " in\n" << log;
   EXPECT_NE(log.find("median over 1 frame (GPU timestamps, ms)"), std::string::npos) << log;
 }
@@ -116,8 +115,8 @@ TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
   const std::string scan = test::DataFile("kitti/07/velodyne/000964.bin");
   const std::string out = test::TempDir();
   std::string log;
-  ASSERT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() +
-                                 " segment " + scan + " --sensor hdl64e --out " + out + "/auto",
+  ASSERT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " segment " +
+                                 scan + " --sensor hdl64e --out " + out + "/auto",
                              &log),
             0)
       << log;
@@ -136,11 +135,11 @@ TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
   EXPECT_EQ(fallback.size(), 4u * 120485);
   EXPECT_TRUE(fallback == test::ReadFileBytes(out + "/cpu/000964.label"));
 
-  EXPECT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() +
-                                 " segment " + scan + " --sensor hdl64e --backend vulkan --out " +
-                                 out + "/vulkan",
-                             &log),
-            1);
+  EXPECT_EQ(
+      test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " segment " +
+                           scan + " --sensor hdl64e --backend vulkan --out " + out + "/vulkan",
+                       &log),
+      1);
   EXPECT_NE(log.find("the Vulkan backend could not be set up"), std::string::npos) << log;
   EXPECT_NE(log.find("VK_ICD_FILENAMES=/nonexistent.json"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(out + "/vulkan/000964.label"));
@@ -160,8 +159,8 @@ TEST(CliBackend, AutoTakesAGpuElseTheReferenceWithANote) {
             0)
       << log;
   ASSERT_EQ(test::RunCommand(test::CliPath() + " devices", &log), 0) << log;
-  const bool gpu = log.find("(segment --backend auto without --device): the CPU reference") ==
-                   std::string::npos;
+  const bool gpu =
+      log.find("(segment --backend auto without --device): the CPU reference") == std::string::npos;
   const std::string segment = test::CliPath() + " segment " + dir + "/s.bin --sensor vlp16";
   ASSERT_EQ(test::RunCommand(segment + " --out " + dir + "/auto", &log), 0) << log;
   if (gpu) {
@@ -220,9 +219,9 @@ TEST(CliBackend, DevicesListsLavapipe) {
   EXPECT_NE(log.find("default (segment --backend auto without --device): "), std::string::npos)
       << log;
   EXPECT_NE(log.find("segment --backend vulkan without --device: "), std::string::npos) << log;
-  EXPECT_EQ(test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " devices",
-                             &log),
-            1);
+  EXPECT_EQ(
+      test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " devices", &log),
+      1);
   EXPECT_NE(log.find("no Vulkan device"), std::string::npos) << log;
 }
 

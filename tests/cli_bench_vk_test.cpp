@@ -19,9 +19,9 @@ namespace {
 std::string Bench(const std::string& extra) {
   if (!test::HasVulkanDevice()) return "";
   std::string out;
-  const int code = test::RunCommand(test::CliPath() + " bench --runs 1 --scaling-runs 1 --frames 2 " +
-                                        extra + " 2>/dev/null",
-                                    &out);
+  const int code = test::RunCommand(
+      test::CliPath() + " bench --runs 1 --scaling-runs 1 --frames 2 " + extra + " 2>/dev/null",
+      &out);
   EXPECT_EQ(code, 0) << out;
   return out;
 }
@@ -92,8 +92,7 @@ TEST(CliBench, TableNamesTheDeviceInEveryRow) {
       table.substr(at_name + header.size(), table.find('\n', at_name) - at_name - header.size());
   ASSERT_FALSE(name.empty()) << table;
   size_t rows = 0;
-  for (size_t at = table.find(name); at != std::string::npos; at = table.find(name, at + 1))
-    ++rows;
+  for (size_t at = table.find(name); at != std::string::npos; at = table.find(name, at + 1)) ++rows;
   // 13 stage rows, throughput, memory, 2 gpu cost rows, 5 scaling rows, and the header line.
   EXPECT_GE(rows, 23u) << table;
   for (const char* what : {"end to end", "throughput (frames/s", "frames in flight 1:",

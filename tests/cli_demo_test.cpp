@@ -17,7 +17,8 @@ TEST(CliDemo, SegmentsTheBuiltInSceneAccuratelyAndLeavesCarsAlone) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(log, m, std::regex(R"(F1 ([0-9.]+) %)"))) << log;
   EXPECT_GE(std::stod(m[1]), 97.0) << log;
-  ASSERT_TRUE(std::regex_search(log, m, std::regex(R"(car points labelled ground: (\d+) of (\d+))")))
+  ASSERT_TRUE(
+      std::regex_search(log, m, std::regex(R"(car points labelled ground: (\d+) of (\d+))")))
       << log;
   EXPECT_EQ(m[1], "0") << log;
   EXPECT_GT(std::stoi(m[2]), 100) << log;

@@ -44,9 +44,10 @@ TEST(CliSegment, LabelsARealKittiScan) {
   LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
   const std::string out = test::TempDir();
   std::string log;
-  ASSERT_EQ(Segment(test::DataFile("kitti/07/velodyne/000964.bin") + " --sensor hdl64e --out " +
-                        out, &log),
-            0)
+  ASSERT_EQ(
+      Segment(test::DataFile("kitti/07/velodyne/000964.bin") + " --sensor hdl64e --out " + out,
+              &log),
+      0)
       << log;
   const std::vector<uint32_t> labels = ReadLabelFile(out + "/000964.label", 120485);
   size_t ground = 0;
@@ -64,9 +65,10 @@ TEST(CliSegment, WritesPcdAndPlyWithLabelsAndPictures) {
   WriteKittiBin(dir + "/scan.bin", SmallScan());
   std::string log;
   for (const char* format : {"pcd", "ply"}) {
-    ASSERT_EQ(Segment(dir + "/scan.bin --sensor hdl64e --out " + dir + "/o --images --format " +
-                          format, &log),
-              0)
+    ASSERT_EQ(
+        Segment(dir + "/scan.bin --sensor hdl64e --out " + dir + "/o --images --format " + format,
+                &log),
+        0)
         << log;
     EXPECT_TRUE(fs::exists(dir + "/o/scan." + format)) << format;
   }
@@ -93,9 +95,9 @@ TEST(CliSegment, NanInfAndOriginPointsAreNonGroundAndCounted) {
 
 struct BadCase {
   const char* name;
-  const char* file;      // written into a temp folder
+  const char* file;  // written into a temp folder
   std::string bytes;
-  const char* expect;    // a word the message must hold
+  const char* expect;  // a word the message must hold
 };
 
 class CliSegmentBadInput : public ::testing::TestWithParam<BadCase> {};
@@ -117,13 +119,11 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadCase{"empty_bin", "empty.bin", "", "empty"},
         BadCase{"truncated_bin", "cut.bin", std::string(4 * 4 * 3 + 5, '\0'), "16"},
-        BadCase{"pcd_promises_more",
-                "short.pcd",
+        BadCase{"pcd_promises_more", "short.pcd",
                 "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 "
                 "1\nWIDTH 3\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\nDATA ascii\n1 2 3 4\n",
                 "3"},
-        BadCase{"ply_bad_type",
-                "bad.ply",
+        BadCase{"ply_bad_type", "bad.ply",
                 "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nproperty float "
                 "y\nproperty float z\nend_header\n1 2 3\n",
                 "float128"},
@@ -160,7 +160,8 @@ TEST(CliSegment, TruthWhoseCountDiffersIsAnError) {
   WriteLabelFile(dir + "/scan.label", std::vector<uint32_t>(799, 40));
   std::string log;
   EXPECT_EQ(Segment(dir + "/scan.bin --sensor hdl64e --images --gt " + dir + "/scan.label --out " +
-                        dir + "/o", &log),
+                        dir + "/o",
+                    &log),
             1);
   EXPECT_NE(log.find(dir + "/scan.label"), std::string::npos) << log;
   EXPECT_NE(log.find("799"), std::string::npos) << log;

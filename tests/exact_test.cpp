@@ -1,11 +1,11 @@
 // The shared exact helpers: ordered keys, correctly rounded division and square root (checked
 // against double precision, where the float result must be the nearest float), integer sqrt.
+#include "reference_cpu/exact.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
-
-#include "reference_cpu/exact.h"
 
 namespace lpir::exact {
 namespace {

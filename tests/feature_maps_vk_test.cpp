@@ -47,8 +47,8 @@ std::string ValueText(uint32_t u) {
 std::string NeighbourhoodText(const Frame& in, const Frame& cpu, const Params& p, size_t pix) {
   const uint32_t w = p.width, h = p.beams;
   const uint32_t v = uint32_t(pix / w), u = uint32_t(pix % w);
-  std::string text = "pixel " + std::to_string(pix) + " (row " + std::to_string(v) +
-                     ", column " + std::to_string(u) + "); 3x3 neighbourhood:";
+  std::string text = "pixel " + std::to_string(pix) + " (row " + std::to_string(v) + ", column " +
+                     std::to_string(u) + "); 3x3 neighbourhood:";
   for (int dv = -1; dv <= 1; ++dv) {
     const int vv = int(v) + dv;
     if (vv < 0 || vv >= int(h)) continue;
@@ -135,12 +135,12 @@ uint64_t ExpectSameFeatures(const vk::Context& context, const Params& p, const F
 // shuffled order), empty pixels with probability `empty`, heights and intensities from `value`.
 struct HandOptions {
   float empty = 0.3f;
-  float base_range = 10.0f;     // ranges base_range + small steps, so that holes get filled
-  float range_step = 0.02f;     // per column
-  float height_scale = 1.0f;    // heights in +-height_scale
-  float inten_scale = 1.0f;     // intensities in [0, inten_scale]
-  bool equal_down = false;      // a pixel's range equals the one below (undefined slope)
-  bool wrap_holes = true;       // holes at columns 0 and width - 1 with measured neighbours
+  float base_range = 10.0f;   // ranges base_range + small steps, so that holes get filled
+  float range_step = 0.02f;   // per column
+  float height_scale = 1.0f;  // heights in +-height_scale
+  float inten_scale = 1.0f;   // intensities in [0, inten_scale]
+  bool equal_down = false;    // a pixel's range equals the one below (undefined slope)
+  bool wrap_holes = true;     // holes at columns 0 and width - 1 with measured neighbours
 };
 
 Frame HandMadeImage(const Params& p, uint32_t seed, const HandOptions& o) {
@@ -333,12 +333,24 @@ Cloud RandomCloud(size_t n, uint32_t seed) {
     float x = r * std::cos(a), y = r * std::sin(a), z = -1.73f + 0.02f * unit(rng);
     float in = 40.0f + 20.0f * unit(rng);
     switch (rng() % 12) {
-      case 0: z += 2.0f * unit(rng); in = 255.0f * unit(rng); break;  // objects
-      case 1: z = -1.73f + 0.3f * std::sin(x); break;                 // a slope
-      case 2: x = std::numeric_limits<float>::quiet_NaN(); break;
-      case 3: z = -3.0f, in = 0.0f; break;                            // reflection noise
-      case 4: z += 0.2f * unit(rng); break;                           // rough ground
-      default: break;
+      case 0:
+        z += 2.0f * unit(rng);
+        in = 255.0f * unit(rng);
+        break;  // objects
+      case 1:
+        z = -1.73f + 0.3f * std::sin(x);
+        break;  // a slope
+      case 2:
+        x = std::numeric_limits<float>::quiet_NaN();
+        break;
+      case 3:
+        z = -3.0f, in = 0.0f;
+        break;  // reflection noise
+      case 4:
+        z += 0.2f * unit(rng);
+        break;  // rough ground
+      default:
+        break;
     }
     cloud.Push(x, y, z, in);
   }

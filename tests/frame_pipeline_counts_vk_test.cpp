@@ -78,12 +78,13 @@ TEST_P(FramePipelineCountsVk, FixedDispatchesAndBarriersBytesGrowWithPoints) {
     RunReference(cloud, params, tables, cpu);
     EXPECT_EQ(gpu.label, cpu.label) << n << " points";
     const vk::RecordCounts& c = counts.back();
-    std::printf("[counts] shape %s, %zu points: %u dispatches (%u indirect), %u barriers, %llu "
-                "workgroups of direct dispatches, %llu bytes up, %llu bytes down\n",
-                GetParam(), n, c.dispatches, c.indirect_dispatches, c.barriers,
-                static_cast<unsigned long long>(c.workgroups),
-                static_cast<unsigned long long>(c.upload_bytes),
-                static_cast<unsigned long long>(c.download_bytes));
+    std::printf(
+        "[counts] shape %s, %zu points: %u dispatches (%u indirect), %u barriers, %llu "
+        "workgroups of direct dispatches, %llu bytes up, %llu bytes down\n",
+        GetParam(), n, c.dispatches, c.indirect_dispatches, c.barriers,
+        static_cast<unsigned long long>(c.workgroups),
+        static_cast<unsigned long long>(c.upload_bytes),
+        static_cast<unsigned long long>(c.download_bytes));
     EXPECT_GT(c.dispatches, c.indirect_dispatches) << n;
     EXPECT_GT(c.barriers, 0u) << n;
     EXPECT_GT(c.workgroups, 0u) << n;

@@ -41,8 +41,8 @@ SensorSetup MakeSetup(const std::string& name) {
   return MakeSetup(LoadSensorProfile(name, test::SensorsDir()));
 }
 
-vk::FramePipeline MakePipeline(const vk::Context& context, const SensorSetup& s, uint32_t max_points,
-                               uint32_t slots) {
+vk::FramePipeline MakePipeline(const vk::Context& context, const SensorSetup& s,
+                               uint32_t max_points, uint32_t slots) {
   vk::Result<vk::FramePipeline> made =
       vk::FramePipeline::Create(context, s.params, s.tables, max_points, slots);
   EXPECT_TRUE(made.ok()) << made.error().message;
@@ -66,10 +66,11 @@ uint64_t ExpectSameWholeFrame(vk::FramePipeline& pipeline, const SensorSetup& s,
   const uint64_t bytes = test::ExpectSameFrame(s.params, cpu, gpu, &cloud, what);
   size_t ground = 0;
   for (uint8_t l : cpu.label) ground += l;
-  std::printf("[frame_pipeline] %s: %zu points (%zu ground), %llu bytes compared; GPU %.2f ms "
-              "(upload %.2f, download %.2f)\n",
-              what.c_str(), cloud.size(), ground, static_cast<unsigned long long>(bytes),
-              times.total_ms, times.upload_ms, times.download_ms);
+  std::printf(
+      "[frame_pipeline] %s: %zu points (%zu ground), %llu bytes compared; GPU %.2f ms "
+      "(upload %.2f, download %.2f)\n",
+      what.c_str(), cloud.size(), ground, static_cast<unsigned long long>(bytes), times.total_ms,
+      times.upload_ms, times.download_ms);
   return bytes;
 }
 
@@ -96,11 +97,20 @@ Cloud RandomCloud(size_t n, float sensor_height, uint32_t seed) {
         break;
       case 4:
         switch (rng() % 5) {
-          case 0: x = y = z = 0.0f; break;
-          case 1: x = nan; break;
-          case 2: z = -inf; break;
-          case 3: y = 1e30f; break;
-          default: in = nan;
+          case 0:
+            x = y = z = 0.0f;
+            break;
+          case 1:
+            x = nan;
+            break;
+          case 2:
+            z = -inf;
+            break;
+          case 3:
+            y = 1e30f;
+            break;
+          default:
+            in = nan;
         }
         break;
       case 5:
@@ -156,8 +166,7 @@ TEST_F(FramePipelineVk, RandomCloudWithRings) {
 TEST_F(FramePipelineVk, RandomHdl64eFrame) {
   const SensorSetup s = MakeSetup("hdl64e");
   vk::FramePipeline pipeline = MakePipeline(context(), s, 130000, 1);
-  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, RandomCloud(130000, 1.73f, 3), "random hdl64e"),
-            0u);
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, RandomCloud(130000, 1.73f, 3), "random hdl64e"), 0u);
 }
 
 void SimulatedScenes(const vk::Context& context, const std::string& sensor) {
@@ -217,9 +226,9 @@ TEST_P(RealScanVk, EveryBufferEqual) {
   const SensorSetup s = MakeSetup(scan.sensor);
   const Cloud cloud = ReadCloud(test::DataFile(scan.file));
   vk::FramePipeline pipeline = MakePipeline(context(), s, uint32_t(cloud.size()), 1);
-  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, cloud, std::string(scan.file) + " (" + scan.sensor +
-                                                         (cloud.ring.empty() ? "" : ", rings") +
-                                                         ")"),
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, cloud,
+                                 std::string(scan.file) + " (" + scan.sensor +
+                                     (cloud.ring.empty() ? "" : ", rings") + ")"),
             0u);
 }
 
@@ -345,8 +354,7 @@ TEST_F(FramePipelineVk, ErrorsLeaveThePipelineUsable) {
   EXPECT_NE(status.message().find("slot 0 is not free"), std::string::npos) << status.message();
   ASSERT_TRUE(pipeline.Collect(0, f).ok());
   EXPECT_EQ(f.label.size(), 1000u);
-  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, RandomCloud(1000, 1.7f, 4), "after the errors"),
-            0u);
+  EXPECT_GT(ExpectSameWholeFrame(pipeline, s, RandomCloud(1000, 1.7f, 4), "after the errors"), 0u);
 }
 
 // A pipeline destroyed with frames in flight waits for them (no validation message, no crash).
@@ -415,8 +423,8 @@ TEST_F(FramePipelineVk, CreateChecksTheDeviceLimits) {
   ASSERT_GT(real.max_storage_buffer_range, 0u);
   ASSERT_GT(real.device_local_heap, 0u);
   auto error = [&](uint32_t max_points, const vk::DeviceLimits* limits) {
-    const auto made = vk::FramePipeline::Create(context(), s.params, s.tables, max_points, 1,
-                                                limits);
+    const auto made =
+        vk::FramePipeline::Create(context(), s.params, s.tables, max_points, 1, limits);
     return made.ok() ? std::string("(no error)") : made.error().message;
   };
   EXPECT_EQ(error(1000, &real), "(no error)");

@@ -47,8 +47,8 @@ std::string PixelText(const Params& p, const Frame& f, uint32_t pix) {
                   ", point " + ValueText(f.pixel_point[pix]);
   if (f.pixel_point[pix] != kNone && f.pixel_point[pix] < f.coarse.size())
     s += ", coarse " + std::to_string(f.coarse[f.pixel_point[pix]]);
-  s += ", filled " + std::to_string(f.pixel_filled[pix]) + ", range " +
-       FloatText(f.f_range[pix]) + ", height " + FloatText(f.f_height[pix]);
+  s += ", filled " + std::to_string(f.pixel_filled[pix]) + ", range " + FloatText(f.f_range[pix]) +
+       ", height " + FloatText(f.f_height[pix]);
   for (uint32_t k = 1; k <= p.occ_rows && k <= v; ++k) {
     const uint32_t a = pix - k * p.width;
     s += "; above " + std::to_string(k) + ": filled " + std::to_string(f.pixel_filled[a]) +
@@ -115,8 +115,10 @@ void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const F
     uint32_t rows;
     float margin, rise, grade;
   };
-  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f}, {1, 0.1f, 0.1f, 0.0f},
-                              {3, 0.0f, 0.0f, 0.001f},    {8, -0.5f, -0.05f, 0.01f},
+  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f},
+                              {1, 0.1f, 0.1f, 0.0f},
+                              {3, 0.0f, 0.0f, 0.001f},
+                              {8, -0.5f, -0.05f, 0.01f},
                               {200, 1.0f, 0.5f, 0.0f}};
   for (const Variant& var : variants) {
     Params q = p;
@@ -338,9 +340,9 @@ TEST_F(FuseVk, VetoAtItsExactThresholds) {
     }
     EXPECT_GT(vetoes, 0u);
     EXPECT_GT(spared, 0u);
-    EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f, "thresholds, occ_rows " +
-                                                        std::to_string(occ_rows)),
-              size_t(im.p.width) * beams);
+    EXPECT_EQ(
+        ExpectSameFuse(context(), im.p, im.f, "thresholds, occ_rows " + std::to_string(occ_rows)),
+        size_t(im.p.width) * beams);
   }
 }
 
@@ -358,9 +360,9 @@ TEST_F(FuseVk, TopRowsAndReachBeyondTheImage) {
         else
           im.Measure(v, u, (u & 8) ? kPixUnknown : kPixGround, true, 20.0f, -1.7f);
       }
-    EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f, "top rows, occ_rows " +
-                                                        std::to_string(occ_rows)),
-              16u * 5u);
+    EXPECT_EQ(
+        ExpectSameFuse(context(), im.p, im.f, "top rows, occ_rows " + std::to_string(occ_rows)),
+        16u * 5u);
   }
 }
 

@@ -23,12 +23,12 @@ TEST(GridReduce, CellsAndTheirHeightStatistics) {
   const Tables t = MakeTables(s, p);
   ASSERT_EQ(p.sectors_near, 64u);
   Cloud c;
-  c.Push(3.0f, 0.01f, -1.70f, 0.3f);   // 0: near ring 1 (2-4 m), ahead
-  c.Push(3.2f, 0.01f, -1.50f, 0.3f);   // 1: same cell, higher
-  c.Push(3.1f, 0.01f, -1.60f, 0.3f);   // 2: same cell
-  c.Push(3.1f, 0.01f, -5.00f, 0.0f);   // 3: same cell, reflection noise: excluded
+  c.Push(3.0f, 0.01f, -1.70f, 0.3f);  // 0: near ring 1 (2-4 m), ahead
+  c.Push(3.2f, 0.01f, -1.50f, 0.3f);  // 1: same cell, higher
+  c.Push(3.1f, 0.01f, -1.60f, 0.3f);  // 2: same cell
+  c.Push(3.1f, 0.01f, -5.00f, 0.0f);  // 3: same cell, reflection noise: excluded
   const float far_r = p.ring_res_near * float(p.rings_near) + 0.5f * p.ring_res_far;
-  c.Push(far_r, 0.01f, -1.6f, 0.3f);   // 4: first far ring
+  c.Push(far_r, 0.01f, -1.6f, 0.3f);  // 4: first far ring
   Frame f;
   Prepare(c, p, f);
   ASSERT_TRUE(f.flags[3] & kPointNoise);

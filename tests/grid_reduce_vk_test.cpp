@@ -43,8 +43,8 @@ std::string ValueText(uint32_t u) {
 
 // What a point is: its stage 1-2 inputs (and coordinates when a cloud is at hand).
 std::string PointText(const Frame& f, const Cloud* cloud, const Params& p, size_t i) {
-  std::string s = "point " + std::to_string(i) + ": flags " + std::to_string(f.flags[i]) +
-                  ", r2 " + FloatText(f.r2[i]) + ", zt " + FloatText(f.zt[i]) + ", pixel " +
+  std::string s = "point " + std::to_string(i) + ": flags " + std::to_string(f.flags[i]) + ", r2 " +
+                  FloatText(f.r2[i]) + ", zt " + FloatText(f.zt[i]) + ", pixel " +
                   ValueText(f.point_pixel[i]);
   if (f.point_pixel[i] != kNone)
     s += " (row " + std::to_string(f.point_pixel[i] / p.width) + ", column " +
@@ -72,9 +72,9 @@ template <class Describe>
                                      const std::vector<uint32_t>& gpu, Describe describe,
                                      uint64_t* compared) {
   if (cpu.size() != gpu.size())
-    return ::testing::AssertionFailure() << "grid_reduce: buffer " << buffer << " has "
-                                         << gpu.size() << " elements on the GPU, " << cpu.size()
-                                         << " on the CPU";
+    return ::testing::AssertionFailure()
+           << "grid_reduce: buffer " << buffer << " has " << gpu.size() << " elements on the GPU, "
+           << cpu.size() << " on the CPU";
   *compared += cpu.size();
   if (cpu.empty() || std::memcmp(cpu.data(), gpu.data(), cpu.size() * 4) == 0)
     return ::testing::AssertionSuccess();
@@ -198,8 +198,7 @@ TEST_P(GridReduceVk, RandomCloudMatchesTheReference) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   const Cloud cloud = RandomCloud(c.points, c.ring, p, t, uint32_t(c.points * 2 + c.ring + 7));
-  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "random"),
-            c.points + 3ull * CellCount(p));
+  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "random"), c.points + 3ull * CellCount(p));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -224,9 +223,17 @@ TEST_F(GridReduceVkFrame, HandMadeBuffersMatchTheReference) {
   const Tables t = MakeTables(s, p);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  const float specials_z[] = {0.0f,      -0.0f,      exact::FromBits(1u), exact::FromBits(0x80000001u),
-                              -1e30f,    1e30f,      std::numeric_limits<float>::infinity(),
-                              -std::numeric_limits<float>::infinity(),    -1.7f, -1.7f, 2.0f};
+  const float specials_z[] = {0.0f,
+                              -0.0f,
+                              exact::FromBits(1u),
+                              exact::FromBits(0x80000001u),
+                              -1e30f,
+                              1e30f,
+                              std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(),
+                              -1.7f,
+                              -1.7f,
+                              2.0f};
   const uint32_t flag_values[] = {0u, 1u, 1u, 1u, 1u, 2u, 3u, 4u, 5u};
   const uint32_t pixels = p.width * p.beams;
   for (uint32_t n : {1u, 100u, 77777u, 150000u}) {
@@ -238,11 +245,20 @@ TEST_F(GridReduceVkFrame, HandMadeBuffersMatchTheReference) {
       const uint32_t ring = rng() % uint32_t(t.ring_bound2.size());
       float r2 = t.ring_bound2[ring];
       switch (rng() % 6) {
-        case 0: r2 = std::nextafter(r2, 0.0f); break;
-        case 1: r2 = std::nextafter(r2, 1e30f); break;
-        case 2: r2 = unit(rng) * 150.0f * 150.0f; break;  // also past the last ring
-        case 3: r2 = (rng() & 1) ? 0.0f : exact::FromBits(0x00400000u); break;
-        default: break;
+        case 0:
+          r2 = std::nextafter(r2, 0.0f);
+          break;
+        case 1:
+          r2 = std::nextafter(r2, 1e30f);
+          break;
+        case 2:
+          r2 = unit(rng) * 150.0f * 150.0f;
+          break;  // also past the last ring
+        case 3:
+          r2 = (rng() & 1) ? 0.0f : exact::FromBits(0x00400000u);
+          break;
+        default:
+          break;
       }
       f.r2[i] = r2;
       f.zt[i] = (rng() % 3 == 0) ? specials_z[rng() % 11] : (unit(rng) - 0.5f) * 8.0f;

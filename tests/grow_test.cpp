@@ -44,8 +44,7 @@ struct Image {
 // grow_grade * (|dr| + min(r_q, r_r) * column_arc when the column changes): symmetric).
 float Allowed(const Params& p, const Frame& f, uint32_t q, uint32_t r) {
   float step = std::fabs(f.f_range[r] - f.f_range[q]);
-  if (r % p.width != q % p.width)
-    step = step + std::min(f.f_range[q], f.f_range[r]) * p.column_arc;
+  if (r % p.width != q % p.width) step = step + std::min(f.f_range[q], f.f_range[r]) * p.column_arc;
   return p.grow_dz + p.grow_grade * step;
 }
 
@@ -149,11 +148,11 @@ TEST(Grow, StepTestIsSymmetric) {
       Image im(64, 1);
       im.p.min_component = 0;
       im.p.grow_grade = 0.05f;
-      const float near_allowed = im.p.grow_dz + im.p.grow_grade * (far_r - near_r +
-                                                                   near_r * im.p.column_arc);
-      const float climb = climb_share < 1.0f ? 0.9f * near_allowed
-                                             : near_allowed + 0.5f * im.p.grow_grade * far_r *
-                                                                  im.p.column_arc;
+      const float near_allowed =
+          im.p.grow_dz + im.p.grow_grade * (far_r - near_r + near_r * im.p.column_arc);
+      const float climb = climb_share < 1.0f
+                              ? 0.9f * near_allowed
+                              : near_allowed + 0.5f * im.p.grow_grade * far_r * im.p.column_arc;
       im.Set(0, 0, seed_far ? kPixGround : kPixUnknown, -1.7f, 0.3f, far_r);
       im.Set(0, 1, seed_far ? kPixUnknown : kPixGround, -1.7f + climb, 0.3f, near_r);
       im.Run();

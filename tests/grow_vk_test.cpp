@@ -131,8 +131,7 @@ class GrowRunner {
   }
 
   // Runs the stage on `in` (at most kMaxPixels pixels) and compares with the reference.
-  void ExpectSame(const Params& p, const Frame& in, const std::string& what,
-                  bool verbose = false) {
+  void ExpectSame(const Params& p, const Frame& in, const std::string& what, bool verbose = false) {
     ASSERT_TRUE(stage_ && transfer_);
     const uint32_t pixels = p.width * p.beams;
     ASSERT_LE(pixels, kMaxPixels) << what;

@@ -3,6 +3,7 @@
 #include "apps/viz/images.h"
 
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,7 +11,6 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
-#include <png.h>
 #include <stdexcept>
 #include <string>
 #include <vector>

@@ -21,14 +21,14 @@ TEST(Prepare, InvalidPointsAreMarkedAndZeroed) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   Cloud c;
-  c.Push(5, 0, -1.7f, 0.3f);    // 0 valid
-  c.Push(nan, 0, -1.7f, 0.3f);  // 1 NaN
-  c.Push(5, inf, -1.7f, 0.3f);  // 2 Inf
-  c.Push(5, 0, -1.7f, nan);     // 3 NaN intensity
-  c.Push(0, 0, 0, 0.3f);        // 4 origin
-  c.Push(0.5f, 0, -1.7f, 0.3f); // 5 closer than min_range
-  c.Push(200, 0, -1.7f, 0.3f);  // 6 beyond max_range
-  c.Push(5, 0, 1e30f, 0.3f);    // 7 absurd height
+  c.Push(5, 0, -1.7f, 0.3f);     // 0 valid
+  c.Push(nan, 0, -1.7f, 0.3f);   // 1 NaN
+  c.Push(5, inf, -1.7f, 0.3f);   // 2 Inf
+  c.Push(5, 0, -1.7f, nan);      // 3 NaN intensity
+  c.Push(0, 0, 0, 0.3f);         // 4 origin
+  c.Push(0.5f, 0, -1.7f, 0.3f);  // 5 closer than min_range
+  c.Push(200, 0, -1.7f, 0.3f);   // 6 beyond max_range
+  c.Push(5, 0, 1e30f, 0.3f);     // 7 absurd height
   const Params p = ParamsForSensor(test::SmallSensor());
   const Frame f = RunPrepare(c, p);
   EXPECT_EQ(f.flags[0], kPointValid);
@@ -71,8 +71,8 @@ TEST(Prepare, SubnormalInputsAndOutputsAreFlushed) {
   const Params p = ParamsForSensor(test::SmallSensor());
   const float sub = exact::FromBits(0x00012345u);
   Cloud c;
-  c.Push(10.0f, 0.0f, sub, sub);         // subnormal height and intensity
-  c.Push(10.0f, 0.0f, -1.0f, 1e-38f);    // intensity * scale underflows
+  c.Push(10.0f, 0.0f, sub, sub);       // subnormal height and intensity
+  c.Push(10.0f, 0.0f, -1.0f, 1e-38f);  // intensity * scale underflows
   const Frame f = RunPrepare(c, p);
   EXPECT_EQ(f.flags[0] & kPointValid, kPointValid);
   EXPECT_EQ(exact::Bits(f.zt[0]), 0u);
@@ -83,9 +83,9 @@ TEST(Prepare, SubnormalInputsAndOutputsAreFlushed) {
 TEST(Prepare, DimPointsFarBelowTheGroundAreReflectionNoise) {
   const Params p = ParamsForSensor(test::SmallSensor());
   Cloud c;
-  c.Push(10, 0, p.h_noise - 0.1f, 0.0f);            // low and dim: noise
-  c.Push(10, 0, p.h_noise - 0.1f, 0.9f);            // low but bright: a real return
-  c.Push(10, 0, p.h_noise + 0.1f, 0.0f);            // dim but not low
+  c.Push(10, 0, p.h_noise - 0.1f, 0.0f);  // low and dim: noise
+  c.Push(10, 0, p.h_noise - 0.1f, 0.9f);  // low but bright: a real return
+  c.Push(10, 0, p.h_noise + 0.1f, 0.0f);  // dim but not low
   const Frame f = RunPrepare(c, p);
   EXPECT_EQ(f.flags[0], kPointValid | kPointNoise);
   EXPECT_EQ(f.flags[1], kPointValid);

@@ -1,11 +1,11 @@
 // Tests of the command-line progress bar: plain lines without '\r' off a terminal, a redrawn bar
 // on one, nothing when disabled.
+#include "apps/cli/progress.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <string>
-
-#include "apps/cli/progress.h"
 
 namespace lpir {
 namespace {

@@ -1,8 +1,8 @@
 // Stage 2, project: the exact column and row lookups of eq. 1 and the pixel winner rule.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "reference_cpu/exact.h"
@@ -85,7 +85,8 @@ TEST(Project, RowIsTheBeamNearestInElevation) {
     for (double off : {-0.3, 0.0, 0.3}) {  // within half the 1-degree spacing
       const double e = (s.elevation_deg[b] + off) * kPi / 180.0;
       const float r = 25.0f, z = float(25.0 * std::tan(e));
-      EXPECT_EQ(RowOf(z, r * r, t.beam_bound.data(), t.beam_origin.data(), p.beams), b) << "beam " << b << " " << off;
+      EXPECT_EQ(RowOf(z, r * r, t.beam_bound.data(), t.beam_origin.data(), p.beams), b)
+          << "beam " << b << " " << off;
     }
   }
   // Beyond the table's ends: the top and bottom rows.
@@ -162,7 +163,7 @@ TEST(Project, NearestPointWinsThenLowestIndexAndNoiseNeverWins) {
   ASSERT_NE(pix, kNone);
   EXPECT_EQ(f.point_pixel[0], pix);
   EXPECT_EQ(f.point_pixel[2], pix);
-  EXPECT_EQ(f.point_pixel[3], pix);  // noise has a pixel...
+  EXPECT_EQ(f.point_pixel[3], pix);   // noise has a pixel...
   EXPECT_EQ(f.pixel_point[pix], 1u);  // ...but the nearest non-noise point, lowest index, wins
   EXPECT_EQ(f.pixel_key[pix], exact::Key(f.r2[1]));
   EXPECT_EQ(f.point_pixel[4], kNone);

@@ -88,8 +88,8 @@ uint64_t ExpectSameProject(const vk::Context& context, const Cloud& cloud, const
   EXPECT_TRUE(status.ok()) << status.message();
   if (!status.ok()) return 0;
   uint64_t compared = 0;
-  EXPECT_TRUE(SameBytes("point_pixel", true, cpu.point_pixel, gpu.point_pixel, cloud, cpu, p,
-                        &compared));
+  EXPECT_TRUE(
+      SameBytes("point_pixel", true, cpu.point_pixel, gpu.point_pixel, cloud, cpu, p, &compared));
   EXPECT_TRUE(
       SameBytes("pixel_key", false, cpu.pixel_key, gpu.pixel_key, cloud, cpu, p, &compared));
   EXPECT_TRUE(
@@ -98,7 +98,8 @@ uint64_t ExpectSameProject(const vk::Context& context, const Cloud& cloud, const
   for (uint32_t f : cpu.flags) valid += (f & kPointValid) != 0, noise += (f & kPointNoise) != 0;
   std::vector<uint32_t> per_pixel(cpu.pixel_key.size(), 0);
   for (uint32_t i = 0; i < cpu.n; ++i)
-    if (cpu.point_pixel[i] != kNone && !(cpu.flags[i] & kPointNoise)) ++per_pixel[cpu.point_pixel[i]];
+    if (cpu.point_pixel[i] != kNone && !(cpu.flags[i] & kPointNoise))
+      ++per_pixel[cpu.point_pixel[i]];
   for (uint32_t c : per_pixel) filled += c != 0, contested += c > 1;
   std::printf(
       "[project] %zu points (%zu valid, %zu noise), %zu pixels (%zu filled, %zu contested): %llu "
@@ -112,8 +113,7 @@ uint64_t ExpectSameProject(const vk::Context& context, const Cloud& cloud, const
 // (ties on r2), points on column boundary directions and on the axes, subnormal coordinates.
 Cloud RandomCloud(size_t n, bool with_ring, const Params& p, const Tables& t, uint32_t seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> xy(-110.0f, 110.0f), height(-4.0f, 4.0f),
-      unit(0.0f, 1.0f);
+  std::uniform_real_distribution<float> xy(-110.0f, 110.0f), height(-4.0f, 4.0f), unit(0.0f, 1.0f);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   const float sub = exact::FromBits(0x00012345u);  // a subnormal

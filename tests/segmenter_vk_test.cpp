@@ -236,8 +236,7 @@ TEST(Segmenter, MaxPointsFollowsTheSensorProfile) {
     ADD_FAILURE() << "no error for " << big.size() << " points";
   } catch (const std::length_error& e) {
     EXPECT_NE(std::string(e.what()).find(std::to_string(big.size()) + " points, more than the " +
-                                         "configured maximum of " +
-                                         std::to_string(s.max_points())),
+                                         "configured maximum of " + std::to_string(s.max_points())),
               std::string::npos)
         << e.what();
   }

@@ -301,10 +301,12 @@ TEST(SensorProfile, ParamsForSensorBoundsTheGridTiltAndRange) {
   EXPECT_NE(ParamsError(s).find("4194304 cells"), std::string::npos) << ParamsError(s);
   s = good;
   s.k_xz = 1e30f;
-  EXPECT_NE(ParamsError(s).find("k_xz and k_yz must lie in -1..1"), std::string::npos) << ParamsError(s);
+  EXPECT_NE(ParamsError(s).find("k_xz and k_yz must lie in -1..1"), std::string::npos)
+      << ParamsError(s);
   s = good;
   s.max_range = 1e6f;
-  EXPECT_NE(ParamsError(s).find("max_range be at most 1000 m"), std::string::npos) << ParamsError(s);
+  EXPECT_NE(ParamsError(s).find("max_range be at most 1000 m"), std::string::npos)
+      << ParamsError(s);
 }
 
 // A subnormal parameter (a device may flush it) is an error naming it; 0 and the smallest normal
@@ -341,7 +343,8 @@ TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
       << ParamsError(s);
   s = good;
   s.intensity_scale = 2e-39f;
-  EXPECT_NE(ParamsError(s).find("parameter intensity_scale is "), std::string::npos) << ParamsError(s);
+  EXPECT_NE(ParamsError(s).find("parameter intensity_scale is "), std::string::npos)
+      << ParamsError(s);
 }
 
 }  // namespace

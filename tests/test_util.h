@@ -32,14 +32,14 @@ bool HasVulkanDevice();
 #define LPIR_REQUIRE_VULKAN()                                                              \
   do {                                                                                     \
     if (!::lpir::test::HasVulkanDevice())                                                  \
-      GTEST_SKIP() << "no Vulkan device (VK_ICD_FILENAMES, or none found by the loader); "  \
+      GTEST_SKIP() << "no Vulkan device (VK_ICD_FILENAMES, or none found by the loader); " \
                       "install mesa-vulkan-drivers for lavapipe";                          \
   } while (0)
 
-#define LPIR_REQUIRE_DATA(path)                                                             \
-  do {                                                                                      \
-    if (::lpir::test::DataFile(path).empty())                                               \
-      GTEST_SKIP() << "real scan " << (path) << " not found under "                         \
-                   << ::lpir::test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR)       \
-                   << " (../shared/data is absent on this machine)";                        \
+#define LPIR_REQUIRE_DATA(path)                                           \
+  do {                                                                    \
+    if (::lpir::test::DataFile(path).empty())                             \
+      GTEST_SKIP() << "real scan " << (path) << " not found under "       \
+                   << ::lpir::test::EnvOr("LPIR_DATA_DIR", LPIR_DATA_DIR) \
+                   << " (../shared/data is absent on this machine)";      \
   } while (0)

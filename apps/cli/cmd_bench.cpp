@@ -26,8 +26,8 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/sim/scene.h"
-#include "host/io/kitti_bin.h"
 #include "host/frame_pipeline.h"
+#include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
 #include "host/segmenter.h"
 #include "host/vk/context.h"
@@ -263,8 +263,8 @@ int RunBench(int argc, char** argv) {
     throw std::invalid_argument("--runs, --scaling-runs and --frames must be at least 1");
   const char* env_data = std::getenv("LPIR_DATA_DIR");
   // ../shared/data beside the repository, whose sensors/ folder SensorsDir() is.
-  const std::string beside = (fs::path(SensorsDir()).parent_path().parent_path() / "shared" /
-                              "data").string();
+  const std::string beside =
+      (fs::path(SensorsDir()).parent_path().parent_path() / "shared" / "data").string();
   const std::string data = args.Get("--data", env_data && *env_data ? env_data : beside);
   const bool json = args.Has("--json");
   auto say = [&](const char* what) {
@@ -339,7 +339,8 @@ int RunBench(int argc, char** argv) {
   const uint32_t in_flight[3] = {1, 2, 4};
   constexpr uint32_t kBatch = 8;  // frames a batch, two batches in flight
   if (gpu) {
-    for (int k = 0; k < 3; ++k) fps[k] = Throughput(hdl64e, vk_options, clouds, in_flight[k], frames);
+    for (int k = 0; k < 3; ++k)
+      fps[k] = Throughput(hdl64e, vk_options, clouds, in_flight[k], frames);
     fps[3] = Throughput(hdl64e, vk_options, clouds, 2, frames, kBatch);
   }
 
@@ -376,8 +377,8 @@ int RunBench(int argc, char** argv) {
     std::vector<Timed> cpu_t(sensors.size()), gpu_t(sensors.size());
     for (int r = 0; r < scaling_runs; ++r)
       for (size_t k = 0; k < sensors.size(); ++k)
-        TimeFramesInTurns(*cpus[k], gpu ? gpus[k].get() : nullptr, scenes[k], 1,
-                          cpu_t[k], gpu_t[k]);
+        TimeFramesInTurns(*cpus[k], gpu ? gpus[k].get() : nullptr, scenes[k], 1, cpu_t[k],
+                          gpu_t[k]);
     for (size_t k = 0; k < sensors.size(); ++k) {
       scaling[k].cpu_ms = SpreadOf(cpu_t[k].wall).median;
       if (gpu) scaling[k].vulkan_ms = SpreadOf(gpu_t[k].wall).median;
@@ -403,7 +404,8 @@ int RunBench(int argc, char** argv) {
     for (int k = 0; k < 9; ++k) {
       char b[256];
       const Spread cs = SpreadOf(c.stage[k]), gs = SpreadOf(g.stage[k]);
-      std::snprintf(b, sizeof b, "%s{\"name\": \"%s\", \"cpu_ms\": %.4f, \"vulkan_ms\": %.4f, "
+      std::snprintf(b, sizeof b,
+                    "%s{\"name\": \"%s\", \"cpu_ms\": %.4f, \"vulkan_ms\": %.4f, "
                     "\"cpu_p25_ms\": %.4f, \"cpu_p75_ms\": %.4f, \"vulkan_p25_ms\": %.4f, "
                     "\"vulkan_p75_ms\": %.4f}",
                     k ? ", " : "", kStageNames[k], cs.median, gpu ? gs.median : -1.0, cs.p25,
@@ -415,8 +417,7 @@ int RunBench(int argc, char** argv) {
                   "], \"throughput_fps\": {\"cpu\": %.2f, \"1\": %.2f, \"2\": %.2f, \"4\": %.2f, "
                   "\"batch_8\": %.2f}, "
                   "\"peak_host_mib\": %.1f, \"device_mib\": %.1f, \"scaling\": [",
-                  cpu_fps, fps[0], fps[1], fps[2], fps[3], rss,
-                  double(device_bytes) / (1 << 20));
+                  cpu_fps, fps[0], fps[1], fps[2], fps[3], rss, double(device_bytes) / (1 << 20));
     j += b;
     for (size_t k = 0; k < scaling.size(); ++k) {
       const ScalingRow& r = scaling[k];
@@ -437,17 +438,17 @@ int RunBench(int argc, char** argv) {
       } else {
         const double frames_d = double(gc.frames);
         const double points_d = double(std::max<uint64_t>(gc.points, 1));
-        std::snprintf(
-            b, sizeof b,
-            "{\"frames\": %zu, \"dispatches_per_frame_min\": %u, "
-            "\"dispatches_per_frame_max\": %u, \"indirect_dispatches_per_frame\": %u, "
-            "\"barriers_per_frame\": %u, \"workgroups_per_frame\": %.1f, "
-            "\"upload_bytes_per_point\": %.3f, \"download_bytes_per_point\": %.3f, "
-            "\"device_mib\": %.1f, \"labels_equal_reference\": %s}",
-            gc.frames, gc.dispatches_min, gc.dispatches_max, gc.indirect_max, gc.barriers_max,
-            double(gc.workgroups) / frames_d, double(gc.upload_bytes) / points_d,
-            double(gc.download_bytes) / points_d, double(gc.device_bytes) / (1 << 20),
-            gc.labels_equal_reference ? "true" : "false");
+        std::snprintf(b, sizeof b,
+                      "{\"frames\": %zu, \"dispatches_per_frame_min\": %u, "
+                      "\"dispatches_per_frame_max\": %u, \"indirect_dispatches_per_frame\": %u, "
+                      "\"barriers_per_frame\": %u, \"workgroups_per_frame\": %.1f, "
+                      "\"upload_bytes_per_point\": %.3f, \"download_bytes_per_point\": %.3f, "
+                      "\"device_mib\": %.1f, \"labels_equal_reference\": %s}",
+                      gc.frames, gc.dispatches_min, gc.dispatches_max, gc.indirect_max,
+                      gc.barriers_max, double(gc.workgroups) / frames_d,
+                      double(gc.upload_bytes) / points_d, double(gc.download_bytes) / points_d,
+                      double(gc.device_bytes) / (1 << 20),
+                      gc.labels_equal_reference ? "true" : "false");
         j += b;
       }
       if (k + 1 == costs.size()) j += "}";
@@ -479,9 +480,10 @@ int RunBench(int argc, char** argv) {
   row("download", none, g.download);
   row("gpu total", none, g.gpu_total);
   row("end to end", c.wall, g.wall);
-  std::printf("\nthroughput (frames/s over %d frames): cpu %.1f | vulkan, frames in flight 1: "
-              "%.1f, 2: %.1f, 4: %.1f, batches of 8: %.1f   %s\n",
-              frames, cpu_fps, fps[0], fps[1], fps[2], fps[3], device.c_str());
+  std::printf(
+      "\nthroughput (frames/s over %d frames): cpu %.1f | vulkan, frames in flight 1: "
+      "%.1f, 2: %.1f, 4: %.1f, batches of 8: %.1f   %s\n",
+      frames, cpu_fps, fps[0], fps[1], fps[2], fps[3], device.c_str());
   std::printf("memory: peak host RSS %.1f MiB | device memory allocated %.1f MiB   %s\n", rss,
               double(device_bytes) / (1 << 20), device.c_str());
   for (const GpuCost& gc : costs) {
@@ -491,14 +493,14 @@ int RunBench(int argc, char** argv) {
       continue;
     }
     const double points_d = double(std::max<uint64_t>(gc.points, 1));
-    std::printf("gpu cost, shape %s, per frame: %u-%u dispatches (%u indirect), %u barriers, "
-                "%.0f workgroups (direct dispatches), %.2f B/point up, %.2f B/point down, "
-                "%.1f MiB device; labels %s the reference's   %s\n",
-                gc.shape.c_str(), gc.dispatches_min, gc.dispatches_max, gc.indirect_max,
-                gc.barriers_max, double(gc.workgroups) / double(gc.frames),
-                double(gc.upload_bytes) / points_d, double(gc.download_bytes) / points_d,
-                double(gc.device_bytes) / (1 << 20),
-                gc.labels_equal_reference ? "equal" : "DIFFER from", device.c_str());
+    std::printf(
+        "gpu cost, shape %s, per frame: %u-%u dispatches (%u indirect), %u barriers, "
+        "%.0f workgroups (direct dispatches), %.2f B/point up, %.2f B/point down, "
+        "%.1f MiB device; labels %s the reference's   %s\n",
+        gc.shape.c_str(), gc.dispatches_min, gc.dispatches_max, gc.indirect_max, gc.barriers_max,
+        double(gc.workgroups) / double(gc.frames), double(gc.upload_bytes) / points_d,
+        double(gc.download_bytes) / points_d, double(gc.device_bytes) / (1 << 20),
+        gc.labels_equal_reference ? "equal" : "DIFFER from", device.c_str());
   }
   std::printf("\nscaling (simulated street, seed 1, median of %d end-to-end frames):\n",
               scaling_runs);

@@ -25,9 +25,10 @@ namespace lpir {
 int RunDemo(int argc, char** argv) {
   const Args args(argc, argv, {"--help"}, {"--out", "--seed", "--backend"});
   if (args.Has("--help")) {
-    std::fputs("usage: lpir-gseg demo [--out DIR (default demo_out)] [--seed N (default 1)]\n"
-               "                      [--backend auto|vulkan|cpu (default auto)]\n",
-               stdout);
+    std::fputs(
+        "usage: lpir-gseg demo [--out DIR (default demo_out)] [--seed N (default 1)]\n"
+        "                      [--backend auto|vulkan|cpu (default auto)]\n",
+        stdout);
     return 0;
   }
   SegmenterOptions segmenter_options;
@@ -52,8 +53,7 @@ int RunDemo(int argc, char** argv) {
 
   Segmenter segmenter(sensor, segmenter_options);
   if (segmenter_options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
-    std::fprintf(stderr, "lpir-gseg demo: note: %s\n",
-                 segmenter.backend_note().c_str());
+    std::fprintf(stderr, "lpir-gseg demo: note: %s\n", segmenter.backend_note().c_str());
   FrameTimes times;
   const Frame& frame = segmenter.Segment(scan.cloud, &times);
   std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
@@ -78,9 +78,10 @@ int RunDemo(int argc, char** argv) {
       throw std::runtime_error("the CPU reference labels this scan differently from Vulkan");
     std::printf("the CPU reference gives the same labels, byte for byte\n");
   }
-  std::printf("against the scene's truth (DG protocol): precision %.2f %%, recall %.2f %%, "
-              "F1 %.2f %%, ground IoU %.2f %%\n",
-              100 * s.precision, 100 * s.recall, 100 * s.f1, 100 * s.iou);
+  std::printf(
+      "against the scene's truth (DG protocol): precision %.2f %%, recall %.2f %%, "
+      "F1 %.2f %%, ground IoU %.2f %%\n",
+      100 * s.precision, 100 * s.recall, 100 * s.f1, 100 * s.iou);
   std::printf("car points labelled ground: %zu of %zu\n", car_ground, car_points);
 
   std::vector<uint8_t> truth(scan.labels.size());
@@ -88,9 +89,10 @@ int RunDemo(int argc, char** argv) {
   const std::string images = (fs::path(out) / "images").string();
   const std::vector<std::string> written =
       WriteImages(images, "demo_scan", scan.cloud, frame, segmenter.params(), &truth);
-  std::printf("wrote %zu pictures to %s/ (start with demo_scan_bev.png: TP green, TN red, "
-              "FP blue, FN yellow)\n",
-              written.size(), images.c_str());
+  std::printf(
+      "wrote %zu pictures to %s/ (start with demo_scan_bev.png: TP green, TN red, "
+      "FP blue, FN yellow)\n",
+      written.size(), images.c_str());
   return 0;
 }
 

@@ -95,7 +95,8 @@ class Timings {
     for (int k = 0; k < 9; ++k) std::printf(" %s %.3f", kStageNames[k], t.stage_ms[k]);
     if (gpu_) std::printf(" download %.3f", t.download_ms);
     std::printf(" total %.3f\n", t.total_ms);
-    upload_.push_back(t.upload_ms), download_.push_back(t.download_ms), total_.push_back(t.total_ms);
+    upload_.push_back(t.upload_ms), download_.push_back(t.download_ms),
+        total_.push_back(t.total_ms);
     for (int k = 0; k < 9; ++k) stage_[k].push_back(t.stage_ms[k]);
   }
   void PrintMedians() const {
@@ -117,13 +118,14 @@ class Timings {
 
 int RunSegment(int argc, char** argv) {
   const Args args(argc, argv, {"--images", "--nuscenes", "--quiet", "--timings", "--help"},
-                  {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend",
-                   "--device", "--batch"});
+                  {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device",
+                   "--batch"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     return 0;
   }
-  if (args.positional().empty()) throw std::invalid_argument("no INPUT given\n" + std::string(kHelp));
+  if (args.positional().empty())
+    throw std::invalid_argument("no INPUT given\n" + std::string(kHelp));
   const std::string format = args.Get("--format", "label");
   if (format != "label" && format != "pcd" && format != "ply")
     throw std::invalid_argument("--format must be label, pcd or ply, not '" + format + "'");
@@ -146,8 +148,7 @@ int RunSegment(int argc, char** argv) {
   const std::vector<std::string> files = ListInputs(args.positional());
   Segmenter segmenter(sensor, options);
   if (options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
-    std::fprintf(stderr, "lpir-gseg segment: note: %s\n",
-                 segmenter.backend_note().c_str());
+    std::fprintf(stderr, "lpir-gseg segment: note: %s\n", segmenter.backend_note().c_str());
   fs::create_directories(out_dir);
   ReadOptions read_options;
   if (args.Has("--nuscenes")) read_options.bin_layout = BinLayout::kNuScenes5;

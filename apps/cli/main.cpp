@@ -19,7 +19,8 @@ const char kUsage[] =
     "  segment INPUT... --sensor NAME --out DIR [--backend auto|vulkan|cpu] [--device D]\n"
     "          [--timings] [--format label|pcd|ply] [--images] [--gt PATH]\n"
     "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json]\n"
-    "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels FILE.label\n"
+    "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels "
+    "FILE.label\n"
     "  calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
     "  demo [--out DIR] [--backend auto|vulkan|cpu]\n"
     "  devices\n"
@@ -35,12 +36,9 @@ int main(int argc, char** argv) {
     const char* name;
     int (*run)(int, char**);
   };
-  const Command commands[] = {{"segment", lpir::RunSegment},
-                              {"evaluate", lpir::RunEvaluate},
-                              {"simulate", lpir::RunSimulate},
-                              {"calibrate", lpir::RunCalibrate},
-                              {"demo", lpir::RunDemo},
-                              {"devices", lpir::RunDevices},
+  const Command commands[] = {{"segment", lpir::RunSegment},   {"evaluate", lpir::RunEvaluate},
+                              {"simulate", lpir::RunSimulate}, {"calibrate", lpir::RunCalibrate},
+                              {"demo", lpir::RunDemo},         {"devices", lpir::RunDevices},
                               {"bench", lpir::RunBench}};
   for (const Command& c : commands) {
     if (!std::strcmp(argv[1], c.name)) {

@@ -2,11 +2,12 @@
 // bird's-eye views, drawn with OpenCV core/imgproc and written as PNG with libpng.
 #include "apps/viz/images.h"
 
+#include <png.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <png.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -73,7 +74,8 @@ void CheckSize(const char* buffer, size_t have, size_t want) {
 // A BGR picture as PNG through libpng's simplified API, not OpenCV's imgcodecs, which loads some
 // hundred libraries at every start of the program (docs/decisions/apps.md).
 void Write(const std::string& path, const cv::Mat& image, std::vector<std::string>* written) {
-  if (image.type() != CV_8UC3) throw std::logic_error("WriteImages: a picture that is not 8-bit BGR");
+  if (image.type() != CV_8UC3)
+    throw std::logic_error("WriteImages: a picture that is not 8-bit BGR");
   const cv::Mat pixels = image.isContinuous() ? image : image.clone();
   png_image png{};
   png.version = PNG_IMAGE_VERSION;

@@ -88,10 +88,10 @@ class Parser {
   SensorProfile Parse(const std::string& text) {
     SensorProfile p;
     p.overrides.clear();
-    std::map<std::string, int> seen;         // key -> line of its first appearance
-    std::map<std::string, int> params_seen;  // override name -> line
-    int elevation_line = 0;                  // line of the elevation_deg key
-    int origin_line = 0;                     // line of the beam_origin_z key
+    std::map<std::string, int> seen;          // key -> line of its first appearance
+    std::map<std::string, int> params_seen;   // override name -> line
+    int elevation_line = 0;                   // line of the elevation_deg key
+    int origin_line = 0;                      // line of the beam_origin_z key
     std::vector<float>* open_list = nullptr;  // the list the previous line was (or continued)
     std::string open_key;
     std::istringstream in(text);
@@ -214,7 +214,8 @@ class Parser {
       Fail(origin_line, "beam_origin_z has " + std::to_string(p.beam_origin_z.size()) +
                             " values but beams is " + std::to_string(p.beams));
     for (float oz : p.beam_origin_z)
-      if (!(oz >= -1.0f && oz <= 1.0f)) Fail(origin_line, "beam_origin_z values must be within 1 m");
+      if (!(oz >= -1.0f && oz <= 1.0f))
+        Fail(origin_line, "beam_origin_z values must be within 1 m");
     if (!(p.max_range > p.min_range)) {
       int at = seen.count("max_range") ? seen["max_range"] : seen["min_range"];
       Fail(at, "max_range must be larger than min_range");

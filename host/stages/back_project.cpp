@@ -1,11 +1,10 @@
 // Stage 9, back-project, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/back_project.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -25,10 +24,9 @@ Result<BackProjectStage> BackProjectStage::Create(const Device& device,
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
   LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel,
-      Kernel::Create(device, desc,
-                     {b.params, b.flags, b.point_pixel, b.pixel_point, b.pixel_label, b.f_range,
-                      b.f_height, b.r2, b.zt, b.coarse, b.label_why}));
+      Kernel kernel, Kernel::Create(device, desc,
+                                    {b.params, b.flags, b.point_pixel, b.pixel_point, b.pixel_label,
+                                     b.f_range, b.f_height, b.r2, b.zt, b.coarse, b.label_why}));
   return BackProjectStage(std::move(kernel));
 }
 
@@ -103,8 +101,8 @@ Status RunBackProject(const Context& context, const Params& p, Frame& f, BackPro
   bindings.coarse = &coarse;
   bindings.label_why = &label_why;
   LPIR_VK_ASSIGN_OR_RETURN(BackProjectStage stage, BackProjectStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
 
   BackProjectWords local;
   BackProjectWords& out = words ? *words : local;

@@ -1,11 +1,10 @@
 // Stage 6, classify pixels, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/classify_pixels.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -24,10 +23,9 @@ Result<ClassifyPixelsStage> ClassifyPixelsStage::Create(const Device& device,
   desc.local_size_x = kLocalSize;
   desc.passes = 2;
   LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel,
-      Kernel::Create(device, desc,
-                     {b.params, b.pixel_filled, b.f_edge_l, b.f_edge_r, b.f_slope, b.f_varz,
-                      b.f_vari, b.pixel_class}));
+      Kernel kernel, Kernel::Create(device, desc,
+                                    {b.params, b.pixel_filled, b.f_edge_l, b.f_edge_r, b.f_slope,
+                                     b.f_varz, b.f_vari, b.pixel_class}));
   return ClassifyPixelsStage(std::move(kernel));
 }
 
@@ -82,8 +80,8 @@ Status RunClassifyPixels(const Context& context, const Params& p, Frame& f, doub
   bindings.pixel_class = &pixel_class;
   LPIR_VK_ASSIGN_OR_RETURN(ClassifyPixelsStage stage,
                            ClassifyPixelsStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(pixels)); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(pixels)); }, gpu_ns));
 
   f.pixel_class.resize(pixels);
   if (pixels) LPIR_VK_RETURN_IF_ERROR(transfer.Download(pixel_class, f.pixel_class.data(), bytes));

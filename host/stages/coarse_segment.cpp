@@ -1,11 +1,10 @@
 // Stage 4, coarse segment, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/coarse_segment.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -113,8 +112,8 @@ Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params
   bindings.coarse = &coarse;
   bindings.coarse_scratch = &coarse_scratch;
   LPIR_VK_ASSIGN_OR_RETURN(CoarseSegmentStage stage, CoarseSegmentStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n), cells); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n), cells); }, gpu_ns));
 
   f.cell_seed_mode.resize(cells);
   f.cell_plane.resize(size_t(cells) * 8);

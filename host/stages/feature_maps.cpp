@@ -1,12 +1,11 @@
 // Stage 5, feature maps, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/feature_maps.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -37,11 +36,10 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   desc.passes = 3;
   desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel,
-      Kernel::Create(device, desc,
-                     {b.params, b.pixel_point, b.r2, b.zt, b.inten, b.pixel_filled, b.f_range,
-                      b.f_inten, b.f_height, b.f_slope, b.f_edge_l, b.f_edge_r, b.f_varz,
-                      b.f_vari, b.feature_pack}));
+      Kernel kernel, Kernel::Create(device, desc,
+                                    {b.params, b.pixel_point, b.r2, b.zt, b.inten, b.pixel_filled,
+                                     b.f_range, b.f_inten, b.f_height, b.f_slope, b.f_edge_l,
+                                     b.f_edge_r, b.f_varz, b.f_vari, b.feature_pack}));
   return FeatureMapsStage(std::move(kernel));
 }
 
@@ -89,7 +87,8 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
 
   LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
   LPIR_VK_RETURN_IF_ERROR(transfer.Upload(params_buffer, &p, sizeof(Params)));
-  if (pixels) LPIR_VK_RETURN_IF_ERROR(transfer.Upload(pixel_point, f.pixel_point.data(), per_pixel));
+  if (pixels)
+    LPIR_VK_RETURN_IF_ERROR(transfer.Upload(pixel_point, f.pixel_point.data(), per_pixel));
   if (n) {
     LPIR_VK_RETURN_IF_ERROR(transfer.Upload(r2, f.r2.data(), per_point));
     LPIR_VK_RETURN_IF_ERROR(transfer.Upload(zt, f.zt.data(), per_point));
@@ -113,8 +112,8 @@ Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double*
   bindings.f_vari = &maps[7];
   bindings.feature_pack = &feature_pack;
   LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage stage, FeatureMapsStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, p.width, p.beams); }, gpu_ns));
 
   filled_out->resize(pixels);
   for (std::vector<float>* m : maps_out) m->resize(pixels);

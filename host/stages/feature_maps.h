@@ -19,11 +19,11 @@ namespace lpir::vk {
 // The bindings of shaders/feature_maps.comp: per-point buffers of at least n elements, per-pixel
 // buffers of at least width * beams elements.
 struct FeatureMapsBuffers {
-  const Buffer* params = nullptr;       // one Params (uniform): width, beams, hole_gap
-  const Buffer* pixel_point = nullptr;  // uint32 winning point per pixel, kNone empty (stage 4)
-  const Buffer* r2 = nullptr;           // float squared planar range per point (stage 1)
-  const Buffer* zt = nullptr;           // float corrected height per point (stage 1)
-  const Buffer* inten = nullptr;        // float intensity per point (stage 1)
+  const Buffer* params = nullptr;        // one Params (uniform): width, beams, hole_gap
+  const Buffer* pixel_point = nullptr;   // uint32 winning point per pixel, kNone empty (stage 4)
+  const Buffer* r2 = nullptr;            // float squared planar range per point (stage 1)
+  const Buffer* zt = nullptr;            // float corrected height per point (stage 1)
+  const Buffer* inten = nullptr;         // float intensity per point (stage 1)
   const Buffer* pixel_filled = nullptr;  // out: uint32 0 empty, 1 measured, 2 filled
   const Buffer* f_range = nullptr;       // out: floats per pixel
   const Buffer* f_inten = nullptr;
@@ -69,7 +69,6 @@ class FeatureMapsStage {
 // f.pixel_filled, f.f_range, f.f_inten, f.f_height, f.f_slope, f.f_edge_l, f.f_edge_r, f.f_varz
 // and f.f_vari (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of both
 // passes in nanoseconds (-1 without timestamps on the queue).
-Status RunFeatureMaps(const Context& context, const Params& p, Frame& f,
-                      double* gpu_ns = nullptr);
+Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,11 +1,10 @@
 // Stage 7, fuse, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/fuse.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -26,11 +25,10 @@ Result<FuseStage> FuseStage::Create(const Device& device, const FuseBuffers& b) 
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
   desc.passes = 2;
-  LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel,
-      Kernel::Create(device, desc,
-                     {b.params, b.pixel_class, b.pixel_point, b.coarse, b.pixel_filled, b.f_range,
-                      b.f_height, b.pixel_fused}));
+  LPIR_VK_ASSIGN_OR_RETURN(Kernel kernel,
+                           Kernel::Create(device, desc,
+                                          {b.params, b.pixel_class, b.pixel_point, b.coarse,
+                                           b.pixel_filled, b.f_range, b.f_height, b.pixel_fused}));
   return FuseStage(std::move(kernel));
 }
 
@@ -47,8 +45,10 @@ Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns
   const struct {
     const char* name;
     size_t size;
-  } inputs[] = {{"pixel_class", f.pixel_class.size()}, {"pixel_point", f.pixel_point.size()},
-                {"pixel_filled", f.pixel_filled.size()}, {"f_range", f.f_range.size()},
+  } inputs[] = {{"pixel_class", f.pixel_class.size()},
+                {"pixel_point", f.pixel_point.size()},
+                {"pixel_filled", f.pixel_filled.size()},
+                {"f_range", f.f_range.size()},
                 {"f_height", f.f_height.size()}};
   for (const auto& in : inputs)
     if (in.size != pixels)

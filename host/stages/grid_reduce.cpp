@@ -1,11 +1,10 @@
 // Stage 3, grid reduce, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/grid_reduce.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -24,8 +23,7 @@ Error Invalid(const std::string& message) {
 }
 }  // namespace
 
-Result<GridReduceStage> GridReduceStage::Create(const Device& device,
-                                                const GridReduceBuffers& b) {
+Result<GridReduceStage> GridReduceStage::Create(const Device& device, const GridReduceBuffers& b) {
   PipelineDesc desc;
   desc.name = "grid_reduce";
   desc.code = SpirvOf(kGridReduceSpv);
@@ -36,10 +34,9 @@ Result<GridReduceStage> GridReduceStage::Create(const Device& device,
   desc.passes = 2;
   desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel,
-      Kernel::Create(device, desc,
-                     {b.params, b.flags, b.r2, b.zt, b.point_pixel, b.ring_bound2, b.point_cell,
-                      b.cell_zmin, b.cell_zmax, b.cell_count}));
+      Kernel kernel, Kernel::Create(device, desc,
+                                    {b.params, b.flags, b.r2, b.zt, b.point_pixel, b.ring_bound2,
+                                     b.point_cell, b.cell_zmin, b.cell_zmax, b.cell_count}));
   return GridReduceStage(std::move(kernel));
 }
 
@@ -99,8 +96,8 @@ Status RunGridReduce(const Context& context, const Params& p, const Tables& t, F
   bindings.cell_zmax = &cell_zmax;
   bindings.cell_count = &cell_count;
   LPIR_VK_ASSIGN_OR_RETURN(GridReduceStage stage, GridReduceStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n), cells); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n), cells); }, gpu_ns));
 
   f.point_cell.resize(n);
   f.cell_zmin.resize(cells);

@@ -87,7 +87,7 @@ Status RunGrow(const Context& context, const Params& p, Frame& f, double* gpu_ns
     LPIR_VK_RETURN_IF_ERROR(transfer.Upload(f_range, f.f_range.data(), bytes));
   }
 
-  const GrowBuffers bindings{&params_buffer, &pixel_fused, &f_inten,     &f_height, &f_range,
+  const GrowBuffers bindings{&params_buffer, &pixel_fused, &f_inten,     &f_height,   &f_range,
                              &pixel_grown,   &pixel_comp,  &pixel_label, &grow_reach, &grow_sizes};
   LPIR_VK_ASSIGN_OR_RETURN(GrowStage stage, GrowStage::Create(device, bindings));
   LPIR_VK_RETURN_IF_ERROR(RunOnce(

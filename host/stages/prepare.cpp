@@ -1,11 +1,10 @@
 // Stage 1, prepare, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/prepare.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -72,8 +71,8 @@ Status RunPrepare(const Context& context, const Cloud& cloud, const Params& p, F
   bindings.r2 = &r2;
   bindings.inten = &inten;
   LPIR_VK_ASSIGN_OR_RETURN(PrepareStage stage, PrepareStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
 
   f.n = uint32_t(n);
   f.flags.resize(n);

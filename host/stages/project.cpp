@@ -1,11 +1,10 @@
 // Stage 2, project, on Vulkan: the kernel's bindings and the one-shot runner.
 #include "host/stages/project.h"
 
-#include "host/vk/run_once.h"
-
 #include <cstdint>
 #include <string>
 
+#include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -116,8 +115,8 @@ Status RunProject(const Context& context, const Cloud& cloud, const Params& p, c
   bindings.pixel_point = &pixel_point;
   bindings.project_exact = &project_exact;
   LPIR_VK_ASSIGN_OR_RETURN(ProjectStage stage, ProjectStage::Create(device, bindings));
-  LPIR_VK_RETURN_IF_ERROR(
-      RunOnce(device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
+  LPIR_VK_RETURN_IF_ERROR(RunOnce(
+      device, [&](CommandBuffer& cmd) { return stage.Record(cmd, uint32_t(n)); }, gpu_ns));
 
   f.point_pixel.resize(n);
   f.pixel_key.resize(pixels);

@@ -28,9 +28,9 @@ struct RecordCounts {
   uint32_t indirect_dispatches = 0;  // of which indirect
   uint32_t barriers = 0;             // vkCmdPipelineBarrier calls
   uint64_t workgroups = 0;           // x * y * z summed over the direct dispatches
-  uint64_t upload_bytes = 0;    // host -> device: copies from kHostVisible into kDeviceLocal
-                                // buffers, and UpdateBuffer's inline data
-  uint64_t download_bytes = 0;  // device -> host: copies from kDeviceLocal into kHostVisible
+  uint64_t upload_bytes = 0;         // host -> device: copies from kHostVisible into kDeviceLocal
+                                     // buffers, and UpdateBuffer's inline data
+  uint64_t download_bytes = 0;       // device -> host: copies from kDeviceLocal into kHostVisible
 };
 
 // One recorded command, kept on a tape instead of in the command buffer: what it records, what it
@@ -45,8 +45,8 @@ struct Command {
     VkPipelineStageFlags dst_stage = 0;
     VkAccessFlags dst_access = 0;
     bool operator==(const Scopes& o) const {
-      return src_stage == o.src_stage && src_access == o.src_access &&
-             dst_stage == o.dst_stage && dst_access == o.dst_access;
+      return src_stage == o.src_stage && src_access == o.src_access && dst_stage == o.dst_stage &&
+             dst_access == o.dst_access;
     }
   } barrier;
 };
@@ -118,7 +118,7 @@ class CommandBuffer {
   RecordCounts counts_;
   Tape* tape_ = nullptr;  // where commands go between BeginTape and EndTape
 
-  void Emit(Command command);       // onto the tape, or recorded and counted
+  void Emit(Command command);         // onto the tape, or recorded and counted
   void Play(const Command& command);  // recorded and counted
 };
 

@@ -134,7 +134,7 @@ Result<std::vector<std::string>> Device::Describe(const Instance& instance) {
 }
 
 Result<Device> Device::Create(const Instance& instance, const std::string& selector,
-                             bool gpu_only) {
+                              bool gpu_only) {
   LPIR_VK_ASSIGN_OR_RETURN(std::vector<Candidate> candidates, Enumerate(instance));
   if (candidates.empty()) {
     Error e;
@@ -169,8 +169,7 @@ Result<Device> Device::Create(const Instance& instance, const std::string& selec
     std::vector<const Candidate*> cpu_drivers;  // usable, left out by gpu_only
     for (const Candidate* c : order) {
       if (!c->why_not.empty()) continue;
-      if (gpu_only && selector.empty() &&
-          c->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+      if (gpu_only && selector.empty() && c->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
         cpu_drivers.push_back(c);
         continue;
       }
@@ -186,8 +185,8 @@ Result<Device> Device::Create(const Instance& instance, const std::string& selec
       e.result = VK_ERROR_FEATURE_NOT_PRESENT;
       e.cpu_driver_only = true;
       e.message = std::string(alone ? "the only" : "the only usable") + " Vulkan device" +
-                  (cpu_drivers.size() > 1 ? "s are CPU drivers (" : " is a CPU driver (") +
-                  names + "); --backend vulkan uses " + (cpu_drivers.size() > 1 ? "them" : "it");
+                  (cpu_drivers.size() > 1 ? "s are CPU drivers (" : " is a CPU driver (") + names +
+                  "); --backend vulkan uses " + (cpu_drivers.size() > 1 ? "them" : "it");
       return e;
     }
     if (!chosen)

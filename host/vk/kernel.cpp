@@ -25,9 +25,9 @@ Result<Kernel> Kernel::Create(const Device& device, const PipelineDesc& desc,
                               const std::vector<const Buffer*>& buffers) {
   LPIR_VK_ASSIGN_OR_RETURN(const Shape shape, ShapeFor(device));
   const uint32_t items = shape == Shape::kCpu ? desc.cpu_items : 1;
-  const PipelineKey key{device.handle(),      desc.code.words,   desc.code.bytes,
-                        desc.bindings,        desc.push_constant_bytes, desc.local_size_x,
-                        std::max(desc.passes, 1u), items};
+  const PipelineKey key{
+      device.handle(),          desc.code.words,   desc.code.bytes,           desc.bindings,
+      desc.push_constant_bytes, desc.local_size_x, std::max(desc.passes, 1u), items};
   std::lock_guard<std::mutex> lock(g_cache_mutex);
   std::shared_ptr<const Pipelines> pipelines = g_cache[key].lock();
   if (!pipelines) {

@@ -38,8 +38,8 @@ class Kernel {
 
   // The same with the workgroup counts read on the GPU from `args` at `offset` (see
   // CommandBuffer::DispatchIndirect): the shader decides whether its successor runs.
-  void RecordIndirect(CommandBuffer& cmd, const Buffer& args, VkDeviceSize offset,
-                      const void* push, uint32_t pass = 0) const;
+  void RecordIndirect(CommandBuffer& cmd, const Buffer& args, VkDeviceSize offset, const void* push,
+                      uint32_t pass = 0) const;
 
   Shape shape() const { return shape_; }
   // Items (points or pixels) per invocation of the chunked passes.

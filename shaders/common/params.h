@@ -1,6 +1,7 @@
 // Every threshold of the method, read by the shaders and the CPU reference alike. Valid GLSL and
-// C++: scalars only (std430 pads vec3), no initialisers (defaults live in reference_cpu/params.cpp).
-// Units: metres, intensities in [0, 1] after the sensor's intensity_scale, counts in pixels/points.
+// C++: scalars only (std430 pads vec3), no initialisers (defaults live in
+// reference_cpu/params.cpp). Units: metres, intensities in [0, 1] after the sensor's
+// intensity_scale, counts in pixels/points.
 #ifndef LPIR_SHADERS_COMMON_PARAMS_H_
 #define LPIR_SHADERS_COMMON_PARAMS_H_
 
@@ -12,68 +13,69 @@ using uint = uint32_t;
 
 struct Params {
   // --- image (derived from the sensor profile) ---
-  uint width;              // columns
-  uint beams;              // rows
-  uint ring_zero_is_top;   // 1 when the input ring index 0 is the top beam
-  uint has_ring;           // 1 when the cloud carries ring indices (row = ring), else elevation table
+  uint width;             // columns
+  uint beams;             // rows
+  uint ring_zero_is_top;  // 1 when the input ring index 0 is the top beam
+  uint has_ring;  // 1 when the cloud carries ring indices (row = ring), else elevation table
 
   // --- stage 1 prepare (III-B.1, eq. 3) ---
-  float min_range2;        // m^2, planar range^2 below which a point is invalid
-  float max_range2;        // m^2, planar range^2 above which a point is invalid
-  float k_xz;              // eq. 3 tilt slope along x
-  float k_yz;              // eq. 3 tilt slope along y
-  float h_noise;           // m, corrected height below which a dim point is reflection noise
-  float i_noise;           // intensity below which a point under h_noise is reflection noise
-  float intensity_scale;   // raw intensity * scale -> [0, 1]
-  float sensor_height;     // m
+  float min_range2;       // m^2, planar range^2 below which a point is invalid
+  float max_range2;       // m^2, planar range^2 above which a point is invalid
+  float k_xz;             // eq. 3 tilt slope along x
+  float k_yz;             // eq. 3 tilt slope along y
+  float h_noise;          // m, corrected height below which a dim point is reflection noise
+  float i_noise;          // intensity below which a point under h_noise is reflection noise
+  float intensity_scale;  // raw intensity * scale -> [0, 1]
+  float sensor_height;    // m
 
   // --- stage 3 grid reduce (eq. 4) ---
-  uint rings_near;         // rings of width ring_res_near up to near_radius
-  uint rings_far;          // rings of width ring_res_far beyond it
-  uint sectors_near;       // sectors per revolution in the near zone (divides width)
-  uint sectors_far;        // sectors per revolution in the far zone (divides width)
-  float ring_res_near;     // m, radial size of a near cell (res_r^c)
-  float ring_res_far;      // m, radial size of a far cell (res_r^f)
+  uint rings_near;      // rings of width ring_res_near up to near_radius
+  uint rings_far;       // rings of width ring_res_far beyond it
+  uint sectors_near;    // sectors per revolution in the near zone (divides width)
+  uint sectors_far;     // sectors per revolution in the far zone (divides width)
+  float ring_res_near;  // m, radial size of a near cell (res_r^c)
+  float ring_res_far;   // m, radial size of a far cell (res_r^f)
 
   // --- stage 4 coarse segment (eqs. 5-7) ---
-  float slope_max;         // xi_slope, the steepest ground grade (0.05-0.08)
-  float seed_margin;       // m, sensor-noise margin added to lambda
-  float h_athr;            // m, whole cell is seed when h_max - h_nmin <= h_athr (eq. 5)
-  float rise_margin;       // m, a cell whose h_min rises more than this + slope above h_nmin has no seeds
+  float slope_max;    // xi_slope, the steepest ground grade (0.05-0.08)
+  float seed_margin;  // m, sensor-noise margin added to lambda
+  float h_athr;       // m, whole cell is seed when h_max - h_nmin <= h_athr (eq. 5)
+  float
+      rise_margin;  // m, a cell whose h_min rises more than this + slope above h_nmin has no seeds
   float plane_dist_floor;  // m, smallest point-to-plane threshold
   float plane_dist_scale;  // threshold = max(floor, scale * mean seed distance)
   float normal_min_z2;     // squared z-component a unit ground normal must keep (cos^2 of max tilt)
   float ground_max_above;  // m, a seed higher than -sensor_height + this + slope*r is not ground
 
   // --- stage 5 feature maps (III-D.1) ---
-  float hole_gap;          // m, 1-pixel holes are filled when the two neighbours' ranges differ less
+  float hole_gap;  // m, 1-pixel holes are filled when the two neighbours' ranges differ less
 
   // --- stage 6 classify pixels (eqs. 8-12) ---
-  float t_edge;            // m, eq. 8
-  float t_slope_low;       // eq. 9 (|dz|/|dr|, unitless)
+  float t_edge;       // m, eq. 8
+  float t_slope_low;  // eq. 9 (|dz|/|dr|, unitless)
   float t_slope_high;
-  float t_stdz_low;        // m^2, eq. 10 (variance of height in the 3x3 window)
+  float t_stdz_low;  // m^2, eq. 10 (variance of height in the 3x3 window)
   float t_stdz_high;
-  float t_stdi_low;        // eq. 11 (variance of intensity in the 3x3 window)
+  float t_stdi_low;  // eq. 11 (variance of intensity in the 3x3 window)
   float t_stdi_high;
 
   // --- stage 8 grow (Alg. 1, IV-A) ---
-  float grow_di;           // max intensity change of one growing step
-  float grow_dz;           // m, height change of one growing step allowed at zero distance
-  float grow_grade;        // ... plus this times the step's planar length (|dr|, + the nearer
-                           // pixel's r * column_arc when the column changes)
-  float column_arc;        // rad, one column (2 pi / width; set from the profile)
-  uint min_component;      // ground components smaller than this (pixels) become non-ground
+  float grow_di;       // max intensity change of one growing step
+  float grow_dz;       // m, height change of one growing step allowed at zero distance
+  float grow_grade;    // ... plus this times the step's planar length (|dr|, + the nearer
+                       // pixel's r * column_arc when the column changes)
+  float column_arc;    // rad, one column (2 pi / width; set from the profile)
+  uint min_component;  // ground components smaller than this (pixels) become non-ground
 
   // --- stage 9 back-project (III-D.2) ---
-  float bp_range_gate;     // m, a non-winning point takes its pixel's label within this range
-  float bp_height_gate;    // m, ... and within this height of the winner
+  float bp_range_gate;   // m, a non-winning point takes its pixel's label within this range
+  float bp_height_gate;  // m, ... and within this height of the winner
   // --- our addition: stage 7 fuse, the occlusion veto (see fuse.cpp) ---
-  uint occ_rows;           // rows above a pixel searched for an occluder (0 disables the veto)
-  float occ_margin;        // m, an occluder is a pixel above that is nearer than range + this ...
-  float occ_rise;          // m, ... and higher than the pixel by more than this
-  float occ_grade;         // 1/m, ... + this * range^2 (flat ground's range step between beams grows
-                           // as range^2 * beam spacing / sensor height)
+  uint occ_rows;     // rows above a pixel searched for an occluder (0 disables the veto)
+  float occ_margin;  // m, an occluder is a pixel above that is nearer than range + this ...
+  float occ_rise;    // m, ... and higher than the pixel by more than this
+  float occ_grade;   // 1/m, ... + this * range^2 (flat ground's range step between beams grows
+                     // as range^2 * beam spacing / sensor height)
   uint pad0;
   uint pad1;
   uint pad2;
