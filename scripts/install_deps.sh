@@ -10,6 +10,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
   clang libclang-rt-14-dev  # the fuzz build (fuzz/): clang with libFuzzer and its sanitizers
+  clang-format  # scripts/test.sh checks every C++ source against .clang-format
 )
 
 say() { echo "[install_deps] $*"; }

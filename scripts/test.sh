@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# The whole test suite in one command: installs what is missing, then
+# The whole test suite in one command: installs what is missing, checks that every C++ source
+# is as clang-format leaves it (.clang-format; `git ls-files '*.cpp' '*.h' | xargs clang-format
+# -i` fixes it), then
 #   1. builds everything (Release, Ninja, ./build or $LPIR_BUILD_DIR) and runs ctest;
 #   2. builds everything again under AddressSanitizer + UBSan (LPIR_SANITIZE=ON, -O1, no
 #      benchmarks; ./build-asan or $LPIR_ASAN_BUILD_DIR) and runs ctest there. With clang++ when
@@ -40,6 +42,19 @@ step() {
 
 say "step 0: system packages"
 bash "${root}/scripts/install_deps.sh"
+
+say "format: every C++ source as .clang-format leaves it"
+# format_check: clang-format --dry-run -Werror over the tracked *.cpp and *.h files.
+format_check() {
+  if ! git -C "${root}" rev-parse --is-inside-work-tree > /dev/null 2>&1; then
+    say "not a git checkout: no list of sources to check"
+    return 1
+  fi
+  local files
+  mapfile -t files < <(git -C "${root}" ls-files '*.cpp' '*.h')
+  (cd "${root}" && clang-format --dry-run -Werror "${files[@]}")
+}
+step "format" format_check || true
 
 say "step 1/3: Release build and suite"
 if step "build" bash "${root}/scripts/build.sh"; then
