@@ -40,12 +40,12 @@ void BM_Frame(benchmark::State& state, const std::string& path, Backend backend)
   FrameTimes times, sum;
   for (auto _ : state) {
     segmenter->Segment(cloud, &times);
-    for (int k = 0; k < 9; ++k) sum.stage_ms[k] += times.stage_ms[k];
+    for (int k = 0; k < kStageCount; ++k) sum.stage_ms[k] += times.stage_ms[k];
     sum.upload_ms += times.upload_ms, sum.download_ms += times.download_ms;
     sum.total_ms += times.total_ms;
   }
   const double n = double(state.iterations());
-  for (int k = 0; k < 9; ++k)
+  for (int k = 0; k < kStageCount; ++k)
     state.counters[std::string(kStageNames[k]) + "_ms"] = benchmark::Counter(sum.stage_ms[k] / n);
   if (backend == Backend::kVulkan) {
     state.counters["upload_ms"] = benchmark::Counter(sum.upload_ms / n);

@@ -31,9 +31,9 @@ void BM_Reference(benchmark::State& state, const std::string& path) {
   FrameTimes times, sum;
   for (auto _ : state) {
     segmenter.Segment(cloud, &times);
-    for (int k = 0; k < 9; ++k) sum.stage_ms[k] += times.stage_ms[k];
+    for (int k = 0; k < kStageCount; ++k) sum.stage_ms[k] += times.stage_ms[k];
   }
-  for (int k = 0; k < 9; ++k)
+  for (int k = 0; k < kStageCount; ++k)
     state.counters[std::string(kStageNames[k]) + "_ms"] =
         benchmark::Counter(sum.stage_ms[k] / double(state.iterations()));
   state.counters["points"] = double(cloud.size());

@@ -510,14 +510,17 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
   }
 
   if (times) {
-    *times = FrameTimes{-1, {-1, -1, -1, -1, -1, -1, -1, -1, -1}, -1, -1};
+    *times = FrameTimes{};
+    times->upload_ms = times->download_ms = times->total_ms = -1;
+    for (double& ms : times->stage_ms) ms = -1;
     if (!slot.queries.empty()) {
       double ns[kQueries];
       LPIR_VK_RETURN_IF_ERROR(slot.queries[0].Read(ns));
       times->upload_ms = (ns[1] - ns[0]) / 1e6;
-      for (int k = 0; k < 9; ++k) times->stage_ms[k] = (ns[k + 2] - ns[k + 1]) / 1e6;
-      times->download_ms = (ns[11] - ns[10]) / 1e6;
-      times->total_ms = (ns[11] - ns[0]) / 1e6;
+      for (int k = 0; k < kStageCount; ++k) times->stage_ms[k] = (ns[k + 2] - ns[k + 1]) / 1e6;
+      const uint32_t last = kQueries - 1;  // after the download
+      times->download_ms = (ns[last] - ns[last - 1]) / 1e6;
+      times->total_ms = (ns[last] - ns[0]) / 1e6;
     }
   }
 

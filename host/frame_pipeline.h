@@ -104,7 +104,8 @@ class FramePipeline {
     bool fence_pending = false;
     uint32_t frames = 0;
   };
-  static constexpr uint32_t kQueries = 12;  // start, after upload, after each stage, after download
+  // Timestamps: start, after the upload, after each stage, after the download.
+  static constexpr uint32_t kQueries = kStageCount + 3;
 
   FramePipeline() = default;
   // Records slot's frame (slot.n points, slot.has_ring) into cmd, begun by the caller.

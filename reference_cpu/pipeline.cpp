@@ -6,9 +6,9 @@
 
 namespace lpir {
 
-const char* const kStageNames[9] = {"prepare",        "project",      "grid_reduce",
-                                    "coarse_segment", "feature_maps", "classify_pixels",
-                                    "fuse",           "grow",         "back_project"};
+const char* const kStageNames[kStageCount] = {"prepare",        "project",      "grid_reduce",
+                                              "coarse_segment", "feature_maps", "classify_pixels",
+                                              "fuse",           "grow",         "back_project"};
 
 void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
                   FrameTimes* times) {

@@ -73,7 +73,7 @@ Spread SpreadOf(std::vector<double> v) {
 
 // What one backend's timed frames gave.
 struct Timed {
-  std::vector<double> wall, stage[9], upload, download, gpu_total;
+  std::vector<double> wall, stage[kStageCount], upload, download, gpu_total;
 };
 
 // Labels of every cloud on `s` equal to the reference's, or std::runtime_error.
@@ -93,7 +93,7 @@ void TimeFrame(Segmenter& s, const Cloud& cloud, Timed& t) {
   const auto t0 = Clock::now();
   s.Segment(cloud, &ft);
   t.wall.push_back(Ms(t0, Clock::now()));
-  for (int k = 0; k < 9; ++k) t.stage[k].push_back(ft.stage_ms[k]);
+  for (int k = 0; k < kStageCount; ++k) t.stage[k].push_back(ft.stage_ms[k]);
   t.upload.push_back(ft.upload_ms), t.download.push_back(ft.download_ms);
   t.gpu_total.push_back(ft.total_ms);
 }
@@ -401,7 +401,7 @@ int RunBench(int argc, char** argv) {
          (gpu ? ", \"vulkan\": " + spread(gpu_e2e) : std::string(", \"vulkan\": null"));
     if (gpu) j += ", \"vulkan_gpu_total\": " + spread(SpreadOf(g.gpu_total));
     j += "}, \"stages\": [";
-    for (int k = 0; k < 9; ++k) {
+    for (int k = 0; k < kStageCount; ++k) {
       char b[256];
       const Spread cs = SpreadOf(c.stage[k]), gs = SpreadOf(g.stage[k]);
       std::snprintf(b, sizeof b,
@@ -476,7 +476,7 @@ int RunBench(int argc, char** argv) {
   };
   const std::vector<double> none;
   row("upload", none, g.upload);
-  for (int k = 0; k < 9; ++k) row(kStageNames[k], c.stage[k], g.stage[k]);
+  for (int k = 0; k < kStageCount; ++k) row(kStageNames[k], c.stage[k], g.stage[k]);
   row("download", none, g.download);
   row("gpu total", none, g.gpu_total);
   row("end to end", c.wall, g.wall);

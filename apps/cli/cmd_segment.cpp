@@ -92,26 +92,27 @@ class Timings {
   void Add(const std::string& stem, const FrameTimes& t) {
     std::printf("%s times (ms):", stem.c_str());
     if (gpu_) std::printf(" upload %.3f", t.upload_ms);
-    for (int k = 0; k < 9; ++k) std::printf(" %s %.3f", kStageNames[k], t.stage_ms[k]);
+    for (int k = 0; k < kStageCount; ++k) std::printf(" %s %.3f", kStageNames[k], t.stage_ms[k]);
     if (gpu_) std::printf(" download %.3f", t.download_ms);
     std::printf(" total %.3f\n", t.total_ms);
     upload_.push_back(t.upload_ms), download_.push_back(t.download_ms),
         total_.push_back(t.total_ms);
-    for (int k = 0; k < 9; ++k) stage_[k].push_back(t.stage_ms[k]);
+    for (int k = 0; k < kStageCount; ++k) stage_[k].push_back(t.stage_ms[k]);
   }
   void PrintMedians() const {
     if (total_.empty()) return;
     std::printf("median over %zu frame%s (%s, ms):", total_.size(), total_.size() == 1 ? "" : "s",
                 gpu_ ? "GPU timestamps" : "CPU wall time");
     if (gpu_) std::printf(" upload %.3f", Median(upload_));
-    for (int k = 0; k < 9; ++k) std::printf(" %s %.3f", kStageNames[k], Median(stage_[k]));
+    for (int k = 0; k < kStageCount; ++k)
+      std::printf(" %s %.3f", kStageNames[k], Median(stage_[k]));
     if (gpu_) std::printf(" download %.3f", Median(download_));
     std::printf(" total %.3f\n", Median(total_));
   }
 
  private:
   bool gpu_;
-  std::vector<double> upload_, download_, total_, stage_[9];
+  std::vector<double> upload_, download_, total_, stage_[kStageCount];
 };
 
 }  // namespace
