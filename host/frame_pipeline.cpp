@@ -104,7 +104,7 @@ FramePipeline& FramePipeline::operator=(FramePipeline&& other) noexcept {
     context_ = other.context_;
     params_ = other.params_;
     max_points_ = other.max_points_, cells_ = other.cells_, pixels_ = other.pixels_;
-    device_bytes_ = other.device_bytes_, submitted_ = other.submitted_;
+    device_bytes_ = other.device_bytes_;
     last_counts_ = other.last_counts_;
     // The slots (their stages and buffers) before the tables their stages point into.
     slots_ = std::move(other.slots_);
@@ -424,7 +424,6 @@ Status FramePipeline::SubmitStaged(uint32_t first, uint32_t count) {
     slot.staged = false;
     slot.busy = true;
     slot.lead = first;
-    slot.serial = ++submitted_;
   }
   return Status();
 }

@@ -97,8 +97,7 @@ class FramePipeline {
     std::unique_ptr<Stages> stages;  // after buffers: destroyed first
     bool busy = false, staged = false, has_ring = false;
     uint32_t n = 0;
-    uint64_t serial = 0;  // submission order
-    uint32_t lead = 0;    // the slot whose command buffer and fence carry this frame
+    uint32_t lead = 0;  // the slot whose command buffer and fence carry this frame
     // As a lead: its fence signals a submission not yet waited for; frames of that submission
     // not yet collected (the slot takes no new frame before they are).
     bool fence_pending = false;
@@ -117,7 +116,7 @@ class FramePipeline {
   const Context* context_ = nullptr;
   Params params_{};
   uint32_t max_points_ = 0, cells_ = 0, pixels_ = 0;
-  uint64_t device_bytes_ = 0, submitted_ = 0;
+  uint64_t device_bytes_ = 0;
   RecordCounts last_counts_;
   std::unique_ptr<TableBuffers> tables_;
   std::vector<Slot> slots_;  // after tables_: destroyed first

@@ -68,12 +68,7 @@ void CommandBuffer::Emit(Command command) {
 
 void CommandBuffer::Play(const Command& command) {
   command.record(cmd_.get());
-  counts_.dispatches += command.counts.dispatches;
-  counts_.indirect_dispatches += command.counts.indirect_dispatches;
-  counts_.barriers += command.counts.barriers;
-  counts_.workgroups += command.counts.workgroups;
-  counts_.upload_bytes += command.counts.upload_bytes;
-  counts_.download_bytes += command.counts.download_bytes;
+  counts_ += command.counts;
 }
 
 void CommandBuffer::BeginTape(Tape* tape) {

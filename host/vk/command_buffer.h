@@ -31,6 +31,13 @@ struct RecordCounts {
   uint64_t upload_bytes = 0;         // host -> device: copies from kHostVisible into kDeviceLocal
                                      // buffers, and UpdateBuffer's inline data
   uint64_t download_bytes = 0;       // device -> host: copies from kDeviceLocal into kHostVisible
+
+  RecordCounts& operator+=(const RecordCounts& o) {
+    dispatches += o.dispatches, indirect_dispatches += o.indirect_dispatches;
+    barriers += o.barriers, workgroups += o.workgroups;
+    upload_bytes += o.upload_bytes, download_bytes += o.download_bytes;
+    return *this;
+  }
 };
 
 // One recorded command, kept on a tape instead of in the command buffer: what it records, what it
