@@ -1,11 +1,15 @@
 // Evaluation protocols DG, PP, PW, GG on small hand-counted frames: exact counts per protocol,
-// the eq. 13 scores, summed versus per-frame-mean aggregation, 0/0 and error cases.
+// the eq. 13 scores, summed versus per-frame-mean aggregation, 0/0 and error cases; the class
+// tables of both ontologies.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "host/eval/metrics.h"
+#include "host/eval/ontology.h"
 
 namespace lpir {
 namespace {
@@ -201,6 +205,56 @@ TEST(EvalMetrics, Errors) {
   EXPECT_THROW(CountFrame(Protocol::kPW, pred, gt, nullptr), std::invalid_argument);
   std::vector<float> z = {-1.7f};
   EXPECT_THROW(CountFrame(Protocol::kPW, pred, gt, &z), std::invalid_argument);
+}
+
+// The message of the std::invalid_argument `f` throws; "" when it throws none.
+template <typename F>
+std::string ErrorOf(F f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(EvalOntology, ClassNames) {
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 0), "unlabeled");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 1), "outlier");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 40), "road");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 44), "parking");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 49), "other-ground");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 60), "lane-marking");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 72), "terrain");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 259), "moving-other-vehicle");
+  EXPECT_STREQ(ClassName(Ontology::kSemanticKitti, 2), "unknown");
+  EXPECT_STREQ(ClassName(Ontology::kRellis3d, 0), "void");
+  EXPECT_STREQ(ClassName(Ontology::kRellis3d, 3), "grass");
+  EXPECT_STREQ(ClassName(Ontology::kRellis3d, 23), "concrete");
+  EXPECT_STREQ(ClassName(Ontology::kRellis3d, 34), "rubble");
+  EXPECT_STREQ(ClassName(Ontology::kRellis3d, 40), "unknown");  // road is SemanticKITTI's
+  // Every id RELLIS-3D defines (and only those) has a name.
+  const std::vector<uint32_t> rellis = {0,  1,  3,  4,  5,  6,  7,  8,  9,  10,
+                                        12, 15, 17, 18, 19, 23, 27, 31, 33, 34};
+  for (uint32_t c = 0; c <= 40; ++c) {
+    const bool defined = std::find(rellis.begin(), rellis.end(), c) != rellis.end();
+    EXPECT_EQ(std::string(ClassName(Ontology::kRellis3d, c)) != "unknown", defined) << c;
+  }
+}
+
+TEST(EvalOntology, Names) {
+  for (Ontology o : {Ontology::kSemanticKitti, Ontology::kRellis3d})
+    EXPECT_EQ(ParseOntology(OntologyName(o)), o);
+  EXPECT_EQ(ErrorOf([] { ParseOntology("kitti"); }),
+            "unknown ontology 'kitti' (known: semantickitti, rellis3d)");
+  EXPECT_EQ(ClassOf(40u | (7u << 16)), 40u);
+}
+
+TEST(EvalOntology, RellisGroundClasses) {
+  for (uint32_t c = 0; c < 40; ++c) {
+    const bool ground = c == 1 || c == 3 || c == 6 || c == 10 || c == 23 || c == 31 || c == 33;
+    EXPECT_EQ(IsRellisGroundClass(c), ground) << c;
+  }
 }
 
 }  // namespace
