@@ -1,6 +1,6 @@
-// Evaluation protocols DG, PP, PW, GG on small hand-counted frames: exact counts per protocol,
-// the eq. 13 scores, summed versus per-frame-mean aggregation, 0/0 and error cases; the class
-// tables of both ontologies.
+// Evaluation protocols DG, PP, PW, GG and rellis on small hand-counted frames: exact counts per
+// protocol, the eq. 13 scores, summed versus per-frame-mean aggregation, 0/0 and error cases; the
+// class tables of both ontologies.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -255,6 +255,36 @@ TEST(EvalOntology, RellisGroundClasses) {
     const bool ground = c == 1 || c == 3 || c == 6 || c == 10 || c == 23 || c == 31 || c == 33;
     EXPECT_EQ(IsRellisGroundClass(c), ground) << c;
   }
+}
+
+TEST(EvalMetrics, RellisSkipsVoid) {
+  // void (pred 1, pred 0), grass TP, dirt FN, tree FP, bush TN, concrete TP, person TN, mud TP,
+  // asphalt FN.
+  Labels pred = {1, 0, 1, 0, 1, 0, 1, 0, 1, 0};
+  std::vector<uint32_t> gt = {0, 0, 3, 1, 4, 19, 23, 17, 33, 10};
+  EXPECT_EQ(CountFrame(Protocol::kRellis, pred, gt, nullptr), Make(3, 1, 2, 2, 2));
+  EXPECT_EQ(ScorePoint(Protocol::kRellis, 0, true, 0), Outcome::kIgnored);
+  EXPECT_EQ(ScorePoint(Protocol::kRellis, 6, true, 0), Outcome::kTP);    // water
+  EXPECT_EQ(ScorePoint(Protocol::kRellis, 31, false, 0), Outcome::kFN);  // puddle
+  EXPECT_EQ(ScorePoint(Protocol::kRellis, 40, true, 0), Outcome::kFP);   // not RELLIS ground
+  EXPECT_EQ(ScorePoint(Protocol::kDG, 3, true, 0), Outcome::kFP);        // not KITTI ground
+  EXPECT_FALSE(AveragesPerFrame(Protocol::kRellis));
+}
+
+TEST(EvalMetrics, ProtocolsPerOntology) {
+  EXPECT_EQ(ProtocolsOf(Ontology::kSemanticKitti), AllProtocols());
+  EXPECT_EQ(ProtocolsOf(Ontology::kRellis3d), std::vector<Protocol>{Protocol::kRellis});
+  EXPECT_EQ(ParseProtocol("rellis", Ontology::kRellis3d), Protocol::kRellis);
+  EXPECT_EQ(OntologyOf(Protocol::kRellis), Ontology::kRellis3d);
+  for (Protocol p : AllProtocols()) EXPECT_EQ(OntologyOf(p), Ontology::kSemanticKitti);
+  EXPECT_EQ(ErrorOf([] { ParseProtocol("pw", Ontology::kRellis3d); }),
+            "protocol 'pw' scores semantickitti labels, not rellis3d ones (known for rellis3d: "
+            "rellis)");
+  EXPECT_EQ(ErrorOf([] { ParseProtocol("rellis"); }),
+            "protocol 'rellis' scores rellis3d labels, not semantickitti ones (known for "
+            "semantickitti: dg, pp, pw, gg)");
+  EXPECT_EQ(ErrorOf([] { ParseProtocol("x", Ontology::kRellis3d); }),
+            "unknown protocol 'x' (known: rellis)");
 }
 
 }  // namespace

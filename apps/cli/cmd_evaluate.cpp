@@ -233,6 +233,8 @@ const char* Describe(Protocol p) {
              "no FP; mean over frames";
     case Protocol::kGG:
       return "GG (GroundGrid): vegetation, unlabeled and outliers not scored; counts summed";
+    case Protocol::kRellis:
+      return "RELLIS (RELLIS-3D): ground 1 3 6 10 23 31 33, void (0) not scored; counts summed";
   }
   return "";
 }

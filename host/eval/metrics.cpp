@@ -1,4 +1,4 @@
-// Ground-segmentation scores under the DG, PP, PW and GG protocols (see metrics.h).
+// Ground-segmentation scores under the DG, PP, PW, GG and rellis protocols (see metrics.h).
 #include "host/eval/metrics.h"
 
 #include <stdexcept>
@@ -36,18 +36,37 @@ const char* ProtocolName(Protocol protocol) {
       return "pw";
     case Protocol::kGG:
       return "gg";
+    case Protocol::kRellis:
+      return "rellis";
   }
   return "?";
 }
 
-Protocol ParseProtocol(const std::string& name) {
-  for (Protocol p : AllProtocols())
+Protocol ParseProtocol(const std::string& name, Ontology ontology) {
+  std::string known;
+  for (Protocol p : ProtocolsOf(ontology)) {
     if (name == ProtocolName(p)) return p;
-  throw std::invalid_argument("unknown protocol '" + name + "' (known: dg, pp, pw, gg)");
+    known += std::string(known.empty() ? "" : ", ") + ProtocolName(p);
+  }
+  for (Protocol p : {Protocol::kDG, Protocol::kPP, Protocol::kPW, Protocol::kGG, Protocol::kRellis})
+    if (name == ProtocolName(p))
+      throw std::invalid_argument("protocol '" + name + "' scores " + OntologyName(OntologyOf(p)) +
+                                  " labels, not " + OntologyName(ontology) + " ones (known for " +
+                                  OntologyName(ontology) + ": " + known + ")");
+  throw std::invalid_argument("unknown protocol '" + name + "' (known: " + known + ")");
 }
 
 std::vector<Protocol> AllProtocols() {
   return {Protocol::kDG, Protocol::kPP, Protocol::kPW, Protocol::kGG};
+}
+
+std::vector<Protocol> ProtocolsOf(Ontology ontology) {
+  if (ontology == Ontology::kRellis3d) return {Protocol::kRellis};
+  return AllProtocols();
+}
+
+Ontology OntologyOf(Protocol protocol) {
+  return protocol == Protocol::kRellis ? Ontology::kRellis3d : Ontology::kSemanticKitti;
 }
 
 bool AveragesPerFrame(Protocol protocol) {
@@ -63,12 +82,56 @@ Counts& Counts::operator+=(const Counts& o) {
   return *this;
 }
 
+void Counts::Add(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::kTP:
+      ++tp;
+      break;
+    case Outcome::kFP:
+      ++fp;
+      break;
+    case Outcome::kFN:
+      ++fn;
+      break;
+    case Outcome::kTN:
+      ++tn;
+      break;
+    case Outcome::kIgnored:
+      ++ignored;
+      break;
+  }
+}
+
 bool operator==(const Counts& a, const Counts& b) {
   return a.tp == b.tp && a.fp == b.fp && a.fn == b.fn && a.tn == b.tn && a.ignored == b.ignored;
 }
 
-Counts CountFrame(Protocol protocol, const Labels& pred, const std::vector<uint32_t>& gt,
-                  const std::vector<float>* z) {
+Outcome ScorePoint(Protocol protocol, uint32_t label, bool predicted, float z) {
+  const uint32_t cls = ClassOf(label);
+  const bool unlabeled = cls == kUnlabeled || cls == kOutlier;
+  bool truth = IsGroundClass(cls);
+  switch (protocol) {
+    case Protocol::kDG:
+      break;
+    case Protocol::kPP:
+    case Protocol::kGG:
+      if (unlabeled || cls == kVegetation) return Outcome::kIgnored;
+      break;
+    case Protocol::kPW:
+      if (cls == kVegetation && z < kPwLowVegetationZ) truth = true;
+      if (predicted && unlabeled) return Outcome::kIgnored;
+      break;
+    case Protocol::kRellis:
+      if (cls == kRellisVoid) return Outcome::kIgnored;
+      truth = IsRellisGroundClass(cls);
+      break;
+  }
+  if (predicted) return truth ? Outcome::kTP : Outcome::kFP;
+  return truth ? Outcome::kFN : Outcome::kTN;
+}
+
+void CheckFrame(Protocol protocol, const Labels& pred, const std::vector<uint32_t>& gt,
+                const std::vector<float>* z) {
   if (pred.size() != gt.size())
     throw std::invalid_argument("prediction has " + std::to_string(pred.size()) +
                                 " points but the ground truth " + std::to_string(gt.size()));
@@ -78,35 +141,14 @@ Counts CountFrame(Protocol protocol, const Labels& pred, const std::vector<uint3
       throw std::invalid_argument("protocol pw: " + std::to_string(z->size()) + " z values for " +
                                   std::to_string(gt.size()) + " points");
   }
+}
+
+Counts CountFrame(Protocol protocol, const Labels& pred, const std::vector<uint32_t>& gt,
+                  const std::vector<float>* z) {
+  CheckFrame(protocol, pred, gt, z);
   Counts c;
-  for (size_t i = 0; i < gt.size(); ++i) {
-    const uint32_t cls = gt[i] & 0xFFFFu;
-    const bool predicted = pred[i] != 0;
-    const bool unlabeled = cls == kUnlabeled || cls == kOutlier;
-    bool truth = IsGroundClass(cls);
-    switch (protocol) {
-      case Protocol::kDG:
-        break;
-      case Protocol::kPP:
-      case Protocol::kGG:
-        if (unlabeled || cls == kVegetation) {
-          ++c.ignored;
-          continue;
-        }
-        break;
-      case Protocol::kPW:
-        if (cls == kVegetation && (*z)[i] < kPwLowVegetationZ) truth = true;
-        if (predicted && unlabeled) {
-          ++c.ignored;
-          continue;
-        }
-        break;
-    }
-    if (predicted)
-      ++(truth ? c.tp : c.fp);
-    else
-      ++(truth ? c.fn : c.tn);
-  }
+  for (size_t i = 0; i < gt.size(); ++i)
+    c.Add(ScorePoint(protocol, gt[i], pred[i] != 0, z ? (*z)[i] : 0.0f));
   return c;
 }
 

@@ -1,12 +1,13 @@
 // Ground-segmentation scores against SemanticKITTI labels under the four evaluation protocols in
-// use (../shared/data/README.md): DG, PP, PW, GG. Precision, recall and F1 as in the paper's
-// eq. 13, plus the ground IoU.
+// use (../shared/data/README.md): DG, PP, PW, GG; and against RELLIS-3D labels under one.
+// Precision, recall and F1 as in the paper's eq. 13, plus the ground IoU.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "host/eval/ontology.h"
 #include "reference_cpu/cloud.h"
 
 namespace lpir {
@@ -23,7 +24,11 @@ namespace lpir {
 //        denominator (counted as `ignored`); not-predicted 0/1 points are true negatives. Per-frame
 //        scores, then their mean.
 //   kGG  GroundGrid's evaluator: points of class 70, 0 and 1 are not scored. Counts summed.
-enum class Protocol { kDG, kPP, kPW, kGG };
+// and, on RELLIS-3D labels (Ontology::kRellis3d; ground: IsRellisGroundClass):
+//   kRellis  void (0) is not scored; every other class is ground or non-ground. Counts summed.
+//        The SemanticKITTI protocols differ only in how they treat classes 70, 0 and 1 and a
+//        KITTI sensor height, none of which RELLIS-3D has, so they are not defined on it.
+enum class Protocol { kDG, kPP, kPW, kGG, kRellis };
 
 // The vegetation height threshold of kPW, metres in the sensor frame.
 constexpr float kPwLowVegetationZ = -1.2975f;
@@ -31,14 +36,23 @@ constexpr float kPwLowVegetationZ = -1.2975f;
 // True for the six ground classes (on label & 0xFFFF; the instance bits are ignored).
 bool IsGroundClass(uint32_t label);
 
-// "dg", "pp", "pw", "gg".
+// "dg", "pp", "pw", "gg", "rellis".
 const char* ProtocolName(Protocol protocol);
-// Inverse of ProtocolName (case-sensitive); std::invalid_argument naming the valid ones.
-Protocol ParseProtocol(const std::string& name);
-// DG, PP, PW, GG in that order.
+// Inverse of ProtocolName over the protocols of `ontology` (case-sensitive);
+// std::invalid_argument naming the valid ones, or saying which ontology a known name belongs to.
+Protocol ParseProtocol(const std::string& name, Ontology ontology = Ontology::kSemanticKitti);
+// DG, PP, PW, GG in that order: the SemanticKITTI protocols.
 std::vector<Protocol> AllProtocols();
-// True for the protocols that average per-frame scores (PP, PW); false: counts summed (DG, GG).
+// The protocols defined on `ontology`: AllProtocols() for SemanticKITTI, {kRellis} for RELLIS-3D.
+std::vector<Protocol> ProtocolsOf(Ontology ontology);
+// The ontology whose labels `protocol` reads.
+Ontology OntologyOf(Protocol protocol);
+// True for the protocols that average per-frame scores (PP, PW); false: counts summed (DG, GG,
+// rellis).
 bool AveragesPerFrame(Protocol protocol);
+
+// What a protocol makes of one point.
+enum class Outcome { kTP, kFP, kFN, kTN, kIgnored };
 
 struct Counts {
   uint64_t tp = 0;       // predicted ground, truly ground
@@ -47,12 +61,21 @@ struct Counts {
   uint64_t tn = 0;       // predicted non-ground, truly non-ground
   uint64_t ignored = 0;  // points the protocol does not score
   Counts& operator+=(const Counts& o);
+  void Add(Outcome outcome);  // one more point of that outcome
 };
 bool operator==(const Counts& a, const Counts& b);
 
-// One frame. `pred`: 1 ground, 0 non-ground (any non-zero value is ground); `gt`: SemanticKITTI
-// labels; `z`: each point's z in metres (required by kPW, ignored by the others; may be null for
-// them). std::invalid_argument when the sizes differ or kPW has no z.
+// One point under `protocol`: its stored label (class = label & 0xFFFF), whether it was predicted
+// ground, and its z in metres (read by kPW only).
+Outcome ScorePoint(Protocol protocol, uint32_t label, bool predicted, float z);
+
+// The checks CountFrame makes: std::invalid_argument when the sizes differ or kPW has no z.
+void CheckFrame(Protocol protocol, const Labels& pred, const std::vector<uint32_t>& gt,
+                const std::vector<float>* z);
+
+// One frame. `pred`: 1 ground, 0 non-ground (any non-zero value is ground); `gt`: the labels of
+// the protocol's ontology; `z`: each point's z in metres (required by kPW, ignored by the others;
+// may be null for them). std::invalid_argument as CheckFrame.
 Counts CountFrame(Protocol protocol, const Labels& pred, const std::vector<uint32_t>& gt,
                   const std::vector<float>* z);
 
