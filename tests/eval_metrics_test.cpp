@@ -1,13 +1,17 @@
 // Evaluation protocols DG, PP, PW, GG and rellis on small hand-counted frames: exact counts per
 // protocol, the eq. 13 scores, summed versus per-frame-mean aggregation, 0/0 and error cases; the
-// class tables of both ontologies.
+// class tables of both ontologies; the per-class and per-range-band tallies.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "host/eval/by_class.h"
+#include "host/eval/by_range.h"
 #include "host/eval/metrics.h"
 #include "host/eval/ontology.h"
 
@@ -285,6 +289,123 @@ TEST(EvalMetrics, ProtocolsPerOntology) {
             "semantickitti: dg, pp, pw, gg)");
   EXPECT_EQ(ErrorOf([] { ParseProtocol("x", Ontology::kRellis3d); }),
             "unknown protocol 'x' (known: rellis)");
+}
+
+TEST(EvalByClass, MixedFrameByHand) {
+  Frame f = Mixed();
+  ClassBreakdown b({Protocol::kDG, Protocol::kPP, Protocol::kPW});
+  b.Add(f.pred, f.gt, &f.z);
+  b.Add(f.pred, f.gt, &f.z);  // twice: everything doubles
+  const auto& c = b.classes();
+  ASSERT_EQ(c.size(), 8u);  // 0 1 10 40 48 50 70 72 (the road with an instance is 40)
+  const ClassTally& road = c.at(40);
+  EXPECT_EQ(road.points, 6u);
+  EXPECT_EQ(road.predicted_ground, 4u);
+  EXPECT_EQ(road.counts[0], Make(4, 0, 2, 0, 0));
+  const ClassTally& veg = c.at(70);  // points 6, 7, 8, 13
+  EXPECT_EQ(veg.points, 8u);
+  EXPECT_EQ(veg.predicted_ground, 6u);
+  EXPECT_EQ(veg.counts[0], Make(0, 6, 0, 2, 0));      // DG: all non-ground
+  EXPECT_EQ(veg.counts[1], Make(0, 0, 0, 0, 8));      // PP: not scored
+  EXPECT_EQ(veg.counts[2], Make(2, 4, 2, 0, 0));      // PW: 6, 7 low; 8, 13 not below -1.2975
+  EXPECT_EQ(c.at(0).counts[2], Make(0, 0, 0, 0, 2));  // PW: predicted unlabeled left out
+  EXPECT_EQ(c.at(10).counts[1], Make(0, 2, 0, 2, 0));
+  EXPECT_EQ(c.at(48).predicted_ground, 0u);
+}
+
+TEST(EvalByClass, SumsToTheFrameCounts) {
+  Frame f = Mixed();
+  ClassBreakdown b(AllProtocols());
+  b.Add(f.pred, f.gt, &f.z);
+  for (size_t k = 0; k < AllProtocols().size(); ++k) {
+    const Protocol p = AllProtocols()[k];
+    SCOPED_TRACE(ProtocolName(p));
+    Counts sum;
+    uint64_t points = 0;
+    for (const auto& entry : b.classes()) {
+      sum += entry.second.counts[k];
+      points += entry.second.points;
+    }
+    EXPECT_EQ(sum, CountFrame(p, f.pred, f.gt, &f.z));
+    EXPECT_EQ(points, f.gt.size());
+  }
+}
+
+TEST(EvalByRange, Bands) {
+  EXPECT_EQ(kRangeBands, 7u);
+  const char* names[] = {"0-5", "5-10", "10-20", "20-30", "30-40", "40-60", "60+"};
+  for (size_t b = 0; b < kRangeBands; ++b) EXPECT_EQ(RangeBandName(b), names[b]);
+  EXPECT_EQ(RangeBand(0.0f), 0u);
+  EXPECT_EQ(RangeBand(4.999f), 0u);
+  EXPECT_EQ(RangeBand(5.0f), 1u);  // an edge opens the band above it
+  EXPECT_EQ(RangeBand(19.99f), 2u);
+  EXPECT_EQ(RangeBand(20.0f), 3u);
+  EXPECT_EQ(RangeBand(39.9f), 4u);
+  EXPECT_EQ(RangeBand(40.0f), 5u);
+  EXPECT_EQ(RangeBand(59.99f), 5u);
+  EXPECT_EQ(RangeBand(60.0f), 6u);
+  EXPECT_EQ(RangeBand(1e30f), 6u);
+  EXPECT_EQ(RangeBand(std::numeric_limits<float>::infinity()), 6u);
+  EXPECT_EQ(RangeBand(std::nanf("")), 6u);
+}
+
+TEST(EvalByRange, CountsPerBandByHand) {
+  Cloud cloud;
+  Labels pred;
+  std::vector<uint32_t> gt;
+  auto add = [&](float x, float y, float z, uint32_t label, uint8_t p) {
+    cloud.Push(x, y, z, 0);
+    gt.push_back(label);
+    pred.push_back(p);
+  };
+  add(1, 0, -1.7f, 40, 1);      // 0-5    TP
+  add(3, 4, -1.7f, 40, 0);      // 5-10   FN (3-4-5: exactly 5 m)
+  add(0, 9.99f, -1.0f, 10, 1);  // 5-10   FP
+  add(10, 0, -1.7f, 40, 1);     // 10-20  TP
+  add(0, -25, -1.7f, 48, 0);    // 20-30  FN
+  add(-30, 0, 1.0f, 50, 1);     // 30-40  FP
+  add(45, 0, -1.7f, 72, 1);     // 40-60  TP
+  add(59.9f, 0, -1.7f, 70, 1);  // 40-60  DG FP, GG ignored, PW TP (low vegetation)
+  add(60, 0, -1.7f, 40, 0);     // 60+    FN
+  add(100, 0, -1.7f, 0, 0);     // 60+    DG TN, GG ignored
+  RangeBreakdown b({Protocol::kDG, Protocol::kGG, Protocol::kPW});
+  b.Add(cloud, pred, gt);
+  const auto& t = b.bands();
+  const std::vector<uint64_t> points = {1, 2, 1, 1, 1, 2, 2};
+  for (size_t i = 0; i < kRangeBands; ++i) EXPECT_EQ(t[i].points, points[i]) << i;
+  EXPECT_EQ(t[0].counts[0], Make(1, 0, 0, 0, 0));
+  EXPECT_EQ(t[1].counts[0], Make(0, 1, 1, 0, 0));
+  EXPECT_EQ(t[2].counts[0], Make(1, 0, 0, 0, 0));
+  EXPECT_EQ(t[3].counts[0], Make(0, 0, 1, 0, 0));
+  EXPECT_EQ(t[4].counts[0], Make(0, 1, 0, 0, 0));
+  EXPECT_EQ(t[5].counts[0], Make(1, 1, 0, 0, 0));
+  EXPECT_EQ(t[5].counts[1], Make(1, 0, 0, 0, 1));
+  EXPECT_EQ(t[5].counts[2], Make(2, 0, 0, 0, 0));
+  EXPECT_EQ(t[6].counts[0], Make(0, 0, 1, 1, 0));
+  EXPECT_EQ(t[6].counts[1], Make(0, 0, 1, 0, 1));
+  // Summed over the bands: the frame's counts (PW's z taken from the cloud).
+  std::vector<float> z;
+  for (size_t i = 0; i < cloud.size(); ++i) z.push_back(cloud.z(i));
+  for (size_t k = 0; k < b.protocols().size(); ++k) {
+    Counts sum;
+    for (const RangeTally& band : t) sum += band.counts[k];
+    EXPECT_EQ(sum, CountFrame(b.protocols()[k], pred, gt, &z)) << ProtocolName(b.protocols()[k]);
+  }
+}
+
+TEST(EvalBreakdown, Errors) {
+  Labels pred = {1, 0};
+  std::vector<uint32_t> gt = {40, 40};
+  ClassBreakdown by_class({Protocol::kPW});
+  EXPECT_NE(ErrorOf([&] { by_class.Add(pred, gt, nullptr); }).find("needs each point's z"),
+            std::string::npos);
+  Cloud cloud;
+  cloud.Push(1, 0, 0, 0);
+  RangeBreakdown by_range({Protocol::kDG});
+  EXPECT_EQ(ErrorOf([&] { by_range.Add(cloud, pred, gt); }),
+            "scan has 1 points but the ground truth 2");
+  EXPECT_TRUE(by_class.classes().empty());  // nothing half-added
+  EXPECT_EQ(by_range.bands()[0].points, 0u);
 }
 
 }  // namespace
