@@ -1,7 +1,9 @@
 // lpir-gseg evaluate, run as a process on small label files written here: the JSON values of every
-// protocol, folder and file arguments, the table, and the error exits.
+// protocol, folder and file arguments, the table, the per-class and per-range breakdowns, the
+// RELLIS-3D ontology, and the error exits; on the real RELLIS-3D scan, segment's F1.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -9,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -124,6 +127,14 @@ void WriteU32(const std::string& path, const std::vector<uint32_t>& v) {
 void WriteScan(const std::string& path, const std::vector<float>& z) {
   std::vector<float> xyzi;
   for (size_t i = 0; i < z.size(); ++i) xyzi.insert(xyzi.end(), {5.0f + i, 1.0f, z[i], 0.5f});
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(xyzi.data()), std::streamsize(xyzi.size() * 4));
+}
+
+// A scan of the given points (x, y, z each), intensity 0.5.
+void WriteXyz(const std::string& path, const std::vector<std::array<float, 3>>& points) {
+  std::vector<float> xyzi;
+  for (const auto& p : points) xyzi.insert(xyzi.end(), {p[0], p[1], p[2], 0.5f});
   std::ofstream(path, std::ios::binary)
       .write(reinterpret_cast<const char*>(xyzi.data()), std::streamsize(xyzi.size() * 4));
 }
@@ -300,6 +311,300 @@ TEST_F(CliEvaluate, Errors) {
   EXPECT_NE(out.find("share the stem 'a'"), std::string::npos) << out;
 }
 
+// The whitespace-separated words of the first line of `out` that starts with `start`, ignoring
+// leading spaces; empty when there is none.
+std::vector<std::string> RowWords(const std::string& out, const std::string& start) {
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find_first_not_of(' ') == std::string::npos) continue;
+    if (line.compare(line.find_first_not_of(' '), start.size(), start) != 0) continue;
+    std::istringstream words(line);
+    std::vector<std::string> v;
+    for (std::string w; words >> w;) v.push_back(w);
+    return v;
+  }
+  return {};
+}
+
+using Words = std::vector<std::string>;
+
+// Sums field `what` of member `protocol` over the items of a by_class or by_range array.
+double SumOf(const Json& rows, const std::string& protocol, const std::string& what) {
+  double sum = 0;
+  for (const Json& row : rows.items) sum += row[protocol][what].number;
+  return sum;
+}
+
+TEST_F(CliEvaluate, ByClassPerClassAndSumsToTheProtocols) {
+  const std::string args = "--pred " + root_ + "/pred --gt " + root_ + "/seq/labels --protocol all";
+  Json plain = EvaluateJson(args);
+  Json j = EvaluateJson(args + " --by-class");
+  EXPECT_EQ(j.order, (std::vector<std::string>{"frames", "total", "by_class"}));
+  // The scores are those without the flag.
+  for (const char* p : {"dg", "pp", "pw", "gg"})
+    for (const char* s : {"precision", "recall", "f1", "iou"})
+      EXPECT_EQ(j["total"][p][s].number, plain["total"][p][s].number) << p << " " << s;
+  const Json& rows = j["by_class"];
+  ASSERT_EQ(rows.kind, Json::kArray);
+  std::vector<double> ids;
+  for (const Json& row : rows.items) ids.push_back(row["class"].number);
+  EXPECT_EQ(ids, (std::vector<double>{0, 1, 10, 40, 48, 50, 70, 72}));
+  const Json& car = rows.items[2];
+  EXPECT_EQ(car.order, (std::vector<std::string>{"class", "name", "points", "predicted_ground",
+                                                 "share", "dg", "pp", "pw", "gg"}));
+  EXPECT_EQ(car["name"].text, "car");
+  EXPECT_EQ(car["points"].number, 4);  // two in a, two in b
+  EXPECT_EQ(car["predicted_ground"].number, 2);
+  EXPECT_EQ(car["share"].number, 0.5);
+  EXPECT_EQ(car["dg"].order, (std::vector<std::string>{"tp", "fp", "fn", "tn", "ignored"}));
+  EXPECT_EQ(car["dg"]["fp"].number, 2);
+  EXPECT_EQ(car["dg"]["tn"].number, 2);
+  const Json& road = rows.items[3];
+  EXPECT_EQ(road["name"].text, "road");
+  EXPECT_EQ(road["points"].number, 5);
+  EXPECT_EQ(road["predicted_ground"].number, 4);
+  EXPECT_EQ(road["dg"]["fn"].number, 1);
+  EXPECT_EQ(rows.items[6]["name"].text, "vegetation");
+  EXPECT_EQ(rows.items[6]["pp"]["ignored"].number, 4);
+  // Summed over the classes, each protocol's counts over both frames (frame a's hand counts plus
+  // b's TP 2, FP 1): DG TP 5 FP 6 FN 2; PP and GG TP 5 FP 2 FN 2; PW TP 6 FP 4 FN 3.
+  const std::map<std::string, std::array<double, 3>> expected = {
+      {"dg", {5, 6, 2}}, {"pp", {5, 2, 2}}, {"pw", {6, 4, 3}}, {"gg", {5, 2, 2}}};
+  for (const auto& [p, tp_fp_fn] : expected) {
+    EXPECT_EQ(SumOf(rows, p, "tp"), tp_fp_fn[0]) << p;
+    EXPECT_EQ(SumOf(rows, p, "fp"), tp_fp_fn[1]) << p;
+    EXPECT_EQ(SumOf(rows, p, "fn"), tp_fp_fn[2]) << p;
+  }
+  // The summed protocols' totals are the scores of those sums.
+  for (const char* p : {"dg", "gg"}) {
+    const double tp = SumOf(rows, p, "tp"), fp = SumOf(rows, p, "fp"), fn = SumOf(rows, p, "fn");
+    EXPECT_DOUBLE_EQ(j["total"][p]["precision"].number, tp / (tp + fp)) << p;
+    EXPECT_DOUBLE_EQ(j["total"][p]["recall"].number, tp / (tp + fn)) << p;
+  }
+}
+
+TEST_F(CliEvaluate, ByRangePerBand) {
+  // Frame r: one point a band or two, at known horizontal ranges.
+  fs::create_directories(root_ + "/range/labels");
+  fs::create_directories(root_ + "/range/velodyne");
+  WriteXyz(root_ + "/range/velodyne/r.bin", {{1, 0, -1.7f},
+                                             {3, 4, -1.7f},
+                                             {0, 9.99f, -1.0f},
+                                             {10, 0, -1.7f},
+                                             {0, -25, -1.7f},
+                                             {-30, 0, 1.0f},
+                                             {45, 0, -1.7f},
+                                             {59.9f, 0, -1.7f},
+                                             {60, 0, -1.7f},
+                                             {100, 0, -1.7f}});
+  WriteU32(root_ + "/range/labels/r.label", {40, 40, 10, 40, 48, 50, 72, 70, 40, 0});
+  WriteU32(root_ + "/pred/r.label", {1, 0, 1, 1, 0, 1, 1, 1, 0, 0});
+  Json j = EvaluateJson("--pred " + root_ + "/pred --gt " + root_ +
+                        "/range/labels --protocol dg,gg --by-range");
+  EXPECT_EQ(j.order, (std::vector<std::string>{"frames", "total", "by_range"}));
+  const Json& bands = j["by_range"];
+  ASSERT_EQ(bands.items.size(), 7u);
+  struct Band {
+    const char* name;
+    double from, to, points, tp, fp, fn;
+  };
+  const Band expected[] = {{"0-5", 0, 5, 1, 1, 0, 0},     {"5-10", 5, 10, 2, 0, 1, 1},
+                           {"10-20", 10, 20, 1, 1, 0, 0}, {"20-30", 20, 30, 1, 0, 0, 1},
+                           {"30-40", 30, 40, 1, 0, 1, 0}, {"40-60", 40, 60, 2, 1, 1, 0},
+                           {"60+", 60, -1, 2, 0, 0, 1}};
+  for (size_t b = 0; b < 7; ++b) {
+    const Band& e = expected[b];
+    const Json& got = bands.items[b];
+    SCOPED_TRACE(e.name);
+    EXPECT_EQ(got["band"].text, e.name);
+    EXPECT_EQ(got["from"].number, e.from);
+    if (e.to < 0) {
+      EXPECT_EQ(got.order, (std::vector<std::string>{"band", "from", "points", "dg", "gg"}));
+    } else {
+      EXPECT_EQ(got["to"].number, e.to);
+    }
+    EXPECT_EQ(got["points"].number, e.points);
+    EXPECT_EQ(got["dg"]["tp"].number, e.tp);
+    EXPECT_EQ(got["dg"]["fp"].number, e.fp);
+    EXPECT_EQ(got["dg"]["fn"].number, e.fn);
+  }
+  // GG leaves out the vegetation at 59.9 m and the unlabeled point at 100 m.
+  EXPECT_EQ(bands.items[5]["gg"]["fp"].number, 0);
+  EXPECT_EQ(bands.items[5]["gg"]["ignored"].number, 1);
+  EXPECT_EQ(bands.items[6]["gg"]["ignored"].number, 1);
+  ExpectScores(j["total"]["dg"], 3.0 / 6, 3.0 / 6, 0.5, 3.0 / 9);
+}
+
+TEST_F(CliEvaluate, ByClassAndByRangeAgree) {
+  Json j = EvaluateJson("--pred " + root_ + "/pred --gt " + root_ +
+                        "/seq/labels --protocol all --by-class --by-range");
+  EXPECT_EQ(j.order, (std::vector<std::string>{"frames", "total", "by_class", "by_range"}));
+  for (const char* p : {"dg", "pp", "pw", "gg"})
+    for (const char* what : {"tp", "fp", "fn", "tn", "ignored"})
+      EXPECT_EQ(SumOf(j["by_class"], p, what), SumOf(j["by_range"], p, what)) << p << " " << what;
+  double points = 0;
+  for (const Json& band : j["by_range"].items) points += band["points"].number;
+  EXPECT_EQ(points, double(kGtA.size() + kGtB.size()));
+}
+
+TEST_F(CliEvaluate, ByClassAndByRangeTables) {
+  std::string out;
+  ASSERT_EQ(Evaluate("--pred " + root_ + "/pred --gt " + root_ +
+                         "/seq/labels --protocol dg,pp --by-class --by-range",
+                     &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("By ground-truth class (semantickitti), summed over 2 frames"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(RowWords(out, "class"), (Words{"class", "points", "pred.gnd", "share", "DG", "FP", "DG",
+                                           "FN", "PP", "FP", "PP", "FN"}))
+      << out;
+  EXPECT_EQ(RowWords(out, "10 car"), (Words{"10", "car", "4", "2", "50.00%", "2", "0", "2", "0"}))
+      << out;
+  EXPECT_EQ(RowWords(out, "40 road"), (Words{"40", "road", "5", "4", "80.00%", "0", "1", "0", "1"}))
+      << out;
+  // PP scores no vegetation: '-'.
+  EXPECT_EQ(RowWords(out, "70 vegetation"),
+            (Words{"70", "vegetation", "4", "3", "75.00%", "3", "0", "-", "-"}))
+      << out;
+  // Scan points at x = 5 + i, y = 1: a's first five and all of b in 5-10 m, the rest 10-20 m.
+  EXPECT_NE(out.find("By horizontal range sqrt(x^2 + y^2) in metres, summed over 2 frames"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(RowWords(out, "5-10"), (Words{"5-10", "9", "4", "2", "2", "4", "2", "2"})) << out;
+  EXPECT_EQ(RowWords(out, "10-20"), (Words{"10-20", "9", "1", "4", "0", "1", "0", "0"})) << out;
+  EXPECT_EQ(RowWords(out, "0-5"), (Words{"0-5", "0", "0", "0", "0", "0", "0", "0"})) << out;
+  // Without the flags, neither table.
+  ASSERT_EQ(Evaluate("--pred " + root_ + "/pred --gt " + root_ + "/seq/labels --protocol dg", &out),
+            0);
+  EXPECT_EQ(out.find("By "), std::string::npos) << out;
+}
+
+TEST_F(CliEvaluate, HelpStatesTheBandsAndTheRellisProtocol) {
+  std::string out;
+  ASSERT_EQ(Evaluate("--help", &out), 0);
+  EXPECT_NE(out.find("[0,5) [5,10) [10,20) [20,30) [30,40) [40,60) [60,inf) m"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("--ontology O"), std::string::npos) << out;
+  EXPECT_NE(out.find("void (0) not scored"), std::string::npos) << out;
+}
+
+// A RELLIS-3D frame: scan and labels in one folder, as RELLIS-3D keeps them.
+class CliEvaluateRellis : public CliEvaluate {
+ protected:
+  void SetUp() override {
+    CliEvaluate::SetUp();
+    fs::create_directories(root_ + "/rellis");
+    // void (predicted ground, not), grass TP, dirt FN, tree FP, bush TN, concrete TP, person TN,
+    // mud TP, asphalt FN: TP 3, FP 1, FN 2, TN 2, 2 void left out.
+    WriteU32(root_ + "/rellis/x.label", {0, 0, 3, 1, 4, 19, 23, 17, 33, 10});
+    WriteU32(root_ + "/pred/x.label", {1, 0, 1, 0, 1, 0, 1, 0, 1, 0});
+    std::vector<std::array<float, 3>> points;
+    for (int i = 0; i < 10; ++i) points.push_back({float(i * 7), 0, -1.0f});  // 0, 7, ... 63 m
+    WriteXyz(root_ + "/rellis/x.bin", points);
+    gt_ = " --gt " + root_ + "/rellis/x.label --pred " + root_ + "/pred";
+  }
+  std::string gt_;
+};
+
+TEST_F(CliEvaluateRellis, VoidLeftOut) {
+  Json j = EvaluateJson(gt_ + " --ontology rellis3d");
+  EXPECT_EQ(j["frames"].items[0].order, (std::vector<std::string>{"name", "rellis"}));
+  EXPECT_EQ(j["total"].order, std::vector<std::string>{"rellis"});
+  ExpectScores(j["total"]["rellis"], 3.0 / 4, 3.0 / 5, F1(3.0 / 4, 3.0 / 5), 3.0 / 6);
+  // --protocol rellis and all say the same.
+  for (const char* p : {"rellis", "all"}) {
+    Json k = EvaluateJson(gt_ + " --ontology rellis3d --protocol " + p);
+    ExpectScores(k["total"]["rellis"], 3.0 / 4, 3.0 / 5, F1(3.0 / 4, 3.0 / 5), 3.0 / 6);
+  }
+  std::string out;
+  ASSERT_EQ(Evaluate(gt_ + " --ontology rellis3d", &out), 0) << out;
+  EXPECT_NE(out.find("RELLIS (RELLIS-3D): ground 1 3 6 10 23 31 33, void (0) not scored"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(RowWords(out, "total"), (Words{"total", "75.00%", "60.00%", "66.67%", "50.00%"}))
+      << out;
+}
+
+TEST_F(CliEvaluateRellis, ByClassNamesAndByRangeFromTheLabelsFolder) {
+  Json j = EvaluateJson(gt_ + " --ontology rellis3d --by-class --by-range");
+  const Json& rows = j["by_class"];
+  std::vector<std::string> names;
+  for (const Json& row : rows.items) names.push_back(row["name"].text);
+  EXPECT_EQ(names, (std::vector<std::string>{"void", "dirt", "grass", "tree", "asphalt", "person",
+                                             "bush", "concrete", "mud"}));
+  const Json& void_row = rows.items[0];
+  EXPECT_EQ(void_row["points"].number, 2);
+  EXPECT_EQ(void_row["predicted_ground"].number, 1);
+  EXPECT_EQ(void_row["rellis"]["ignored"].number, 2);
+  EXPECT_EQ(rows.items[3]["rellis"]["fp"].number, 1);  // tree
+  EXPECT_EQ(rows.items[4]["rellis"]["fn"].number, 1);  // asphalt
+  EXPECT_EQ(SumOf(rows, "rellis", "tp"), 3);
+  EXPECT_EQ(SumOf(rows, "rellis", "fp"), 1);
+  EXPECT_EQ(SumOf(rows, "rellis", "fn"), 2);
+  // The scan beside the labels: points at 0, 7, 14, ..., 63 m.
+  const Json& bands = j["by_range"];
+  ASSERT_EQ(bands.items.size(), 7u);
+  const std::vector<double> points = {1, 1, 1, 2, 1, 3, 1};
+  for (size_t b = 0; b < 7; ++b) EXPECT_EQ(bands.items[b]["points"].number, points[b]) << b;
+  EXPECT_EQ(SumOf(bands, "rellis", "tp"), 3);
+  EXPECT_EQ(SumOf(bands, "rellis", "ignored"), 2);
+  std::string out;
+  ASSERT_EQ(Evaluate(gt_ + " --ontology rellis3d --by-class", &out), 0) << out;
+  EXPECT_NE(out.find("By ground-truth class (rellis3d)"), std::string::npos) << out;
+  EXPECT_EQ(RowWords(out, "0 void"), (Words{"0", "void", "2", "1", "50.00%", "-", "-"})) << out;
+  EXPECT_EQ(RowWords(out, "3 grass"), (Words{"3", "grass", "1", "1", "100.00%", "0", "0"})) << out;
+}
+
+TEST_F(CliEvaluateRellis, Errors) {
+  std::string out;
+  EXPECT_NE(Evaluate(gt_ + " --ontology kitti", &out), 0);
+  EXPECT_NE(out.find("unknown ontology 'kitti' (known: semantickitti, rellis3d)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(Evaluate(gt_ + " --ontology rellis3d --protocol pw", &out), 0);
+  EXPECT_NE(out.find("protocol 'pw' scores semantickitti labels, not rellis3d ones"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(Evaluate(gt_ + " --protocol rellis", &out), 0);
+  EXPECT_NE(out.find("protocol 'rellis' scores rellis3d labels, not semantickitti ones"),
+            std::string::npos)
+      << out;
+  // SemanticKITTI still needs --protocol.
+  EXPECT_NE(Evaluate(gt_, &out), 0);
+  EXPECT_NE(out.find("--protocol is required"), std::string::npos) << out;
+}
+
+TEST_F(CliEvaluate, ByRangeErrors) {
+  // Ground truth with no scan anywhere: names the file, where it looked, and --scans.
+  fs::create_directories(root_ + "/flat");
+  fs::copy_file(root_ + "/seq/labels/a.label", root_ + "/flat/a.label");
+  std::string out;
+  EXPECT_NE(
+      Evaluate("--pred " + root_ + "/pred --gt " + root_ + "/flat --protocol dg --by-range", &out),
+      0);
+  EXPECT_NE(out.find("--by-range needs each point's x and y, but no scan was found for " + root_ +
+                     "/flat/a.label (looked for " + root_ + "/flat/a.bin)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("pass --scans DIR holding a.bin"), std::string::npos) << out;
+  // --scans names it; a scan of the wrong size is named with both counts.
+  WriteScan(root_ + "/flat/a.bin", {-1.7f, -1.7f, -1.7f});
+  EXPECT_NE(
+      Evaluate("--pred " + root_ + "/pred --gt " + root_ + "/flat --protocol dg --by-range", &out),
+      0);
+  EXPECT_NE(out.find("scan " + root_ + "/flat/a.bin has 3 points but ground truth " + root_ +
+                     "/flat/a.label has 14 labels"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(Evaluate("--pred " + root_ + "/pred --gt " + root_ + "/flat --protocol dg --by-range" +
+                         " --scans " + root_ + "/seq/velodyne",
+                     &out),
+            0)
+      << out;
+}
+
 TEST(CliEvaluateRealScan, GroundTruthAgainstItself) {
   LPIR_REQUIRE_DATA("kitti/07/labels/000964.label");
   LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
@@ -332,6 +637,42 @@ TEST(CliEvaluateRealScan, GroundTruthAgainstItself) {
   EXPECT_EQ(j["total"]["pw"]["precision"].number, 1.0);
   EXPECT_LT(j["total"]["pw"]["recall"].number, 1.0);
   EXPECT_GT(j["total"]["pw"]["recall"].number, 0.9);
+}
+
+TEST(CliEvaluateRealScan, RellisOs1SegmentedScoresF1AtLeast94) {
+  LPIR_REQUIRE_DATA("rellis3d/os1/000104.bin");
+  LPIR_REQUIRE_DATA("rellis3d/os1/000104.label");
+  std::string dir = test::TempDir();
+  struct Cleanup {
+    std::string path;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  } cleanup{dir};
+  const std::string cli = "'" + test::CliPath() + "'";
+  std::string out;
+  ASSERT_EQ(test::RunCommand(cli + " segment " + test::DataFile("rellis3d/os1/000104.bin") +
+                                 " --sensor os1-64 --backend cpu --quiet --out " + dir,
+                             &out),
+            0)
+      << out;
+  ASSERT_EQ(test::RunCommand(cli + " evaluate --pred " + dir + " --gt " +
+                                 test::DataFile("rellis3d/os1/000104.label") +
+                                 " --ontology rellis3d --by-class --by-range --json",
+                             &out),
+            0)
+      << out;
+  Json j;
+  ASSERT_TRUE(JsonReader(out).ReadAll(&j)) << out;
+  const Json& s = j["total"]["rellis"];
+  // Measured: P 95.87 %, R 94.28 %, F1 95.07 %.
+  EXPECT_GE(s["f1"].number, 0.94) << out;
+  EXPECT_GT(s["precision"].number, 0.9) << out;
+  EXPECT_GT(s["recall"].number, 0.9) << out;
+  // The 53,364 no-return points are void: left out, and at 0 m.
+  EXPECT_EQ(j["by_class"].items[0]["name"].text, "void");
+  EXPECT_GE(j["by_range"].items[0]["rellis"]["ignored"].number, 53364);
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
-// lpir-gseg evaluate --pred DIR --gt PATH... --protocol P [--json] [--scans DIR]: scores predicted
-// ground labels against SemanticKITTI ground truth under the DG, PP, PW and GG protocols
-// (host/eval/metrics.h), per frame and in total, as a table or as one JSON object.
+// lpir-gseg evaluate --pred DIR --gt PATH... --protocol P [--json] [--scans DIR] [--by-class]
+// [--by-range] [--ontology O]: scores predicted ground labels against SemanticKITTI ground truth
+// under the DG, PP, PW and GG protocols, or RELLIS-3D ground truth under the rellis one
+// (host/eval/metrics.h), per frame and in total, and with the flags per class and per range
+// band; printed by evaluate_output.cpp.
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -12,7 +13,9 @@
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/evaluate_output.h"
 #include "host/eval/metrics.h"
+#include "host/eval/ontology.h"
 #include "host/io/io_error.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
@@ -24,42 +27,73 @@ namespace fs = std::filesystem;
 
 const char kHelp[] =
     "usage: lpir-gseg evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json]\n"
-    "                          [--scans DIR]\n"
+    "                          [--scans DIR] [--by-class] [--by-range]\n"
+    "                          [--ontology semantickitti|rellis3d]\n"
     "  --pred DIR       predictions: DIR/<stem>.label, uint32 per point, 1 ground, 0 non-ground\n"
-    "  --gt PATH...     SemanticKITTI .label files and/or folders of them (every value up to the\n"
+    "  --gt PATH...     ground-truth .label files and/or folders of them (every value up to the\n"
     "                   next --option); each is matched with DIR/<stem>.label\n"
-    "  --protocol P     dg, pp, pw, gg, a comma-separated list of them, or all:\n"
+    "  --protocol P     dg, pp, pw, gg, a comma-separated list of them, or all (required but\n"
+    "                   with --ontology rellis3d):\n"
     "                   dg  DipG-Seg: vegetation (70), unlabeled (0), outlier (1) are non-ground;\n"
     "                       TP/FP/FN summed over the frames\n"
     "                   pp  Patchwork++: classes 70, 0, 1 not scored; mean of per-frame scores\n"
     "                   pw  Patchwork: vegetation below z = -1.2975 m is ground; predicted\n"
     "                       ground of class 0/1 is no false positive; mean of per-frame scores\n"
     "                   gg  GroundGrid: classes 70, 0, 1 not scored; counts summed\n"
-    "  --scans DIR      where <stem>.bin lies (KITTI layout), for pw's heights; by default the\n"
-    "                   scan beside the labels: .../labels/X.label -> .../velodyne/X.bin\n"
-    "  --json           print exactly one JSON object instead of the table:\n"
+    "                   rellis  the one protocol of --ontology rellis3d, and its default (all\n"
+    "                       means it there): ground 1 dirt, 3 grass, 6 water, 10 asphalt,\n"
+    "                       23 concrete, 31 puddle, 33 mud; void (0) not scored; every other\n"
+    "                       class non-ground; counts summed. dg/pp/pw/gg are refused there: they\n"
+    "                       differ only in classes 70, 0, 1 and KITTI's sensor height\n"
+    "  --ontology O     the ground truth's classes: semantickitti (default) or rellis3d "
+    "(RELLIS-3D\n"
+    "                   .label files); class = label & 0xFFFF in both\n"
+    "  --scans DIR      where <stem>.bin lies, for pw's heights and --by-range; by default the "
+    "scan\n"
+    "                   beside the labels: .../labels/X.label -> .../velodyne/X.bin, else X.bin "
+    "in\n"
+    "                   the label's own folder (RELLIS-3D's layout)\n"
+    "  --by-class       per ground-truth class present (with its name): points, how many the\n"
+    "                   prediction calls ground and their share, and FP and FN under each\n"
+    "                   protocol ('-': the protocol scores none of the class)\n"
+    "  --by-range       per band of horizontal range sqrt(x^2 + y^2) of the scan's points, bands\n"
+    "                   [0,5) [5,10) [10,20) [20,30) [30,40) [40,60) [60,inf) m (NaN: the last):\n"
+    "                   points, TP, FP, FN under each protocol; needs the scans (see --scans)\n"
+    "                   Both count points summed over the frames, also for pp and pw, whose\n"
+    "                   scores are per-frame means; summed over the rows they give the\n"
+    "                   protocol's TP/FP/FN over all frames\n"
+    "  --json           print exactly one JSON object instead of the tables:\n"
     "                   {\"frames\": [{\"name\": stem, \"dg\": {\"precision\", \"recall\", "
     "\"f1\",\n"
-    "                   \"iou\"}, ...}], \"total\": {\"dg\": {...}, ...}}, fractions in [0, 1]\n"
+    "                   \"iou\"}, ...}], \"total\": {\"dg\": {...}, ...}}, fractions in [0, 1];\n"
+    "                   --by-class adds \"by_class\": [{\"class\", \"name\", \"points\",\n"
+    "                   \"predicted_ground\", \"share\", \"dg\": {\"tp\", \"fp\", \"fn\", \"tn\",\n"
+    "                   \"ignored\"}, ...}], --by-range \"by_range\": [{\"band\", \"from\", "
+    "\"to\"\n"
+    "                   (metres; no \"to\" in the last), \"points\", \"dg\": {...}, ...}]\n"
     "Scores: precision TP/(TP+FP), recall TP/(TP+FN), F1 2PR/(P+R), IoU TP/(TP+FP+FN); a ratio\n"
-    "with denominator 0 is 0. Ground classes: 40 44 48 49 60 72 (label & 0xFFFF).\n";
+    "with denominator 0 is 0. SemanticKITTI ground classes: 40 44 48 49 60 72.\n";
 
 struct Options {
   std::string pred_dir;
   std::vector<std::string> gt;
+  Ontology ontology = Ontology::kSemanticKitti;
   std::vector<Protocol> protocols;
   std::string scans_dir;
   bool json = false;
+  bool by_class = false;
+  bool by_range = false;
   bool help = false;
 };
 
-std::vector<Protocol> ParseProtocols(const std::string& text) {
-  if (text == "all") return AllProtocols();
+// "all", or a comma-separated list of the ontology's protocols (repeats dropped).
+std::vector<Protocol> ParseProtocols(const std::string& text, Ontology ontology) {
+  if (text == "all") return ProtocolsOf(ontology);
   std::vector<Protocol> out;
   size_t start = 0;
   while (true) {
     size_t comma = text.find(',', start);
-    Protocol p = ParseProtocol(text.substr(start, comma - start));
+    Protocol p = ParseProtocol(text.substr(start, comma - start), ontology);
     bool seen = false;
     for (Protocol q : out) seen = seen || q == p;
     if (!seen) out.push_back(p);
@@ -84,17 +118,23 @@ Options ParseOptions(int argc, char** argv) {
     if (j == i + 1) throw std::invalid_argument("--gt needs at least one .label file or folder");
     i = j - 1;
   }
-  Args args(int(rest.size()), rest.data(), {"--json", "--help"},
-            {"--pred", "--protocol", "--scans"});
+  Args args(int(rest.size()), rest.data(), {"--json", "--help", "--by-class", "--by-range"},
+            {"--pred", "--protocol", "--scans", "--ontology"});
   if (!args.positional().empty())
     throw std::invalid_argument("unexpected argument '" + args.positional()[0] + "'");
   o.help = args.Has("--help");
   if (o.help) return o;
   o.pred_dir = args.Require("--pred");
   if (o.gt.empty()) throw std::invalid_argument("--gt is required");
-  o.protocols = ParseProtocols(args.Require("--protocol"));
+  o.ontology = ParseOntology(args.Get("--ontology", OntologyName(Ontology::kSemanticKitti)));
+  // RELLIS-3D has one protocol, so it needs no --protocol; SemanticKITTI's choice moves F1.
+  o.protocols = o.ontology == Ontology::kRellis3d && !args.Has("--protocol")
+                    ? ProtocolsOf(o.ontology)
+                    : ParseProtocols(args.Require("--protocol"), o.ontology);
   o.scans_dir = args.Get("--scans");
   o.json = args.Has("--json");
+  o.by_class = args.Has("--by-class");
+  o.by_range = args.Has("--by-range");
   return o;
 }
 
@@ -138,38 +178,41 @@ std::vector<GtFile> ListGroundTruth(const std::vector<std::string>& values) {
   return unique;
 }
 
-// The heights protocol pw needs: the scan in --scans, else beside the labels.
-std::vector<float> LoadHeights(const GtFile& gt, const std::string& scans_dir, size_t points) {
+// Where a ground truth's scan may lie, in the order tried: --scans, the KITTI layout beside the
+// labels, the label's own folder.
+std::vector<std::string> ScanCandidates(const GtFile& gt, const std::string& scans_dir) {
   std::vector<std::string> candidates;
   if (!scans_dir.empty()) candidates.push_back((fs::path(scans_dir) / (gt.stem + ".bin")).string());
   fs::path folder = fs::path(gt.path).parent_path();
   if (folder.filename() == "labels")
     candidates.push_back((folder.parent_path() / "velodyne" / (gt.stem + ".bin")).string());
-  std::string scan;
+  candidates.push_back((folder / (gt.stem + ".bin")).string());
+  return candidates;
+}
+
+// The scan of a ground truth, checked to hold `points` points; `needs` says what wants it
+// ("protocol pw needs each point's z"), for the error when none is found.
+Cloud LoadScan(const GtFile& gt, const std::string& scans_dir, size_t points,
+               const std::string& needs) {
+  const std::vector<std::string> candidates = ScanCandidates(gt, scans_dir);
+  std::string scan, looked;
   std::error_code ec;
   for (const std::string& c : candidates) {
     if (fs::is_regular_file(c, ec)) {
       scan = c;
       break;
     }
+    looked += (looked.empty() ? "" : ", ") + c;
   }
-  if (scan.empty()) {
-    std::string looked;
-    for (const std::string& c : candidates) looked += (looked.empty() ? "" : ", ") + c;
-    throw std::invalid_argument(
-        "protocol pw needs each point's z, but no scan was found for " + gt.path +
-        (looked.empty() ? std::string(" (it is not in a labels/ folder beside velodyne/)")
-                        : " (looked for " + looked + ")") +
-        ": pass --scans DIR holding " + gt.stem + ".bin");
-  }
+  if (scan.empty())
+    throw std::invalid_argument(needs + ", but no scan was found for " + gt.path + " (looked for " +
+                                looked + "): pass --scans DIR holding " + gt.stem + ".bin");
   Cloud cloud = ReadKittiBin(scan);
   if (cloud.size() != points)
     throw std::invalid_argument("scan " + scan + " has " + std::to_string(cloud.size()) +
                                 " points but ground truth " + gt.path + " has " +
                                 std::to_string(points) + " labels");
-  std::vector<float> z(points);
-  for (size_t i = 0; i < points; ++i) z[i] = cloud.z(i);
-  return z;
+  return cloud;
 }
 
 Labels LoadPrediction(const std::string& path, const GtFile& gt, size_t points) {
@@ -192,51 +235,42 @@ Labels LoadPrediction(const std::string& path, const GtFile& gt, size_t points) 
   return pred;
 }
 
-// The shortest of %.15g / %.17g that reads back as the same double.
-std::string JsonNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.15g", v);
-  if (std::strtod(buf, nullptr) != v) std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
+// What needs the scan, for LoadScan's error; "" when nothing does.
+std::string ScanNeeds(const Options& o) {
+  for (Protocol p : o.protocols)
+    if (p == Protocol::kPW) return "protocol pw needs each point's z";
+  return o.by_range ? "--by-range needs each point's x and y" : "";
 }
 
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\u%04x", static_cast<unsigned>(c));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
+// Scores one ground-truth file against its prediction into `r`; `needs`: ScanNeeds(o).
+void AddFrame(const Options& o, const GtFile& gt, const std::string& needs, EvaluateResults* r) {
+  const std::vector<uint32_t> truth = ReadLabelFile(gt.path);
+  const std::string pred_path = (fs::path(o.pred_dir) / (gt.stem + ".label")).string();
+  const Labels pred = LoadPrediction(pred_path, gt, truth.size());
+  Cloud cloud;
+  if (!needs.empty()) cloud = LoadScan(gt, o.scans_dir, truth.size(), needs);
+  std::vector<float> z(cloud.size());
+  for (size_t i = 0; i < z.size(); ++i) z[i] = cloud.z(i);
+  const std::vector<float>* zp = needs.empty() ? nullptr : &z;
+  std::vector<Scores> row;
+  for (SequenceScores& seq : r->totals)
+    row.push_back(seq.Add(CountFrame(seq.protocol(), pred, truth, zp)));
+  r->per_frame.push_back(row);
+  r->frames.push_back(gt.stem);
+  if (r->by_class) r->by_class->Add(pred, truth, zp);
+  if (r->by_range) r->by_range->Add(cloud, pred, truth);
 }
 
-std::string JsonScores(const Scores& s) {
-  return "{\"precision\": " + JsonNumber(s.precision) + ", \"recall\": " + JsonNumber(s.recall) +
-         ", \"f1\": " + JsonNumber(s.f1) + ", \"iou\": " + JsonNumber(s.iou) + "}";
-}
-
-const char* Describe(Protocol p) {
-  switch (p) {
-    case Protocol::kDG:
-      return "DG (DipG-Seg): vegetation, unlabeled and outliers are non-ground; counts summed";
-    case Protocol::kPP:
-      return "PP (Patchwork++): vegetation, unlabeled and outliers not scored; mean over frames";
-    case Protocol::kPW:
-      return "PW (Patchwork): vegetation below z -1.2975 m is ground, predicted unlabeled/outlier "
-             "no FP; mean over frames";
-    case Protocol::kGG:
-      return "GG (GroundGrid): vegetation, unlabeled and outliers not scored; counts summed";
-    case Protocol::kRellis:
-      return "RELLIS (RELLIS-3D): ground 1 3 6 10 23 31 33, void (0) not scored; counts summed";
-  }
-  return "";
+// Scores every ground-truth file, with the breakdowns asked for.
+EvaluateResults Evaluate(const Options& o, const std::vector<GtFile>& gts) {
+  EvaluateResults r;
+  r.ontology = o.ontology;
+  for (Protocol p : o.protocols) r.totals.emplace_back(p);
+  if (o.by_class) r.by_class.emplace(o.protocols);
+  if (o.by_range) r.by_range.emplace(o.protocols);
+  const std::string needs = ScanNeeds(o);
+  for (const GtFile& gt : gts) AddFrame(o, gt, needs, &r);
+  return r;
 }
 
 }  // namespace
@@ -249,56 +283,9 @@ int RunEvaluate(int argc, char** argv) {
   }
   std::error_code ec;
   if (!fs::is_directory(o.pred_dir, ec)) throw IoError(o.pred_dir, "no such prediction folder");
-  const std::vector<GtFile> gts = ListGroundTruth(o.gt);
-  bool needs_z = false;
-  for (Protocol p : o.protocols) needs_z = needs_z || p == Protocol::kPW;
-
-  std::vector<SequenceScores> totals;
-  for (Protocol p : o.protocols) totals.emplace_back(p);
-  std::vector<std::vector<Scores>> per_frame;  // [frame][protocol]
-  for (const GtFile& gt : gts) {
-    const std::vector<uint32_t> truth = ReadLabelFile(gt.path);
-    const std::string pred_path = (fs::path(o.pred_dir) / (gt.stem + ".label")).string();
-    const Labels pred = LoadPrediction(pred_path, gt, truth.size());
-    std::vector<float> z;
-    if (needs_z) z = LoadHeights(gt, o.scans_dir, truth.size());
-    std::vector<Scores> row;
-    for (SequenceScores& seq : totals)
-      row.push_back(seq.Add(CountFrame(seq.protocol(), pred, truth, needs_z ? &z : nullptr)));
-    per_frame.push_back(row);
-  }
-
-  if (o.json) {
-    std::string out = "{\"frames\": [";
-    for (size_t f = 0; f < gts.size(); ++f) {
-      out += std::string(f ? ", " : "") + "{\"name\": " + JsonString(gts[f].stem);
-      for (size_t k = 0; k < totals.size(); ++k)
-        out += ", \"" + std::string(ProtocolName(totals[k].protocol())) +
-               "\": " + JsonScores(per_frame[f][k]);
-      out += "}";
-    }
-    out += "], \"total\": {";
-    for (size_t k = 0; k < totals.size(); ++k)
-      out += std::string(k ? ", " : "") + "\"" + ProtocolName(totals[k].protocol()) +
-             "\": " + JsonScores(totals[k].Total());
-    out += "}}\n";
-    std::fputs(out.c_str(), stdout);
-    return 0;
-  }
-
-  size_t name_width = 5;
-  for (const GtFile& g : gts) name_width = std::max(name_width, g.stem.size());
-  const int w = int(name_width);
-  for (size_t k = 0; k < totals.size(); ++k) {
-    std::printf("%s%s\n", k ? "\n" : "", Describe(totals[k].protocol()));
-    std::printf("%-*s  %9s  %9s  %9s  %9s\n", w, "frame", "precision", "recall", "F1", "IoU");
-    auto print = [&](const std::string& name, const Scores& s) {
-      std::printf("%-*s  %8.2f%%  %8.2f%%  %8.2f%%  %8.2f%%\n", w, name.c_str(), 100 * s.precision,
-                  100 * s.recall, 100 * s.f1, 100 * s.iou);
-    };
-    for (size_t f = 0; f < gts.size(); ++f) print(gts[f].stem, per_frame[f][k]);
-    print(AveragesPerFrame(totals[k].protocol()) ? "mean" : "total", totals[k].Total());
-  }
+  const EvaluateResults r = Evaluate(o, ListGroundTruth(o.gt));
+  const std::string out = o.json ? FormatJson(r) : FormatTables(r);
+  std::fputs(out.c_str(), stdout);
   return 0;
 }
 
