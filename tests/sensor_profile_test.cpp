@@ -27,8 +27,8 @@ struct ScopedDir {
   }
 };
 
-const char* const kShipped[] = {"hdl32e", "hdl64e",   "os1-128", "os1-64",
-                                "ot128",  "pandar64", "vlp16",   "vlp32c"};
+const char* const kShipped[] = {"hdl32e",   "hdl64e",    "os1-128", "os1-64", "ot128",
+                                "pandar64", "rs-ruby80", "vlp16",   "vlp32c"};
 
 std::string WriteText(const std::string& dir, const std::string& name, const std::string& text) {
   std::string path = dir + "/" + name;
@@ -173,8 +173,9 @@ TEST(SensorProfile, UnknownNameListsTheKnownProfiles) {
   } catch (const std::invalid_argument& e) {
     std::string m = e.what();
     EXPECT_NE(m.find("unknown sensor profile 'hdl128x'"), std::string::npos) << m;
-    EXPECT_NE(m.find("known: hdl32e, hdl64e, os1-128, os1-64, ot128, pandar64, vlp16, vlp32c"),
-              std::string::npos)
+    EXPECT_NE(
+        m.find("known: hdl32e, hdl64e, os1-128, os1-64, ot128, pandar64, rs-ruby80, vlp16, vlp32c"),
+        std::string::npos)
         << m;
   }
 }
