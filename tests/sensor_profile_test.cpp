@@ -27,7 +27,8 @@ struct ScopedDir {
   }
 };
 
-const char* const kShipped[] = {"hdl32e", "hdl64e", "os1-128", "os1-64", "vlp16", "vlp32c"};
+const char* const kShipped[] = {"hdl32e",   "hdl64e",    "os1-128", "os1-64", "ot128",
+                                "pandar64", "rs-ruby80", "vlp16",   "vlp32c"};
 
 std::string WriteText(const std::string& dir, const std::string& name, const std::string& text) {
   std::string path = dir + "/" + name;
@@ -102,6 +103,55 @@ TEST(SensorProfile, ShippedGeometryMatchesTheDatasheets) {
   EXPECT_EQ(LoadSensorProfile("vlp16", dir).beams, 16u);
 }
 
+// The profiles taken from vendors' beam tables (their files say where from): beam count, the top
+// and bottom entries of the vendor's table, the spacing where it is finest, the vendor's ring
+// numbering, 1/255 intensities and room for a dual-return turn of 1800 firings (0.2 deg at
+// 10 Hz, more than the 1792 columns).
+struct VendorTable {
+  const char* name;
+  unsigned beams;
+  float top, bottom;       // the table's first and last entries, degrees
+  float fine_hi, fine_lo;  // the band of finest spacing, degrees ...
+  float fine_step;         // ... and its mean step there
+  bool ring_zero_is_top;
+};
+
+TEST(SensorProfile, VendorTablesMatchTheirSources) {
+  const VendorTable tables[] = {
+      // Hesai Pandar64E3X_Angle Correction File.csv (HesaiLidar_SDK_2.0): 1/6 deg from +2 to -6.
+      {"pandar64", 64, 14.838f, -24.883f, 2.0f, -6.2f, 1.0f / 6, true},
+      // Pandar128E4X.csv (tier4/nebula): ~0.125 deg from +2.2 to -5.9.
+      {"ot128", 128, 15.139f, -24.710f, 2.21f, -5.91f, 0.125f, true},
+      // Constructed from RoboSense's RS-Ruby (128) angle.csv: its ends, 0.1 deg at the horizon.
+      {"rs-ruby80", 80, 15.0f, -25.0f, 0.02f, -0.6f, 0.1f, false},
+  };
+  for (const VendorTable& t : tables) {
+    SCOPED_TRACE(t.name);
+    const SensorProfile p = LoadSensorProfile(t.name, test::SensorsDir());
+    ASSERT_EQ(p.beams, t.beams);
+    ASSERT_EQ(p.elevation_deg.size(), t.beams);
+    EXPECT_FLOAT_EQ(p.elevation_deg.front(), t.top);
+    EXPECT_FLOAT_EQ(p.elevation_deg.back(), t.bottom);
+    EXPECT_NEAR(p.elevation_deg.front(), 15.0, 0.2);  // datasheets: +15 ...
+    EXPECT_NEAR(p.elevation_deg.back(), -25.0, 0.3);  // ... to -25 degrees
+    for (size_t i = 1; i < p.elevation_deg.size(); ++i)
+      EXPECT_LT(p.elevation_deg[i], p.elevation_deg[i - 1]) << "beam " << i;
+    double sum = 0;
+    int steps = 0;
+    for (size_t i = 1; i < p.elevation_deg.size(); ++i)
+      if (p.elevation_deg[i - 1] <= t.fine_hi && p.elevation_deg[i] >= t.fine_lo)
+        sum += p.elevation_deg[i - 1] - p.elevation_deg[i], ++steps;
+    ASSERT_GT(steps, 4);
+    EXPECT_NEAR(sum / steps, t.fine_step, 0.005);
+    EXPECT_EQ(p.ring_zero_is_top, t.ring_zero_is_top);
+    EXPECT_FLOAT_EQ(p.intensity_scale, 1.0f / 255);
+    EXPECT_EQ(p.width, 1792u);
+    EXPECT_EQ(p.max_points, 2u * t.beams * 1800u);
+    EXPECT_GE(p.sensor_height, 1.8f);
+    EXPECT_LE(p.sensor_height, 2.0f);
+  }
+}
+
 TEST(SensorProfile, ParsesEveryKey) {
   ScopedDir scoped;
   const std::string& dir = scoped.path;
@@ -172,7 +222,9 @@ TEST(SensorProfile, UnknownNameListsTheKnownProfiles) {
   } catch (const std::invalid_argument& e) {
     std::string m = e.what();
     EXPECT_NE(m.find("unknown sensor profile 'hdl128x'"), std::string::npos) << m;
-    EXPECT_NE(m.find("known: hdl32e, hdl64e, os1-128, os1-64, vlp16, vlp32c"), std::string::npos)
+    EXPECT_NE(
+        m.find("known: hdl32e, hdl64e, os1-128, os1-64, ot128, pandar64, rs-ruby80, vlp16, vlp32c"),
+        std::string::npos)
         << m;
   }
 }
