@@ -9,11 +9,15 @@
 // Occlusion veto (our addition): a pixel with an occluder among the occ_rows pixels above it in its
 // column (nearer than its range + occ_margin and higher by more than occ_rise) is non-ground, for
 // good: it is the foot of an object or lies under an overhang (a hedge, a car body). The reach is
-// range + occ_margin + occ_grade * range^2 (flat ground's step between beams grows with range^2).
+// range + occ_margin + occ_grade * range^2 (flat ground's step between beams grows with range^2),
+// and at most range + occ_front for a pixel whose own class is ground: an object standing farther
+// behind a flat, smooth pixel leaves it ground (it lies in front of the object, not on its face).
 // Why: the false ground left is a band 1-3 rows thick at the foot of vegetation, fences and walls,
 // on the continuation of the ground plane; the beam above it hits the object nearer or at about
 // the same range, which flat open ground never does. occ_rows 2 by default; unknown pixels take
 // the coarse label (docs/decisions/fuse.md).
+#include <algorithm>
+
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 
@@ -27,17 +31,22 @@ constexpr uint32_t kNoOpinion = kPixUnknown;
 // Columns handled at a time.
 constexpr uint32_t kPiece = 256;
 
-// The occluder bounds of one row's pixels: reach = (r + occ_margin) + occ_grade * r^2 and
-// top = Ftz0(z + occ_rise) (computed for every pixel, used where the pixel is not empty).
+// The occluder bounds of one row's pixels: reach = (r + occ_margin) + occ_grade * r^2, for a
+// pixel of class ground min(that, r + occ_front), and top = Ftz0(z + occ_rise) (computed for every
+// pixel, used where the pixel is not empty).
 void Bounds(const Params& p, const float* __restrict range, const float* __restrict height,
-            uint32_t w, float* __restrict reach, float* __restrict top) {
+            const uint32_t* __restrict cls, uint32_t w, float* __restrict reach,
+            float* __restrict top) {
   const float margin = p.occ_margin, rise = p.occ_rise, occ_grade = p.occ_grade;
+  const float front = p.occ_front;
   for (uint32_t u = 0; u < w; ++u) {
     const float r = range[u];
     const float rr = r * r;
     const float grade = occ_grade * rr;
     const float near = r + margin;
-    reach[u] = near + grade;
+    const float any = near + grade;
+    const float ground = std::min(any, r + front);
+    reach[u] = cls[u] == kPixGround ? ground : any;
     top[u] = exact::Ftz0(height[u] + rise);  // a device may flush a subnormal sum
   }
 }
@@ -104,7 +113,7 @@ void Fuse(const Params& p, Frame& f) {
     for (uint32_t u0 = 0; u0 < w; u0 += kPiece) {
       const uint32_t n = w - u0 < kPiece ? w - u0 : kPiece, at = v * w + u0;
       if (rows_above) {
-        Bounds(p, range + at, height + at, n, reach, top);
+        Bounds(p, range + at, height + at, cls + at, n, reach, top);
         for (uint32_t k = 1; k <= rows_above; ++k) {
           const uint32_t above = at - k * w;
           Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);

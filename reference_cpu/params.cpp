@@ -32,7 +32,7 @@ const Field kFields[] = {
     LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),
     LPIR_U(min_component),    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
     LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
-    LPIR_F(occ_grade),
+    LPIR_F(occ_grade),        LPIR_F(occ_front),
 };
 #undef LPIR_F
 #undef LPIR_U
@@ -100,6 +100,7 @@ Params DefaultParams() {
   p.occ_margin = 0.3f;
   p.occ_rise = 0.075f;
   p.occ_grade = 0.0002f;
+  p.occ_front = 0.1f;
   return p;
 }
 

@@ -10,7 +10,8 @@
 // Opinion: the coarse bit of the pixel's winning point, kPixUnknown where it has none.
 // Occlusion veto over rows v - k, k = 1 .. min(occ_rows, v) of the same column: the pixel's
 // bounds, each one rounded float op (`precise`, never an FMA), in this order: rr = r * r,
-// grade = occ_grade * rr, near = r + occ_margin, reach = near + grade; top = Ftz0(z + occ_rise). An
+// grade = occ_grade * rr, near = r + occ_margin, reach = near + grade, and where the pixel's class
+// is ground reach = min(reach, r + occ_front); top = Ftz0(z + occ_rise). An
 // occluder: filled above != 0, range above < reach, height above > top (computed for every pixel,
 // empty ones too, as the reference does; an empty pixel is empty whatever they say).
 // Decision: agree = class == opinion, or class unknown and opinion ground; vote = agree ? opinion
@@ -70,12 +71,15 @@ void main() {
   // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
   uint rows_above = min(p.occ_rows, v);
   uvec4 occluded = uvec4(0u);
+  uvec4 c = ClassAt(e);
   if (rows_above != 0u) {
     vec4 r = RangeAt(e);
     precise vec4 rr = r * r;
     precise vec4 grade = p.occ_grade * rr;
     precise vec4 near = r + p.occ_margin;
-    precise vec4 reach = near + grade;
+    precise vec4 any = near + grade;
+    precise vec4 front = r + p.occ_front;
+    vec4 reach = mix(any, min(any, front), equal(c, uvec4(kPixGround)));
     precise vec4 top = exact_Ftz0(HeightAt(e) + p.occ_rise);  // as the reference: may flush
     for (uint k = 1u; k <= rows_above; ++k) {
       uint above = e - k * row;
@@ -90,7 +94,6 @@ void main() {
   for (uint k = 0u; k < kLanes; ++k)
     if (i[k] != kNone) opinion[k] = uint(coarse[i[k]] != 0u);
 
-  uvec4 c = ClassAt(e);
   uvec4 agree = uvec4(equal(c, opinion)) |
                 (uvec4(equal(c, uvec4(kPixUnknown))) & uvec4(equal(opinion, uvec4(kPixGround))));
   uvec4 vote = mix(uvec4(kPixUnknown), opinion, notEqual(agree, uvec4(0u)));

@@ -2,6 +2,7 @@
 // pixels, and the occlusion veto (our addition, see reference_cpu/fuse.cpp). Inputs by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "reference_cpu/stages.h"
@@ -106,18 +107,20 @@ TEST(Fuse, HoleFilledPixelHasNoCoarseOpinionAndIsUnknown) {
 }
 
 // The occlusion veto: a pixel with an occluder among the occ_rows pixels above it in its column
-// (nearer than range + occ_margin + occ_grade * range^2 and higher by more than occ_rise) is
-// non-ground.
+// (nearer than range + occ_margin + occ_grade * range^2, at most range + occ_front when the pixel's
+// class is ground, and higher by more than occ_rise) is non-ground.
 class FuseVeto : public ::testing::Test {
  protected:
   Image im{8, 6};
   const uint32_t v = 4;  // the pixel under test sits on row 4
   const float r = 15.0f, z = -1.7f;
-  float reach = 0;
+  float reach = 0, reach_ground = 0;  // for a pixel of any class; of class ground
   void SetUp() override {
     if (im.p.occ_rows == 0) im.p.occ_rows = 2;  // the default may disable it; test the rule
     ASSERT_LE(im.p.occ_rows, v) << "the image is too short for the veto's reach";
     reach = r + im.p.occ_margin + im.p.occ_grade * r * r;
+    reach_ground = std::min(reach, r + im.p.occ_front);
+    ASSERT_LT(reach_ground, reach) << "the defaults no longer shorten a ground pixel's reach";
   }
   // Ground pixel (class and coarse agree) at (v, u).
   void Ground(uint32_t u) { im.Measure(v, u, kPixGround, true, r, z); }
@@ -126,16 +129,36 @@ class FuseVeto : public ::testing::Test {
 TEST_F(FuseVeto, NearerAndHigherPixelJustAboveVetoesGround) {
   Ground(0);
   im.Measure(v - 1, 0, kPixNonGround, false, r - 1.0f, z + im.p.occ_rise + 0.1f);
-  // An occluder occ_rows above, ranged just inside the reach.
+  // An occluder occ_rows above, ranged just inside the reach (a ground pixel's shorter one).
   Ground(2);
-  im.Measure(v - im.p.occ_rows, 2, kPixNonGround, false, reach - 0.01f, z + im.p.occ_rise + 0.01f);
+  im.Measure(v - im.p.occ_rows, 2, kPixNonGround, false, reach_ground - 0.01f,
+             z + im.p.occ_rise + 0.01f);
+  im.Measure(v, 3, kPixUnknown, true, r, z);  // a coarse-ground seed of unknown class
+  im.Measure(v - im.p.occ_rows, 3, kPixNonGround, false, reach - 0.01f, z + im.p.occ_rise + 0.01f);
   // A hole-filled occluder counts too (it is filled, with a range and a height).
   Ground(4);
   im.Fill(v - 1, 4, kPixNonGround, r, z + 1.0f);
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
   EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 3), kPixNonGround);
   EXPECT_EQ(im.Fused(v, 4), kPixNonGround);
+}
+
+// An object standing at least occ_front behind a pixel of class ground leaves that pixel ground
+// (it lies in front of the object, not on its face); a pixel of another class is still vetoed.
+TEST_F(FuseVeto, AnObjectBehindAGroundPixelLeavesItGround) {
+  const float high = z + im.p.occ_rise + 0.5f;
+  Ground(0);
+  im.Measure(v - 1, 0, kPixNonGround, false, reach_ground, high);  // exactly at the bound
+  Ground(1);
+  im.Measure(v - 1, 1, kPixNonGround, false, 0.5f * (reach_ground + reach), high);
+  im.Measure(v, 2, kPixUnknown, true, r, z);
+  im.Measure(v - 1, 2, kPixNonGround, false, 0.5f * (reach_ground + reach), high);
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixGround);
+  EXPECT_EQ(im.Fused(v, 1), kPixGround);
+  EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
 }
 
 TEST_F(FuseVeto, VetoOverridesAnUnknownCoarseGroundSeed) {

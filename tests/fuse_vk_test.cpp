@@ -6,6 +6,7 @@
 // side), in the top rows and with occ_rows beyond the image.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -113,22 +114,24 @@ void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const F
   EXPECT_EQ(ExpectSameFuse(context, p, f, what), size_t(p.width) * p.beams);
   struct Variant {
     uint32_t rows;
-    float margin, rise, grade;
+    float margin, rise, grade, front;
   };
-  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f},
-                              {1, 0.1f, 0.1f, 0.0f},
-                              {3, 0.0f, 0.0f, 0.001f},
-                              {8, -0.5f, -0.05f, 0.01f},
-                              {200, 1.0f, 0.5f, 0.0f}};
+  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f, 0.1f},
+                              {1, 0.1f, 0.1f, 0.0f, 0.3f},
+                              {3, 0.0f, 0.0f, 0.001f, 0.0f},
+                              {8, -0.5f, -0.05f, 0.01f, -0.2f},
+                              {200, 1.0f, 0.5f, 0.0f, 1000.0f}};
   for (const Variant& var : variants) {
     Params q = p;
     q.occ_rows = var.rows;
     q.occ_margin = var.margin;
     q.occ_rise = var.rise;
     q.occ_grade = var.grade;
-    char text[128];
-    std::snprintf(text, sizeof(text), "%s, occ_rows %u margin %g rise %g grade %g", what.c_str(),
-                  var.rows, double(var.margin), double(var.rise), double(var.grade));
+    q.occ_front = var.front;
+    char text[160];
+    std::snprintf(text, sizeof(text), "%s, occ_rows %u margin %g rise %g grade %g front %g",
+                  what.c_str(), var.rows, double(var.margin), double(var.rise), double(var.grade),
+                  double(var.front));
     EXPECT_EQ(ExpectSameFuse(context, q, f, text), size_t(p.width) * p.beams);
   }
 }
@@ -274,76 +277,80 @@ struct Image {
   }
 };
 
-// The reference's bounds of a pixel, each operation rounded (tests build with -ffp-contract=off).
-float Reach(const Params& p, float r) {
+// The reference's bounds of a pixel of class `cls`, each operation rounded (tests build with
+// -ffp-contract=off).
+float Reach(const Params& p, float r, uint32_t cls) {
   const float rr = r * r;
   const float grade = p.occ_grade * rr;
   const float near = r + p.occ_margin;
-  return near + grade;
+  const float any = near + grade;
+  return cls == kPixGround ? std::min(any, r + p.occ_front) : any;
 }
 float Top(const Params& p, float z) { return z + p.occ_rise; }
 
 TEST_F(FuseVk, VetoAtItsExactThresholds) {
-  // Every column: a ground pixel at row v (class and coarse ground), one occluder candidate k rows
-  // above; the candidate's range and height sit on the thresholds or one ulp either side.
-  for (uint32_t occ_rows : {1u, 2u, 3u}) {
-    const uint32_t beams = 8, v = 5;
-    Image im(64, beams);
-    im.p.occ_rows = occ_rows;
-    const float ranges[] = {2.5f, 10.0f, 15.0f, 37.3f, 80.0f};
-    uint32_t u = 0;
-    size_t vetoes = 0, spared = 0;
-    std::vector<std::pair<uint32_t, bool>> expect;
-    for (float r : ranges) {
-      const float z = -1.7f + 0.01f * float(u);
-      const float reach = Reach(im.p, r), top = Top(im.p, z);
-      const float below_reach = std::nextafter(reach, 0.0f);
-      const float above_top = std::nextafter(top, 1e9f);
-      const struct {
-        float range, height;
-        bool veto;
-      } cands[] = {{below_reach, above_top, true},
-                   {reach, above_top, false},  // range == reach: not nearer
-                   {below_reach, top, false},  // height == top: not higher
-                   {std::nextafter(reach, 1e9f), above_top, false},
-                   {below_reach, std::nextafter(top, -1e9f), false},
-                   {reach, top, false}};
-      for (const auto& c : cands) {
-        for (uint32_t k = 1; k <= occ_rows + 1 && u < im.p.width; ++k) {
-          im.Measure(v, u, kPixGround, true, r, z);
-          if (k % 2)
-            im.Measure(v - k, u, kPixNonGround, false, c.range, c.height);
-          else
-            im.Fill(v - k, u, kPixUnknown, c.range, c.height);  // hole-filled occluders count too
-          expect.push_back({u, c.veto && k <= occ_rows});
+  // Every column: a seed at row v (coarse ground, class ground or unknown: their reaches differ),
+  // one occluder candidate k rows above; the candidate's range and height sit on the thresholds or
+  // one ulp either side.
+  for (uint32_t cls : {kPixGround, kPixUnknown})
+    for (uint32_t occ_rows : {1u, 2u, 3u}) {
+      const uint32_t beams = 8, v = 5;
+      Image im(64, beams);
+      im.p.occ_rows = occ_rows;
+      const float ranges[] = {2.5f, 10.0f, 15.0f, 37.3f, 80.0f};
+      uint32_t u = 0;
+      size_t vetoes = 0, spared = 0;
+      std::vector<std::pair<uint32_t, bool>> expect;
+      for (float r : ranges) {
+        const float z = -1.7f + 0.01f * float(u);
+        const float reach = Reach(im.p, r, cls), top = Top(im.p, z);
+        const float below_reach = std::nextafter(reach, 0.0f);
+        const float above_top = std::nextafter(top, 1e9f);
+        const struct {
+          float range, height;
+          bool veto;
+        } cands[] = {{below_reach, above_top, true},
+                     {reach, above_top, false},  // range == reach: not nearer
+                     {below_reach, top, false},  // height == top: not higher
+                     {std::nextafter(reach, 1e9f), above_top, false},
+                     {below_reach, std::nextafter(top, -1e9f), false},
+                     {reach, top, false}};
+        for (const auto& c : cands) {
+          for (uint32_t k = 1; k <= occ_rows + 1 && u < im.p.width; ++k) {
+            im.Measure(v, u, cls, true, r, z);
+            if (k % 2)
+              im.Measure(v - k, u, kPixNonGround, false, c.range, c.height);
+            else
+              im.Fill(v - k, u, kPixUnknown, c.range, c.height);  // hole-filled occluders count too
+            expect.push_back({u, c.veto && k <= occ_rows});
+            ++u;
+          }
+        }
+        // The same values on an empty pixel above (filled 0) never veto.
+        if (u < im.p.width) {
+          im.Measure(v, u, cls, true, r, z);
+          const uint32_t a = im.Pix(v - 1, u);
+          im.f.f_range[a] = below_reach;
+          im.f.f_height[a] = above_top;
+          expect.push_back({u, false});
           ++u;
         }
       }
-      // The same values on an empty pixel above (filled 0) never veto.
-      if (u < im.p.width) {
-        im.Measure(v, u, kPixGround, true, r, z);
-        const uint32_t a = im.Pix(v - 1, u);
-        im.f.f_range[a] = below_reach;
-        im.f.f_height[a] = above_top;
-        expect.push_back({u, false});
-        ++u;
+      ASSERT_LE(u, im.p.width);
+      Frame cpu = im.f;
+      Fuse(im.p, cpu);
+      for (const auto& [col, veto] : expect) {
+        const uint32_t got = cpu.pixel_fused[im.Pix(v, col)];
+        EXPECT_EQ(got, veto ? kPixNonGround : kPixGround)
+            << "reference, class " << cls << ", occ_rows " << occ_rows << ", column " << col;
+        vetoes += veto, spared += !veto;
       }
+      EXPECT_GT(vetoes, 0u);
+      EXPECT_GT(spared, 0u);
+      EXPECT_EQ(
+          ExpectSameFuse(context(), im.p, im.f, "thresholds, occ_rows " + std::to_string(occ_rows)),
+          size_t(im.p.width) * beams);
     }
-    ASSERT_LE(u, im.p.width);
-    Frame cpu = im.f;
-    Fuse(im.p, cpu);
-    for (const auto& [col, veto] : expect) {
-      const uint32_t got = cpu.pixel_fused[im.Pix(v, col)];
-      EXPECT_EQ(got, veto ? kPixNonGround : kPixGround)
-          << "reference, occ_rows " << occ_rows << ", column " << col;
-      vetoes += veto, spared += !veto;
-    }
-    EXPECT_GT(vetoes, 0u);
-    EXPECT_GT(spared, 0u);
-    EXPECT_EQ(
-        ExpectSameFuse(context(), im.p, im.f, "thresholds, occ_rows " + std::to_string(occ_rows)),
-        size_t(im.p.width) * beams);
-  }
 }
 
 TEST_F(FuseVk, TopRowsAndReachBeyondTheImage) {
@@ -377,6 +384,8 @@ TEST_F(FuseVk, RandomImagesEveryClassAndOpinion) {
     im.p.occ_margin = (rng() % 2) ? 0.0f : 0.3f;
     im.p.occ_rise = (rng() % 2) ? 0.0f : 0.075f;
     im.p.occ_grade = (rng() % 2) ? 0.0f : 0.0002f;
+    const float fronts[] = {0.0f, 0.3f, 1000.0f};  // 10 + 0.3 = 10.3: range above == the bound
+    im.p.occ_front = fronts[rng() % 3];
     const float values[] = {0.0f, 2.5f, 2.8f, 2.575f, 10.0f, 10.3f, 10.32f, -1.7f, -1.625f, 1.0f};
     for (uint32_t v = 0; v < beams; ++v)
       for (uint32_t u = 0; u < width; ++u) {

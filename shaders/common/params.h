@@ -76,7 +76,8 @@ struct Params {
   float occ_rise;    // m, ... and higher than the pixel by more than this
   float occ_grade;   // 1/m, ... + this * range^2 (flat ground's range step between beams grows
                      // as range^2 * beam spacing / sensor height)
-  uint pad0;
+  float occ_front;   // m, ... and, for a pixel whose class is ground, nearer than range + this (an
+                     // object standing farther behind such a pixel leaves it ground)
   uint pad1;
   uint pad2;
 };
