@@ -1,0 +1,50 @@
+"""LiDAR ground segmentation with the LPIR-GSeg method, numpy in and out.
+
+    import lpir_gseg
+    seg = lpir_gseg.Segmenter("hdl64e")                  # a GPU through Vulkan, else the CPU
+    labels = seg.segment(lpir_gseg.read_cloud("scan.bin"))  # (N,) uint8, 1 ground
+
+Both backends give the labels `lpir-gseg segment` writes, byte for byte. `python3 -m
+lpir_gseg.fleet` labels many files on a Dask cluster (docs/fleet.md).
+"""
+from pathlib import Path
+
+from . import _core
+from ._core import (
+    WHY_GROUND,
+    WHY_INVALID,
+    WHY_NOISE,
+    WHY_NON_GROUND,
+    Segmenter,
+    devices,
+    evaluate,
+    is_cloud_file,
+    read_cloud,
+    read_labels,
+    sensors,
+    sensors_dir,
+    simulate,
+    write_labels,
+)
+
+__version__ = "0.1.0"
+
+# The profiles ship inside the package (setup.py copies the repository's sensors/ here).
+_core._set_sensors_dir(str(Path(__file__).resolve().parent / "sensors"))
+
+__all__ = [
+    "Segmenter",
+    "read_cloud",
+    "read_labels",
+    "write_labels",
+    "evaluate",
+    "simulate",
+    "sensors",
+    "sensors_dir",
+    "devices",
+    "is_cloud_file",
+    "WHY_NON_GROUND",
+    "WHY_GROUND",
+    "WHY_INVALID",
+    "WHY_NOISE",
+]

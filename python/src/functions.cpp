@@ -1,0 +1,284 @@
+// The module's functions: cloud and label files (host/io/), scores (host/eval/), the scene
+// simulator (apps/sim/), the sensor profiles and the Vulkan devices. File reading and simulation
+// release the GIL.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "apps/sim/scene.h"
+#include "arrays.h"
+#include "bindings.h"
+#include "host/eval/metrics.h"
+#include "host/eval/ontology.h"
+#include "host/io/cloud_file.h"
+#include "host/io/label_file.h"
+#include "host/io/sensor_profile.h"
+#include "host/vk/device.h"
+#include "host/vk/instance.h"
+
+namespace lpir::python {
+namespace {
+
+py::object ReadCloudPy(py::handle path_arg, py::handle nuscenes, bool with_ring) {
+  const std::string path = PathArg(path_arg);
+  ReadOptions options;
+  if (!nuscenes.is_none())
+    options.bin_layout = nuscenes.cast<bool>() ? BinLayout::kNuScenes5 : BinLayout::kKitti4;
+  Cloud cloud;
+  {
+    py::gil_scoped_release nogil;
+    cloud = ReadCloud(path, options);
+  }
+  py::object ring = py::none();
+  if (with_ring && !cloud.ring.empty()) ring = VectorArray(std::vector<int32_t>(cloud.ring));
+  py::array points = CloudArray(std::move(cloud));
+  if (with_ring) return py::make_tuple(points, ring);
+  return std::move(points);
+}
+
+py::array ReadLabelsPy(py::handle path_arg, size_t expected_points) {
+  const std::string path = PathArg(path_arg);
+  std::vector<uint32_t> labels;
+  {
+    py::gil_scoped_release nogil;
+    labels = ReadLabelFile(path, expected_points);
+  }
+  return VectorArray(std::move(labels));
+}
+
+void WriteLabelsPy(py::handle path_arg, py::handle labels) {
+  const std::string path = PathArg(path_arg);
+  const std::vector<uint32_t> values = ToUint32(labels, "labels", 0, true);
+  py::gil_scoped_release nogil;
+  WriteLabelFile(path, values);
+}
+
+// A prediction: 1-D bools or integers, any non-zero value ground.
+Labels ToPrediction(py::handle pred, const std::string& name, size_t expected) {
+  const std::vector<uint32_t> values = ToUint32(pred, name, expected, true);
+  Labels labels(values.size());
+  for (size_t i = 0; i < values.size(); ++i) labels[i] = values[i] != 0;
+  return labels;
+}
+
+// Column 2 (z) of (N, >= 3) points.
+std::vector<float> ZOf(py::handle points, const std::string& name, size_t expected) {
+  py::array a = py::array::ensure(points);
+  if (!a || a.ndim() != 2 || a.shape(1) < 3 || size_t(a.shape(0)) != expected ||
+      (a.dtype().kind() != 'f' && a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
+    throw py::value_error(name + " must be an (" + std::to_string(expected) +
+                          ", 3 or 4) array of numbers: protocol pw reads each point's z");
+  auto f = py::array_t<float, py::array::forcecast>::ensure(a);
+  auto view = f.unchecked<2>();
+  std::vector<float> z(expected);
+  for (size_t i = 0; i < expected; ++i) z[i] = view(py::ssize_t(i), 2);
+  return z;
+}
+
+py::dict ScoresDict(const Scores& s) {
+  py::dict d;
+  d["precision"] = s.precision, d["recall"] = s.recall, d["f1"] = s.f1, d["iou"] = s.iou;
+  return d;
+}
+
+// One frame (arrays) or a sequence (lists or tuples of arrays, one per frame).
+bool IsSequence(py::handle pred) {
+  if (!py::isinstance<py::list>(pred) && !py::isinstance<py::tuple>(pred)) return false;
+  const py::sequence s = py::reinterpret_borrow<py::sequence>(pred);
+  return s.size() > 0 && (py::isinstance<py::array>(s[0]) || py::isinstance<py::list>(s[0]) ||
+                          py::isinstance<py::tuple>(s[0]));
+}
+
+py::dict EvaluatePy(py::handle pred, py::handle gt, py::handle protocol_arg,
+                    const std::string& ontology_name, py::handle points) {
+  const Ontology ontology = ParseOntology(ontology_name);
+  const Protocol protocol = protocol_arg.is_none()
+                                ? ProtocolsOf(ontology).front()
+                                : ParseProtocol(protocol_arg.cast<std::string>(), ontology);
+  std::vector<py::object> preds, gts, clouds;
+  const bool sequence = IsSequence(pred);
+  if (sequence) {
+    for (py::handle h : pred) preds.push_back(py::reinterpret_borrow<py::object>(h));
+    for (py::handle h : py::iter(gt)) gts.push_back(py::reinterpret_borrow<py::object>(h));
+    if (!points.is_none())
+      for (py::handle h : py::iter(points)) clouds.push_back(py::reinterpret_borrow<py::object>(h));
+    if (gts.size() != preds.size())
+      throw py::value_error("pred holds " + std::to_string(preds.size()) + " frames, gt_labels " +
+                            std::to_string(gts.size()));
+    if (!points.is_none() && clouds.size() != preds.size())
+      throw py::value_error("pred holds " + std::to_string(preds.size()) + " frames, points " +
+                            std::to_string(clouds.size()));
+  } else {
+    preds.push_back(py::reinterpret_borrow<py::object>(pred));
+    gts.push_back(py::reinterpret_borrow<py::object>(gt));
+    if (!points.is_none()) clouds.push_back(py::reinterpret_borrow<py::object>(points));
+  }
+  if (protocol == Protocol::kPW && clouds.empty())
+    throw py::value_error("protocol pw needs each point's z: give points=");
+
+  SequenceScores totals(protocol);
+  py::list per_frame;
+  for (size_t f = 0; f < preds.size(); ++f) {
+    const std::string at = sequence ? "[" + std::to_string(f) + "]" : "";
+    const std::vector<uint32_t> truth = ToUint32(gts[f], "gt_labels" + at, 0, false);
+    const Labels predicted = ToPrediction(preds[f], "pred" + at, truth.size());
+    std::vector<float> z;
+    if (!clouds.empty()) z = ZOf(clouds[f], "points" + at, truth.size());
+    const Scores s = totals.Add(CountFrame(protocol, predicted, truth, z.empty() ? nullptr : &z));
+    per_frame.append(ScoresDict(s));
+  }
+  py::dict result = ScoresDict(totals.Total());
+  const Counts& c = totals.summed();
+  result["tp"] = c.tp, result["fp"] = c.fp, result["fn"] = c.fn, result["tn"] = c.tn;
+  result["ignored"] = c.ignored;
+  result["frames"] = totals.frames();
+  result["protocol"] = ProtocolName(protocol);
+  result["ontology"] = OntologyName(ontology);
+  if (sequence) result["per_frame"] = per_frame;
+  return result;
+}
+
+SceneKind ParseScene(const std::string& name) {
+  if (name == "urban") return kUrban;
+  if (name == "flat") return kFlat;
+  if (name == "flat-objects") return kFlatWithObjects;
+  throw py::value_error("scene must be urban, flat or flat-objects, not '" + name + "'");
+}
+
+py::tuple SimulatePy(py::handle sensor, long long seed, double pitch, double roll,
+                     const std::string& scene, double range_noise, bool rings,
+                     bool reflection_noise) {
+  if (seed < 0 || seed > 0xFFFFFFFFll)
+    throw py::value_error("seed must lie in [0, 4294967295], not " + std::to_string(seed));
+  for (const auto& [name, deg] : {std::pair{"pitch", pitch}, std::pair{"roll", roll}})
+    if (!std::isfinite(deg) || std::abs(deg) > 30.0)
+      throw py::value_error(std::string(name) + " must lie within [-30, 30] degrees");
+  if (!(range_noise >= 0.0 && range_noise <= 1.0))
+    throw py::value_error("range_noise must lie within [0, 1] m");
+  SimOptions options;
+  options.seed = uint32_t(seed);
+  options.pitch_deg = float(pitch);
+  options.roll_deg = float(roll);
+  options.kind = ParseScene(scene);
+  options.range_noise_m = float(range_noise);
+  options.emit_rings = rings;
+  options.reflection_noise = reflection_noise;
+  const std::string name_or_path = PathArg(sensor);
+  const std::string sensors_dir = SensorsDir();
+  SimScan scan;
+  {
+    py::gil_scoped_release nogil;
+    scan = Simulate(LoadSensorProfile(name_or_path, sensors_dir), options);
+  }
+  py::array labels = VectorArray(std::move(scan.labels));
+  return py::make_tuple(CloudArray(std::move(scan.cloud)), labels);
+}
+
+std::vector<std::string> DevicesPy() {
+  vk::Result<vk::Instance> instance = vk::Instance::Create({});
+  if (!instance.ok()) return {};
+  vk::Result<std::vector<std::string>> lines = vk::Device::Describe(instance.value());
+  return lines.ok() ? lines.value() : std::vector<std::string>{};
+}
+
+}  // namespace
+
+void BindFunctions(py::module_& m) {
+  m.def("read_cloud", &ReadCloudPy, py::arg("path"), py::kw_only(),
+        py::arg("nuscenes") = py::none(), py::arg("ring") = false,
+        R"doc(Reads a scan in any format the command line reads.
+
+Formats by extension: .bin (KITTI's 4 float32 a point; files named *.pcd.bin as nuScenes' 5),
+.pcd (ASCII or binary), .ply (ASCII or binary little-endian).
+
+Args:
+    path: the file (str or os.PathLike).
+    nuscenes: True reads any .bin as nuScenes' 5 floats (x, y, z, intensity, ring), False as
+        KITTI's 4; None decides by the name, as the command line does.
+    ring: also return the file's ring field.
+
+Returns:
+    (N, 4) float32 x, y, z, intensity, without a copy: the array owns what the reader read. It
+    carries the file's ring field (nuScenes, PLY and PCD files with a ring) to Segmenter.segment
+    as long as it is passed whole. With ring=True the tuple (points, ring), ring (N,) int32 or
+    None when the file has none.
+
+Raises:
+    OSError: a missing, unreadable, truncated or malformed file, or an unknown extension; the
+        message names the file and the problem.)doc");
+  m.def("read_labels", &ReadLabelsPy, py::arg("path"), py::arg("expected_points") = 0,
+        R"doc(Reads a SemanticKITTI .label file (or a prediction lpir-gseg wrote).
+
+Returns:
+    (N,) uint32: class = value & 0xFFFF, instance = value >> 16 (a prediction: 1 ground, 0 not).
+
+Raises:
+    OSError: a missing or empty file, a size not a whole number of labels, or, when
+        expected_points > 0, another count (the message gives both).)doc");
+  m.def("write_labels", &WriteLabelsPy, py::arg("path"), py::arg("labels"),
+        R"doc(Writes labels as a .label file, one little-endian uint32 a point: the bytes
+`lpir-gseg segment` writes for the same labels.
+
+Args:
+    path: the file to write.
+    labels: (N,) integers or bools in [0, 2**32).)doc");
+  m.def("evaluate", &EvaluatePy, py::arg("pred"), py::arg("gt_labels"),
+        py::arg("protocol") = py::none(), py::arg("ontology") = "semantickitti", py::kw_only(),
+        py::arg("points") = py::none(),
+        R"doc(Scores predictions against ground-truth labels, as `lpir-gseg evaluate` does.
+
+Args:
+    pred: (N,) labels (any non-zero value is ground), or a list of them, one a frame.
+    gt_labels: (N,) stored labels of the ontology (read_labels), or a list of them.
+    protocol: "dg" (DipG-Seg's evaluator, the default for semantickitti), "pp", "pw", "gg", or
+        "rellis" (the only one, and the default, for rellis3d). See host/eval/metrics.h.
+    ontology: "semantickitti" or "rellis3d".
+    points: (N, 3 or 4) points (or a list), needed by "pw", which reads each point's z.
+
+Returns:
+    A dict: precision, recall, f1, iou (fractions in [0, 1]; a ratio over 0 is 0), the summed
+    counts tp, fp, fn, tn, ignored, frames, protocol and ontology; for a list also per_frame, the
+    scores of each frame. dg, gg and rellis score the summed counts, pp and pw average the
+    per-frame scores.
+
+Raises:
+    ValueError: an unknown protocol or ontology, or lengths that do not match.)doc");
+  m.def("simulate", &SimulatePy, py::arg("sensor"), py::arg("seed"), py::kw_only(),
+        py::arg("pitch") = 0.0, py::arg("roll") = 0.0, py::arg("scene") = "urban",
+        py::arg("range_noise") = 0.02, py::arg("rings") = false, py::arg("reflection_noise") = true,
+        R"doc(One scan of the synthetic street (or a flat scene) seen by a sensor, as
+`lpir-gseg simulate` makes it: deterministic for the same arguments.
+
+Args:
+    sensor: a profile name or a profile file.
+    seed: 0 to 2**32 - 1; draws the street's layout and the noise.
+    pitch, roll: mount tilt in degrees, |angle| <= 30: positive pitch makes the ground rise
+        ahead (+x), positive roll to the left (+y) (apps/sim/scene.h).
+    scene: "urban", "flat" (one road plane) or "flat-objects" (the plane, a car and a wall).
+    range_noise: sigma of the Gaussian range noise, metres, in [0, 1].
+    rings: fill the points' ring field (segment then reads it).
+    reflection_noise: a few multipath points 0.5-2 m under the road (class 1).
+
+Returns:
+    (points, labels): (N, 4) float32 as read_cloud returns them, and (N,) uint32 SemanticKITTI
+    classes (ground: 40, 44, 48, 49, 60, 72).)doc");
+  m.def(
+      "sensors", [] { return KnownSensorProfiles(SensorsDir()); },
+      "The names of the sensor profiles shipped with the package, sorted.");
+  m.def("sensors_dir", &SensorsDir, "The folder the shipped sensor profiles are in.");
+  m.def("devices", &DevicesPy,
+        R"doc(The Vulkan devices of this machine, one line each as `lpir-gseg devices` prints
+them: index, name, type, API version, and "usable" or why not. Empty when there is no Vulkan
+driver at all.)doc");
+  m.def(
+      "is_cloud_file", [](py::handle path) { return IsCloudFile(PathArg(path)); }, py::arg("path"),
+      "True for the extensions read_cloud reads (.bin, .pcd, .ply): how a folder is listed.");
+}
+
+}  // namespace lpir::python

@@ -1,0 +1,55 @@
+// lpir_gseg._core: the library for Python. IoError (host/io/io_error.h, whose message names the
+// file) and filesystem errors become OSError; std::invalid_argument and std::length_error become
+// ValueError (pybind11's own mapping), other library errors RuntimeError.
+#include <pybind11/pybind11.h>
+
+#include <filesystem>
+#include <mutex>
+#include <string>
+
+#include "bindings.h"
+#include "host/io/io_error.h"
+#include "reference_cpu/frame.h"
+
+namespace lpir::python {
+namespace {
+
+std::mutex sensors_dir_mutex;
+std::string sensors_dir;  // guarded by sensors_dir_mutex
+
+}  // namespace
+
+std::string SensorsDir() {
+  std::lock_guard<std::mutex> lock(sensors_dir_mutex);
+  return sensors_dir;
+}
+
+void SetSensorsDir(const std::string& dir) {
+  std::lock_guard<std::mutex> lock(sensors_dir_mutex);
+  sensors_dir = dir;
+}
+
+}  // namespace lpir::python
+
+PYBIND11_MODULE(_core, m) {
+  namespace py = pybind11;
+  using namespace lpir::python;
+  m.doc() = "The lpir-gseg library (C++): use it through the lpir_gseg package.";
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const lpir::IoError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    } catch (const std::filesystem::filesystem_error& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+  });
+  m.def("_set_sensors_dir", &SetSensorsDir, py::arg("path"),
+        "Where profile names resolve (the package sets its own sensors/ folder at import).");
+  m.attr("WHY_NON_GROUND") = int(lpir::kWhyNonGround);
+  m.attr("WHY_GROUND") = int(lpir::kWhyGround);
+  m.attr("WHY_INVALID") = int(lpir::kWhyInvalid);
+  m.attr("WHY_NOISE") = int(lpir::kWhyNoise);
+  BindSegmenter(m);
+  BindFunctions(m);
+}
