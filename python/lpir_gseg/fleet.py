@@ -1,0 +1,373 @@
+"""Labels many scans on a Dask cluster: the fleet version of `lpir-gseg segment`.
+
+    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--scheduler tcp://HOST:PORT | --workers N]
+
+INPUTs are files or folders (a folder: its cloud files in name order), as `segment` takes them.
+Each file becomes DIR/<stem>.label, byte for byte what `lpir-gseg segment` writes. Without
+--scheduler a LocalCluster of N worker processes (one thread each) starts on 127.0.0.1. Every
+worker process keeps one Segmenter for all its tasks. A file that cannot be read or segmented is
+named in the report and every other file is still written; the exit code is then 1 and the last
+line counts the failures (2: bad arguments, or the cluster or the segmenters could not be set
+up). Inputs and DIR must be paths every worker sees (docs/fleet.md).
+"""
+import argparse
+import dataclasses
+import math
+import os
+import shutil
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import lpir_gseg
+
+# The worker side: one segmenter per worker process, made by the first task (or by prepare()).
+_lock = threading.Lock()
+_segmenter: Optional[lpir_gseg.Segmenter] = None
+_segmenter_config: Optional["SegmenterConfig"] = None
+_segmenters_made = 0  # how many this process made: 1 for a whole run
+
+
+@dataclasses.dataclass(frozen=True)
+class SegmenterConfig:
+    """What a worker needs to make its segmenter. The profile travels as text when it is a file
+    on the client, so workers need not see it."""
+
+    sensor: str  # a profile name, or the profile file's name when profile_text is set
+    profile_text: Optional[str] = None
+    backend: str = "auto"
+    device: Optional[str] = None
+    max_points: Optional[int] = None
+    nuscenes: Optional[bool] = None  # read_cloud's layout switch for .bin files
+
+
+def _worker_segmenter(config: SegmenterConfig) -> lpir_gseg.Segmenter:
+    global _segmenter, _segmenter_config, _segmenters_made
+    with _lock:
+        if _segmenter is None or _segmenter_config != config:
+            sensor = config.sensor
+            if config.profile_text is not None:
+                folder = tempfile.mkdtemp(prefix="lpir_gseg_fleet_")
+                sensor = os.path.join(folder, os.path.basename(config.sensor))
+                Path(sensor).write_text(config.profile_text)
+            # A worker started with LPIR_GSEG_DEVICE set uses that device (one worker a GPU).
+            device = os.environ.get("LPIR_GSEG_DEVICE") or config.device
+            _segmenter = lpir_gseg.Segmenter(sensor, backend=config.backend, device=device,
+                                             max_points=config.max_points)
+            _segmenter_config = config
+            _segmenters_made += 1
+        return _segmenter
+
+
+def prepare(config: SegmenterConfig) -> str:
+    """Makes this worker's segmenter; returns its backend note (run on every worker first, so a
+    bad sensor or backend is one error, not one per file)."""
+    return _worker_segmenter(config).backend_note
+
+
+@dataclasses.dataclass
+class FileResult:
+    path: str
+    error: Optional[str] = None  # the report's line when the file failed
+    points: int = 0
+    ground: int = 0
+    worker: str = ""  # host:pid of the worker process
+    segmenters_made: int = 0  # by that process so far
+
+
+def _error_text(path: str, error: BaseException) -> str:
+    text = str(error) or type(error).__name__
+    # The library's file errors name the file already, as the command line prints them.
+    return text if path in text else f"{path}: {text}"
+
+
+def segment_files(jobs: Sequence[Tuple[str, str]], config: SegmenterConfig) -> List[FileResult]:
+    """The task: reads, segments and writes each (input, output .label) of `jobs`, one
+    segment_batch for all that could be read (frames in flight on Vulkan). A file's failure is
+    its result's error; the others are written."""
+    import socket
+
+    segmenter = _worker_segmenter(config)
+    worker = f"{socket.gethostname()}:{os.getpid()}"
+    results = [FileResult(path=src, worker=worker) for src, _ in jobs]
+    clouds = []
+    for result in results:
+        try:
+            clouds.append((result, lpir_gseg.read_cloud(result.path, nuscenes=config.nuscenes)))
+        except Exception as error:  # noqa: BLE001 (every failure is the file's, reported)
+            result.error = _error_text(result.path, error)
+    try:
+        labelled = segmenter.segment_batch([points for _, points in clouds])
+    except Exception:  # noqa: BLE001: one of them is bad: each on its own says which
+        labelled = []
+        for result, points in clouds:
+            try:
+                labelled.append(segmenter.segment(points))
+            except Exception as error:  # noqa: BLE001
+                result.error = _error_text(result.path, error)
+                labelled.append(None)
+    outputs = dict(jobs)
+    for (result, points), labels in zip(clouds, labelled):
+        if labels is None:
+            continue
+        out = outputs[result.path]
+        part = f"{out}.part{os.getpid()}"  # never a half-written .label under its own name
+        try:
+            lpir_gseg.write_labels(part, labels)
+            os.replace(part, out)
+        except Exception as error:  # noqa: BLE001
+            result.error = _error_text(out, error)
+            continue
+        result.points, result.ground = len(labels), int(labels.sum())
+    for result in results:
+        result.segmenters_made = _segmenters_made
+    return results
+
+
+def list_inputs(inputs: Sequence[str]) -> List[str]:
+    """Files as given, folders expanded to their cloud files in name order (as `segment` does);
+    ValueError for a folder without any."""
+    files: List[str] = []
+    for name in inputs:
+        if os.path.isdir(name):
+            found = sorted(os.path.join(name, e.name) for e in os.scandir(name)
+                           if e.is_file() and lpir_gseg.is_cloud_file(e.name))
+            if not found:
+                raise ValueError(f"{name}: folder holds no cloud files")
+            files.extend(found)
+        else:
+            files.append(name)  # a missing file is reported when it is read
+    return files
+
+
+class Progress:
+    """The command line's progress bar (apps/cli/progress.h) with frames per second: one line
+    redrawn with '\\r' on a terminal, a plain line at every tenth on anything else."""
+
+    CELLS = 30
+
+    def __init__(self, total: int, enabled: bool, out=None):
+        self.total, self.enabled, self.out = total, enabled, out or sys.stderr
+        self.tty = self.enabled and self.out.isatty()
+        self.done, self.failed, self.start = 0, 0, time.monotonic()
+        self.last_draw, self.shown, self.width = 0.0, 0, 0
+        self.name = ""  # of the last file done
+
+    def rate(self) -> float:
+        elapsed = time.monotonic() - self.start
+        return self.done / elapsed if elapsed > 0 else 0.0
+
+    def step(self, count: int, failed: int, name: str = "") -> None:
+        self.done += count
+        self.failed += failed
+        self.name = name
+        if not self.enabled:
+            return
+        now = time.monotonic()
+        if self.tty:
+            if self.width == 0 or self.done == self.total or now - self.last_draw >= 0.1:
+                self._draw(now)
+        elif self.done * 10 // self.total > self.shown * 10 // self.total or self.done == self.total:
+            self.shown = self.done
+            print(f"progress: {self._text(now)}", file=self.out, flush=True)
+
+    def close(self) -> None:
+        if self.tty and self.width:
+            self._draw(time.monotonic())
+            print(file=self.out, flush=True)
+
+    def _text(self, now: float) -> str:
+        elapsed = now - self.start
+        digits = len(str(self.total))
+        text = (f"{self.done:{digits}}/{self.total} {100 * self.done // max(self.total, 1):3}%"
+                f"  {self.rate():.1f} frames/s  {_duration(elapsed)}")
+        if self.failed:
+            text += f"  {self.failed} failed"
+        return text + (f"  {self.name}" if self.name else "")
+
+    def _draw(self, now: float) -> None:
+        self.last_draw, self.shown = now, self.done
+        filled = min(self.CELLS, self.done * self.CELLS // max(self.total, 1))
+        line = "[" + "#" * filled + "." * (self.CELLS - filled) + "] " + self._text(now)
+        columns = shutil.get_terminal_size((80, 24)).columns
+        line = line[: columns - 1]
+        self.out.write("\r" + line + " " * max(0, self.width - len(line)))
+        self.out.flush()
+        self.width = len(line)
+
+
+def _duration(seconds: float) -> str:
+    s = int(seconds + 0.5)
+    return f"{s // 3600}:{s // 60 % 60:02}:{s % 60:02}" if s >= 3600 else f"{s // 60}:{s % 60:02}"
+
+
+@dataclasses.dataclass
+class RunStats:
+    files: int
+    written: int
+    failures: List[Tuple[str, str]]  # (input, the report's line)
+    seconds: float  # from the first task submitted to the last result
+    workers: int  # worker processes of the cluster when the run started
+    segmenters: Dict[str, int]  # worker process (host:pid) -> segmenters it made
+
+    @property
+    def frames_per_second(self) -> float:
+        return self.files / self.seconds if self.seconds > 0 else math.inf
+
+
+def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str] = None,
+        workers: int = 1, backend: str = "auto", device: Optional[str] = None,
+        max_points: Optional[int] = None, nuscenes: Optional[bool] = None,
+        chunk: Optional[int] = None, progress: bool = True, log=None) -> RunStats:
+    """Labels every input on the cluster at `scheduler`, or on a LocalCluster of `workers`
+    processes; writes out/<stem>.label. `chunk` files make one task (None: about four tasks a
+    worker, at most 32 files each, so that a task's scheduling costs little beside its frames
+    even at some 15 ms a frame on the CPU). Returns the counts and times; a failed file is in
+    RunStats.failures (and printed on `log`, stderr by default), never an exception. Raises
+    ValueError for bad arguments, RuntimeError when the segmenters cannot be made."""
+    log = log or sys.stderr
+    if chunk is not None and chunk < 1:
+        raise ValueError("chunk must be at least 1")
+    if scheduler is None and workers < 1:
+        raise ValueError("workers must be at least 1")
+    files = list_inputs(inputs)
+    outputs: Dict[str, str] = {}
+    for path in files:
+        target = os.path.join(out, Path(path).stem + ".label")
+        if target in outputs:
+            raise ValueError(f"{outputs[target]} and {path} would both write {target}")
+        outputs[target] = path
+    jobs = [(path, os.path.join(out, Path(path).stem + ".label")) for path in files]
+    profile_text = None
+    if os.path.isfile(sensor):
+        profile_text = Path(sensor).read_text()
+    elif sensor not in lpir_gseg.sensors():
+        raise ValueError(f"unknown sensor profile '{sensor}'; known: "
+                         + ", ".join(lpir_gseg.sensors()))
+    config = SegmenterConfig(sensor=sensor, profile_text=profile_text, backend=backend,
+                             device=device, max_points=max_points, nuscenes=nuscenes)
+    os.makedirs(out, exist_ok=True)
+
+    from dask.distributed import Client, LocalCluster, as_completed
+
+    cluster = None
+    if scheduler is None:
+        import logging
+
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               host="127.0.0.1", dashboard_address=None,
+                               silence_logs=logging.ERROR)
+    try:
+        with Client(scheduler or cluster) as client:
+            if cluster is not None:
+                client.wait_for_workers(workers)
+            try:
+                notes = client.run(prepare, config)
+            except Exception as error:  # noqa: BLE001
+                raise RuntimeError(f"the workers could not make a segmenter: {error}") from error
+            for note in sorted(set(notes.values())):
+                if backend == "auto" and not note.startswith("Vulkan on "):
+                    print(f"lpir_gseg.fleet: note: {note}", file=log)
+            n_workers = len(notes)
+            bar = Progress(len(jobs), progress and len(jobs) > 1)
+            start = time.monotonic()
+            bar.start = start
+            size = chunk or max(1, min(32, len(jobs) // (4 * max(n_workers, 1))))
+            chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
+            futures = {client.submit(segment_files, part, config, pure=False): part
+                       for part in chunks}
+            failures: List[Tuple[str, str]] = []
+            segmenters: Dict[str, int] = {}
+            written = 0
+            for future in as_completed(futures):
+                part = futures[future]
+                try:
+                    results = future.result()
+                except Exception as error:  # noqa: BLE001: the task itself died (its worker)
+                    results = [FileResult(path=src, error=_error_text(src, error))
+                               for src, _ in part]
+                failed = 0
+                for result in results:
+                    if result.worker:
+                        segmenters[result.worker] = max(segmenters.get(result.worker, 0),
+                                                        result.segmenters_made)
+                    if result.error is None:
+                        written += 1
+                        continue
+                    failed += 1
+                    failures.append((result.path, result.error))
+                    if bar.tty and bar.width:
+                        log.write("\n")
+                        bar.width = 0
+                    print(f"lpir_gseg.fleet: error: {result.error}", file=log, flush=True)
+                bar.step(len(results), failed, Path(results[-1].path).stem)
+            seconds = time.monotonic() - start
+            bar.close()
+    finally:
+        if cluster is not None:
+            cluster.close()
+    order = {path: i for i, path in enumerate(files)}
+    failures.sort(key=lambda f: order.get(f[0], len(order)))
+    return RunStats(files=len(files), written=written, failures=failures, seconds=seconds,
+                    workers=n_workers, segmenters=segmenters)
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python3 -m lpir_gseg.fleet",
+        description="Labels every point of every input cloud on a Dask cluster and writes "
+                    "OUT/<stem>.label, as `lpir-gseg segment` does.")
+    parser.add_argument("inputs", nargs="+", metavar="INPUT",
+                        help="cloud files (.bin KITTI, .pcd, .ply) or folders of them")
+    parser.add_argument("--sensor", required=True,
+                        help="sensor profile name (%s) or a profile file" %
+                             ", ".join(lpir_gseg.sensors()))
+    parser.add_argument("--out", required=True, metavar="DIR", help="where DIR/<stem>.label go")
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="ADDRESS",
+                       help="a running dask scheduler, e.g. tcp://10.0.0.5:8786")
+    where.add_argument("--workers", type=int, metavar="N",
+                       help="worker processes of the local cluster (default: the CPU count)")
+    parser.add_argument("--backend", default="auto", choices=["auto", "cpu", "vulkan"],
+                        help="as `segment --backend` (default auto: a GPU, else the CPU)")
+    parser.add_argument("--device", help="Vulkan device: index or part of its name")
+    parser.add_argument("--max-points", type=int, metavar="N",
+                        help="largest cloud accepted (default: the sensor's)")
+    parser.add_argument("--nuscenes", action="store_true", default=None,
+                        help=".bin files hold 5 floats per point (x y z intensity ring)")
+    parser.add_argument("--chunk", type=int, metavar="K",
+                        help="files per task (default: about four tasks a worker, at most 32 "
+                             "files each; a GPU worker keeps a task's frames in flight)")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    args = parser.parse_args(argv)
+    try:
+        stats = run(args.inputs, args.sensor, args.out, scheduler=args.scheduler,
+                    workers=args.workers or os.cpu_count() or 1, backend=args.backend,
+                    device=args.device, max_points=args.max_points, nuscenes=args.nuscenes,
+                    chunk=args.chunk, progress=not args.quiet)
+    except (ValueError, RuntimeError, OSError) as error:
+        print(f"lpir_gseg.fleet: error: {error}", file=sys.stderr)
+        return 2
+    summary = (f"{stats.files} file{'s' if stats.files != 1 else ''} in {stats.seconds:.2f} s, "
+               f"{stats.frames_per_second:.1f} frames/s on {stats.workers} worker"
+               f"{'s' if stats.workers != 1 else ''}")
+    if stats.failures:
+        for path, _ in stats.failures:
+            print(f"lpir_gseg.fleet: failed: {path}", file=sys.stderr)
+        print(f"lpir_gseg.fleet: {len(stats.failures)} of {stats.files} files failed ({summary})",
+              file=sys.stderr)
+        return 1
+    print(f"wrote {stats.written} label file{'s' if stats.written != 1 else ''} to {args.out} "
+          f"({summary})")
+    return 0
+
+
+if __name__ == "__main__":
+    # Run as lpir_gseg.fleet, not __main__: the tasks are pickled by reference to this module's
+    # functions, which every worker imports by that name.
+    from lpir_gseg import fleet
+
+    sys.exit(fleet.main())
