@@ -11,6 +11,9 @@ PACKAGES=(
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
   clang libclang-rt-14-dev  # the fuzz build (fuzz/): clang with libFuzzer and its sanitizers
   clang-format  # scripts/test.sh checks every C++ source against .clang-format
+  # The Python package (python/) and its suite: built offline in a venv that sees these
+  python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11
+  python3-numpy python3-pytest python3-dask python3-distributed
 )
 
 say() { echo "[install_deps] $*"; }

@@ -10,6 +10,12 @@
 #      chooses;
 #   3. builds the libFuzzer targets with clang (LPIR_FUZZ=ON; ./build-fuzz or $LPIR_FUZZ_BUILD_DIR)
 #      and runs their bounded runs (a few seconds each, ctest -L fuzz).
+# After step 1, the Python package: a fresh `python3 -m venv --system-site-packages` (./build-venv
+# or $LPIR_PY_VENV; Debian's /usr/bin/python3, whose site packages hold python3-numpy and the
+# rest, or $LPIR_PYTHON), `pip install --no-build-isolation --no-index ./python` (offline; the
+# CMake build in python/build/ is kept, so a rerun recompiles only what changed), then its pytest
+# suite (python/tests/) against step 1's lpir-gseg, with Vulkan on lavapipe. LPIR_TEST_PYTHON=0
+# skips it.
 # Steps 1 and 2 run every Vulkan equality test once per shape (tests/CMakeLists.txt registers
 # <file>.gpu.<test> and <file>.cpu.<test> with LPIR_VK_SHAPE set; docs/decisions/shapes.md).
 # ctest runs on every core and prints the output of failing tests. Every step runs even when an
@@ -57,8 +63,28 @@ format_check() {
 step "format" format_check || true
 
 say "step 1/3: Release build and suite"
+built=0
 if step "build" bash "${root}/scripts/build.sh"; then
+  built=1
   step "suite" ctest --test-dir "${build_dir}" --output-on-failure -j "${jobs}" "$@" || true
+fi
+
+# python_suite: the package installed into a fresh venv, and its pytest suite (see the top).
+python_suite() {
+  local python="${LPIR_PYTHON:-/usr/bin/python3}" venv="${LPIR_PY_VENV:-${root}/build-venv}"
+  [[ -x "${python}" ]] || python="$(command -v python3)"
+  local icd
+  icd="$(ls /usr/share/vulkan/icd.d/lvp_icd.*.json 2> /dev/null | head -n 1 || true)"
+  rm -rf "${venv}"
+  "${python}" -m venv --system-site-packages "${venv}" &&
+    CMAKE_BUILD_PARALLEL_LEVEL="${jobs}" "${venv}/bin/pip" install --quiet --no-build-isolation \
+      --no-index "${root}/python" &&
+    (cd "${root}/python/tests" && VK_ICD_FILENAMES="${icd}" LPIR_CLI="${build_dir}/lpir-gseg" \
+      "${venv}/bin/python" -m pytest -q -p no:cacheprovider .)
+}
+if [[ "${LPIR_TEST_PYTHON:-1}" != "0" && ${built} -eq 1 ]]; then
+  say "Python package: install into a fresh venv, pytest"
+  step "python" python_suite || true
 fi
 
 if [[ "${LPIR_TEST_SANITIZE:-1}" != "0" ]]; then

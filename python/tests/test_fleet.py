@@ -1,0 +1,147 @@
+"""python3 -m lpir_gseg.fleet on a 2-worker LocalCluster on 127.0.0.1: 12 scans and a truncated
+one give the command line's 12 .label files byte for byte, the bad file named, exit code 1; the
+same through --scheduler; one segmenter per worker process for the whole run."""
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lpir_gseg
+from conftest import run_cli
+
+pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
+
+
+@pytest.fixture(scope="module")
+def scans(tmp_path_factory):
+    """12 simulated HDL-64E scans as KITTI .bin files and a truncated 13th."""
+    folder = tmp_path_factory.mktemp("scans")
+    for seed in range(12):
+        points, _ = lpir_gseg.simulate("hdl64e", seed)
+        points.tofile(folder / f"{seed:06}.bin")
+    whole = (folder / "000000.bin").read_bytes()
+    (folder / "truncated.bin").write_bytes(whole[: len(whole) // 2 + 7])
+    return folder
+
+
+@pytest.fixture(scope="module")
+def cli_out(cli, scans, tmp_path_factory):
+    out = tmp_path_factory.mktemp("cli")
+    result = run_cli(cli, "segment", scans, "--sensor", "hdl64e", "--backend", "cpu", "--out",
+                     out, "--quiet")
+    assert result.returncode == 1 and "truncated.bin" in result.stderr, result.stderr
+    return out
+
+
+def fleet(*args, env=None):
+    return subprocess.run([sys.executable, "-m", "lpir_gseg.fleet", *map(str, args)],
+                          capture_output=True, text=True, timeout=300, env=env)
+
+
+def expect_cli_labels(out, cli_out):
+    written = sorted(p.name for p in out.iterdir())
+    assert written == [f"{seed:06}.label" for seed in range(12)], written  # no .part left
+    for name in written:
+        assert (out / name).read_bytes() == (cli_out / name).read_bytes(), name
+
+
+def test_two_local_workers_write_the_cli_labels_and_name_the_bad_file(scans, cli_out, tmp_path):
+    out = tmp_path / "out"
+    result = fleet(scans, "--sensor", "hdl64e", "--out", out, "--workers", 2, "--backend", "cpu")
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert f"lpir_gseg.fleet: error: {scans / 'truncated.bin'}: size" in result.stderr
+    assert "not a whole number of 16-byte points" in result.stderr
+    assert "1 of 13 files failed" in result.stderr.splitlines()[-1]
+    assert "frames/s on 2 workers" in result.stderr
+    assert "progress: 13/13 100%" in result.stderr and "frames/s" in result.stderr
+    expect_cli_labels(out, cli_out)
+
+
+def test_a_running_scheduler_and_one_segmenter_per_worker(scans, cli_out, tmp_path):
+    from dask.distributed import LocalCluster
+
+    from lpir_gseg import fleet as fleet_module
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1",
+                      dashboard_address=None) as cluster:
+        out = tmp_path / "out"
+        result = fleet(scans, "--sensor", "hdl64e", "--out", out, "--scheduler",
+                       cluster.scheduler_address, "--backend", "cpu", "--quiet")
+        assert result.returncode == 1 and "truncated.bin" in result.stderr, result.stderr
+        assert "progress:" not in result.stderr
+        expect_cli_labels(out, cli_out)
+        # The same cluster again, through the API, one file a task: every worker process still
+        # holds the one segmenter the first run made.
+        files = sorted(str(p) for p in scans.glob("0*.bin"))
+        stats = fleet_module.run(files, "hdl64e", str(tmp_path / "again"),
+                                 scheduler=cluster.scheduler_address, backend="cpu", chunk=1,
+                                 progress=False)
+        assert stats.files == stats.written == 12 and not stats.failures
+        assert stats.workers == 2 and stats.frames_per_second > 0
+        assert 1 <= len(stats.segmenters) <= 2
+        assert set(stats.segmenters.values()) == {1}, stats.segmenters
+
+
+def test_a_profile_file_travels_to_the_workers(scans, cli_out, tmp_path):
+    profile = tmp_path / "mine.txt"
+    profile.write_text((Path(lpir_gseg.sensors_dir()) / "hdl64e.txt").read_text())
+    out = tmp_path / "out"
+    files = [scans / f"{seed:06}.bin" for seed in range(3)]
+    result = fleet(*files, "--sensor", profile, "--out", out, "--workers", 1, "--backend", "cpu")
+    assert result.returncode == 0, result.stderr
+    assert "wrote 3 label files" in result.stdout
+    for f in files:
+        name = f.stem + ".label"
+        assert (out / name).read_bytes() == (cli_out / name).read_bytes()
+
+
+def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
+    result = fleet(scans, "--sensor", "nope", "--out", tmp_path / "o", "--workers", 1)
+    assert result.returncode == 2 and "unknown sensor profile 'nope'" in result.stderr
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    result = fleet(empty, "--sensor", "hdl64e", "--out", tmp_path / "o", "--workers", 1)
+    assert result.returncode == 2 and "folder holds no cloud files" in result.stderr
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    for folder in "ab":
+        np.zeros((1, 4), np.float32).tofile(tmp_path / folder / "x.bin")
+    result = fleet(tmp_path / "a", tmp_path / "b", "--sensor", "hdl64e", "--out", tmp_path / "o")
+    assert result.returncode == 2 and "would both write" in result.stderr
+    result = fleet(scans, "--sensor", "hdl64e", "--out", tmp_path / "o", "--workers", 1,
+                   "--scheduler", "tcp://127.0.0.1:1")
+    assert result.returncode == 2 and "not allowed with" in result.stderr
+
+
+class FakeTerminal:
+    def __init__(self, tty):
+        self.tty, self.text = tty, ""
+
+    def isatty(self):
+        return self.tty
+
+    def write(self, text):
+        self.text += text
+
+    def flush(self):
+        pass
+
+
+def test_progress_bar_shows_frames_per_second():
+    from lpir_gseg.fleet import Progress
+
+    terminal = FakeTerminal(True)
+    bar = Progress(4, True, terminal)
+    for i in range(4):
+        bar.step(1, int(i == 2), f"f{i}")
+    bar.close()
+    last = terminal.text.split("\r")[-1]
+    assert last.startswith("[" + "#" * 30 + "] 4/4 100%") and "frames/s" in last
+    assert "1 failed" in last and "f3" in last and last.endswith("\n")
+    log = FakeTerminal(False)
+    bar = Progress(20, True, log)
+    for i in range(20):
+        bar.step(1, 0)
+    assert log.text.count("progress:") == 10 and "\r" not in log.text
