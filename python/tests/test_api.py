@@ -1,7 +1,9 @@
 """The Python API on simulated scans (no data needed): input forms, reason codes, errors that
 name the argument or the file, the simulator, the scores, the shipped profiles, the stubs."""
 import ast
+import sys
 import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -96,6 +98,32 @@ def test_threads_share_a_segmenter(cpu):
     assert not errors
     for i, labels in enumerate(results):
         np.testing.assert_array_equal(labels, expected[i % 4])
+
+
+def test_the_gil_is_released_while_segmenting(cpu):
+    # With a switch interval far longer than the call, the main thread runs during the call only
+    # if the call releases the GIL; else it runs after the worker thread has finished.
+    clouds = [lpir_gseg.simulate("hdl64e", seed)[0] for seed in range(3)] * 10
+    state = {"finished": False}
+    started = threading.Event()
+
+    def work():
+        started.set()
+        cpu.segment_batch(clouds)
+        state["finished"] = True
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(30)
+    try:
+        thread = threading.Thread(target=work)
+        thread.start()
+        started.wait()
+        time.sleep(0.02)
+        seen_during_the_call = not state["finished"]
+        thread.join()
+    finally:
+        sys.setswitchinterval(interval)
+    assert seen_during_the_call
 
 
 @pytest.mark.parametrize("points,message", [
