@@ -15,6 +15,7 @@ import dataclasses
 import math
 import os
 import shutil
+import socket
 import sys
 import tempfile
 import threading
@@ -88,8 +89,6 @@ def segment_files(jobs: Sequence[Tuple[str, str]], config: SegmenterConfig) -> L
     """The task: reads, segments and writes each (input, output .label) of `jobs`, one
     segment_batch for all that could be read (frames in flight on Vulkan). A file's failure is
     its result's error; the others are written."""
-    import socket
-
     segmenter = _worker_segmenter(config)
     worker = f"{socket.gethostname()}:{os.getpid()}"
     results = [FileResult(path=src, worker=worker) for src, _ in jobs]
