@@ -1,7 +1,7 @@
 """Frames per second of lpir_gseg.fleet on a LocalCluster of 1 worker process and of 2 (or any
 counts), over the same simulated scans, and their ratio. A timing, not a test: run it by hand.
 
-    python3 python/bench/fleet_workers.py [--frames 96] [--workers 1 2] [--repeat 3]
+    python3 python/bench/fleet_workers.py [--frames 384] [--workers 1 2] [--repeat 3]
 
 Each run is timed from its first task to its last result (run()'s RunStats.seconds): the cluster's
 start and each worker's segmenter (made on every worker before the clock starts) are not in it.
@@ -20,7 +20,9 @@ from lpir_gseg import fleet
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--frames", type=int, default=96, help="simulated scans (default 96)")
+    parser.add_argument("--frames", type=int, default=384, help="scans (default 384)")
+    parser.add_argument("--distinct", type=int, default=24,
+                        help="simulated scans among them (default 24; the others link to them)")
     parser.add_argument("--sensor", default="hdl64e")
     parser.add_argument("--workers", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--repeat", type=int, default=3)
@@ -33,9 +35,11 @@ def main() -> int:
         if not inputs:
             scans = os.path.join(folder, "scans")
             os.makedirs(scans)
-            for seed in range(args.frames):
+            for seed in range(min(args.distinct, args.frames)):
                 points, _ = lpir_gseg.simulate(args.sensor, seed)
                 points.tofile(os.path.join(scans, f"{seed:05}.bin"))
+            for i in range(args.distinct, args.frames):  # the rest: links to those
+                os.symlink(f"{i % args.distinct:05}.bin", os.path.join(scans, f"{i:05}.bin"))
             inputs = [scans]
         frames = len(fleet.list_inputs(inputs))
         print(f"{frames} frames ({args.sensor}, backend {args.backend}), {os.cpu_count()} cores, "
