@@ -192,7 +192,10 @@ std::vector<std::string> DevicesPy() {
 void BindFunctions(py::module_& m) {
   m.def("read_cloud", &ReadCloudPy, py::arg("path"), py::kw_only(),
         py::arg("nuscenes") = py::none(), py::arg("ring") = false,
-        R"doc(Reads a scan in any format the command line reads.
+        R"doc(read_cloud(path, *, nuscenes=None, ring=False)
+--
+
+Reads a scan in any format the command line reads.
 
 Formats by extension: .bin (KITTI's 4 float32 a point; files named *.pcd.bin as nuScenes' 5),
 .pcd (ASCII or binary), .ply (ASCII or binary little-endian).
@@ -213,7 +216,10 @@ Raises:
     OSError: a missing, unreadable, truncated or malformed file, or an unknown extension; the
         message names the file and the problem.)doc");
   m.def("read_labels", &ReadLabelsPy, py::arg("path"), py::arg("expected_points") = 0,
-        R"doc(Reads a SemanticKITTI .label file (or a prediction lpir-gseg wrote).
+        R"doc(read_labels(path, expected_points=0)
+--
+
+Reads a SemanticKITTI .label file (or a prediction lpir-gseg wrote).
 
 Returns:
     (N,) uint32: class = value & 0xFFFF, instance = value >> 16 (a prediction: 1 ground, 0 not).
@@ -222,7 +228,10 @@ Raises:
     OSError: a missing or empty file, a size not a whole number of labels, or, when
         expected_points > 0, another count (the message gives both).)doc");
   m.def("write_labels", &WriteLabelsPy, py::arg("path"), py::arg("labels"),
-        R"doc(Writes labels as a .label file, one little-endian uint32 a point: the bytes
+        R"doc(write_labels(path, labels)
+--
+
+Writes labels as a .label file, one little-endian uint32 a point: the bytes
 `lpir-gseg segment` writes for the same labels.
 
 Args:
@@ -231,7 +240,10 @@ Args:
   m.def("evaluate", &EvaluatePy, py::arg("pred"), py::arg("gt_labels"),
         py::arg("protocol") = py::none(), py::arg("ontology") = "semantickitti", py::kw_only(),
         py::arg("points") = py::none(),
-        R"doc(Scores predictions against ground-truth labels, as `lpir-gseg evaluate` does.
+        R"doc(evaluate(pred, gt_labels, protocol=None, ontology="semantickitti", *, points=None)
+--
+
+Scores predictions against ground-truth labels, as `lpir-gseg evaluate` does.
 
 Args:
     pred: (N,) labels (any non-zero value is ground), or a list of them, one a frame.
@@ -249,10 +261,14 @@ Returns:
 
 Raises:
     ValueError: an unknown protocol or ontology, or lengths that do not match.)doc");
-  m.def("simulate", &SimulatePy, py::arg("sensor"), py::arg("seed"), py::kw_only(),
-        py::arg("pitch") = 0.0, py::arg("roll") = 0.0, py::arg("scene") = "urban",
-        py::arg("range_noise") = 0.02, py::arg("rings") = false, py::arg("reflection_noise") = true,
-        R"doc(One scan of the synthetic street (or a flat scene) seen by a sensor, as
+  m.def(
+      "simulate", &SimulatePy, py::arg("sensor"), py::arg("seed"), py::kw_only(),
+      py::arg("pitch") = 0.0, py::arg("roll") = 0.0, py::arg("scene") = "urban",
+      py::arg("range_noise") = 0.02, py::arg("rings") = false, py::arg("reflection_noise") = true,
+      R"doc(simulate(sensor, seed, *, pitch=0.0, roll=0.0, scene="urban", range_noise=0.02, rings=False, reflection_noise=True)
+--
+
+One scan of the synthetic street (or a flat scene) seen by a sensor, as
 `lpir-gseg simulate` makes it: deterministic for the same arguments.
 
 Args:
@@ -270,15 +286,20 @@ Returns:
     classes (ground: 40, 44, 48, 49, 60, 72).)doc");
   m.def(
       "sensors", [] { return KnownSensorProfiles(SensorsDir()); },
-      "The names of the sensor profiles shipped with the package, sorted.");
-  m.def("sensors_dir", &SensorsDir, "The folder the shipped sensor profiles are in.");
+      "sensors()\n--\n\nThe names of the sensor profiles shipped with the package, sorted.");
+  m.def("sensors_dir", &SensorsDir,
+        "sensors_dir()\n--\n\nThe folder the shipped sensor profiles are in.");
   m.def("devices", &DevicesPy,
-        R"doc(The Vulkan devices of this machine, one line each as `lpir-gseg devices` prints
+        R"doc(devices()
+--
+
+The Vulkan devices of this machine, one line each as `lpir-gseg devices` prints
 them: index, name, type, API version, and "usable" or why not. Empty when there is no Vulkan
 driver at all.)doc");
   m.def(
       "is_cloud_file", [](py::handle path) { return IsCloudFile(PathArg(path)); }, py::arg("path"),
-      "True for the extensions read_cloud reads (.bin, .pcd, .ply): how a folder is listed.");
+      "is_cloud_file(path)\n--\n\nTrue for the extensions read_cloud reads (.bin, .pcd, .ply): how "
+      "a folder is listed.");
 }
 
 }  // namespace lpir::python

@@ -35,6 +35,10 @@ PYBIND11_MODULE(_core, m) {
   namespace py = pybind11;
   using namespace lpir::python;
   m.doc() = "The lpir-gseg library (C++): use it through the lpir_gseg package.";
+  // Every docstring opens with its Python signature ("name(...)\n--\n\n": inspect.signature
+  // reads it) instead of pybind11's, which would show the C++ parameter types.
+  py::options options;
+  options.disable_function_signatures();
   py::register_exception_translator([](std::exception_ptr error) {
     try {
       if (error) std::rethrow_exception(error);
@@ -45,7 +49,8 @@ PYBIND11_MODULE(_core, m) {
     }
   });
   m.def("_set_sensors_dir", &SetSensorsDir, py::arg("path"),
-        "Where profile names resolve (the package sets its own sensors/ folder at import).");
+        "_set_sensors_dir(path)\n--\n\nWhere profile names resolve (the package sets its own "
+        "sensors/ folder at import).");
   m.attr("WHY_NON_GROUND") = int(lpir::kWhyNonGround);
   m.attr("WHY_GROUND") = int(lpir::kWhyGround);
   m.attr("WHY_INVALID") = int(lpir::kWhyInvalid);

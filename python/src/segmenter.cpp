@@ -188,7 +188,10 @@ class PySegmenter {
   Cloud scratch_;  // the last copied input, its vectors reused from call to call
 };
 
-const char kSegmenterDoc[] = R"doc(Labels LiDAR scans ground or non-ground, one sensor's scans.
+const char kSegmenterDoc[] =
+    R"doc(Segmenter(sensor="hdl64e", backend="auto", device=None, max_points=None, frames_in_flight=2, batch=1, validation=False)
+
+Labels LiDAR scans ground or non-ground, one sensor's scans.
 
 Made once per sensor (its tables and, on Vulkan, every device buffer are allocated here, for
 max_points points) and used for every scan. Both backends give the same bytes.
@@ -213,7 +216,10 @@ Raises:
 A segmenter may be shared between threads: calls wait for each other, and the GIL is released
 while a scan is segmented, so other Python threads run meanwhile.)doc";
 
-const char kSegmentDoc[] = R"doc(Labels one scan.
+const char kSegmentDoc[] = R"doc(segment(self, points, *, intensity=None, ring=None, why=False)
+--
+
+Labels one scan.
 
 Args:
     points: (N, 4) x, y, z (metres, sensor frame) and raw intensity; or (N, 3) x, y, z with
@@ -235,8 +241,10 @@ Raises:
     ValueError: a wrong shape, dtype or length, or more points than max_points.
     RuntimeError: the device failed.)doc";
 
-const char kSegmentBatchDoc[] =
-    R"doc(Labels several scans, keeping frames_in_flight of them on the device at once (on Vulkan the
+const char kSegmentBatchDoc[] = R"doc(segment_batch(self, clouds, *, why=False)
+--
+
+Labels several scans, keeping frames_in_flight of them on the device at once (on Vulkan the
 next scan is uploaded while the device works on the previous ones; with batch > 1 they are
 recorded together). The CPU backend labels them one after the other.
 
@@ -258,6 +266,8 @@ void BindSegmenter(py::module_& m) {
   py::class_<PySegmenter>(m, "Segmenter", kSegmenterDoc)
       .def(py::init<py::handle, const std::string&, py::handle, py::handle, uint32_t, uint32_t,
                     bool>(),
+           "__init__(self, sensor=\"hdl64e\", backend=\"auto\", device=None, max_points=None, "
+           "frames_in_flight=2, batch=1, validation=False)\n--\n\nSee the class's docstring.",
            py::arg("sensor") = "hdl64e", py::arg("backend") = "auto",
            py::arg("device") = py::none(), py::arg("max_points") = py::none(),
            py::arg("frames_in_flight") = 2, py::arg("batch") = 1, py::arg("validation") = false)

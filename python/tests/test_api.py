@@ -1,6 +1,7 @@
 """The Python API on simulated scans (no data needed): input forms, reason codes, errors that
 name the argument or the file, the simulator, the scores, the shipped profiles, the stubs."""
 import ast
+import inspect
 import sys
 import threading
 import time
@@ -358,3 +359,17 @@ def test_stubs_cover_the_module():
     assert methods <= {n.name for n in segmenter.body if isinstance(n, ast.FunctionDef)}
     for name in lpir_gseg.__all__:
         assert getattr(lpir_gseg, name).__doc__ or name.startswith("WHY"), name
+    # inspect.signature reads the docstrings' signature lines: the stubs' parameters, in order.
+    def names(args):
+        return [a.arg for a in args.posonlyargs + args.args + args.kwonlyargs]
+
+    stubbed = {n.name: n for n in tree.body if isinstance(n, ast.FunctionDef)}
+    stubbed.update({f"Segmenter.{n.name}": n for n in segmenter.body
+                    if isinstance(n, ast.FunctionDef)})
+    for name, node in stubbed.items():
+        if any(isinstance(d, ast.Name) and d.id == "property" for d in node.decorator_list):
+            continue
+        target = lpir_gseg._core
+        for part in name.split("."):
+            target = getattr(target, part)
+        assert list(inspect.signature(target).parameters) == names(node.args), name
