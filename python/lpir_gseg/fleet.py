@@ -86,32 +86,31 @@ def _error_text(path: str, error: BaseException) -> str:
 
 
 def segment_files(jobs: Sequence[Tuple[str, str]], config: SegmenterConfig) -> List[FileResult]:
-    """The task: reads, segments and writes each (input, output .label) of `jobs`, one
-    segment_batch for all that could be read (frames in flight on Vulkan). A file's failure is
-    its result's error; the others are written."""
+    """The task: reads, segments and writes each (input, output .label) of `jobs`. On Vulkan the
+    files that could be read go through one segment_batch (frames in flight); on the CPU each is
+    read, segmented and written in turn (one frame's buffers stay in the cache: a batch would
+    cycle through frames_in_flight sets of them and hold every cloud at once). A file's failure
+    is its result's error; the others are written."""
     segmenter = _worker_segmenter(config)
     worker = f"{socket.gethostname()}:{os.getpid()}"
     results = [FileResult(path=src, worker=worker) for src, _ in jobs]
-    clouds = []
-    for result in results:
+    outputs = dict(jobs)
+
+    def read(result: FileResult):
         try:
-            clouds.append((result, lpir_gseg.read_cloud(result.path, nuscenes=config.nuscenes)))
+            return lpir_gseg.read_cloud(result.path, nuscenes=config.nuscenes)
         except Exception as error:  # noqa: BLE001 (every failure is the file's, reported)
             result.error = _error_text(result.path, error)
-    try:
-        labelled = segmenter.segment_batch([points for _, points in clouds])
-    except Exception:  # noqa: BLE001: one of them is bad: each on its own says which
-        labelled = []
-        for result, points in clouds:
-            try:
-                labelled.append(segmenter.segment(points))
-            except Exception as error:  # noqa: BLE001
-                result.error = _error_text(result.path, error)
-                labelled.append(None)
-    outputs = dict(jobs)
-    for (result, points), labels in zip(clouds, labelled):
-        if labels is None:
-            continue
+            return None
+
+    def segment(result: FileResult, points):
+        try:
+            return segmenter.segment(points)
+        except Exception as error:  # noqa: BLE001
+            result.error = _error_text(result.path, error)
+            return None
+
+    def write(result: FileResult, labels) -> None:
         out = outputs[result.path]
         part = f"{out}.part{os.getpid()}"  # never a half-written .label under its own name
         try:
@@ -119,8 +118,24 @@ def segment_files(jobs: Sequence[Tuple[str, str]], config: SegmenterConfig) -> L
             os.replace(part, out)
         except Exception as error:  # noqa: BLE001
             result.error = _error_text(out, error)
-            continue
+            return
         result.points, result.ground = len(labels), int(labels.sum())
+
+    if segmenter.backend == "vulkan" and len(jobs) > 1:
+        clouds = [(r, p) for r in results for p in [read(r)] if p is not None]
+        try:
+            labelled = segmenter.segment_batch([points for _, points in clouds])
+        except Exception:  # noqa: BLE001: one of them is bad: each on its own says which
+            labelled = [segment(r, points) for r, points in clouds]
+        for (result, _), labels in zip(clouds, labelled):
+            if labels is not None:
+                write(result, labels)
+    else:
+        for result in results:
+            points = read(result)
+            labels = None if points is None else segment(result, points)
+            if labels is not None:
+                write(result, labels)
     for result in results:
         result.segmenters_made = _segmenters_made
     return results
