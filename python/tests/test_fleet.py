@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lpir_gseg
-from conftest import run_cli
+from conftest import run_cli, vulkan  # noqa: F401 (a fixture)
 
 pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
 
@@ -82,6 +82,33 @@ def test_a_running_scheduler_and_one_segmenter_per_worker(scans, cli_out, tmp_pa
         assert stats.workers == 2 and stats.frames_per_second > 0
         assert 1 <= len(stats.segmenters) <= 2
         assert set(stats.segmenters.values()) == {1}, stats.segmenters
+
+
+def test_vulkan_workers_batch_their_files_and_still_name_each_bad_one(scans, cli, cli_out,
+                                                                     vulkan, tmp_path):
+    # --max-points 125000 fails 8 of the 12 scans (and the truncated one) in the CLI and in the
+    # fleet alike; tasks of 4 files go through segment_batch, which fails for the whole task and
+    # falls back to each file on its own.
+    limited = tmp_path / "cli"
+    result = run_cli(cli, "segment", scans, "--sensor", "hdl64e", "--backend", "cpu", "--out",
+                     limited, "--quiet", "--max-points", 125000)
+    assert result.returncode == 1 and "9 of 13 files failed" in result.stderr, result.stderr
+    out = tmp_path / "out"
+    result = fleet(scans, "--sensor", "hdl64e", "--out", out, "--workers", 1, "--backend",
+                   "vulkan", "--chunk", 4, "--max-points", 125000)
+    assert result.returncode == 1, result.stderr
+    assert "9 of 13 files failed" in result.stderr.splitlines()[-1], result.stderr
+    assert "more than the segmenter's max_points of 125000" in result.stderr
+    written = sorted(p.name for p in out.iterdir())
+    assert written == sorted(p.name for p in limited.iterdir()) and len(written) == 4
+    for name in written:
+        assert (out / name).read_bytes() == (limited / name).read_bytes(), name
+    # Without the limit, batches of 4 on Vulkan write the CLI's labels for all 12.
+    out = tmp_path / "all"
+    result = fleet(scans, "--sensor", "hdl64e", "--out", out, "--workers", 1, "--backend",
+                   "vulkan", "--chunk", 4)
+    assert result.returncode == 1 and "1 of 13 files failed" in result.stderr, result.stderr
+    expect_cli_labels(out, cli_out)
 
 
 def test_a_profile_file_travels_to_the_workers(scans, cli_out, tmp_path):
