@@ -104,7 +104,7 @@ def test_threads_share_a_segmenter(cpu):
 def test_the_gil_is_released_while_segmenting(cpu):
     # With a switch interval far longer than the call, the main thread runs during the call only
     # if the call releases the GIL; else it runs after the worker thread has finished.
-    clouds = [lpir_gseg.simulate("hdl64e", seed)[0] for seed in range(3)] * 10
+    clouds = [lpir_gseg.simulate("hdl64e", seed)[0] for seed in range(3)] * 20  # 0.5 s or more
     state = {"finished": False}
     started = threading.Event()
 
