@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -44,9 +45,17 @@ class BackProjectStage {
   static constexpr uint64_t LabelWhyBytes(uint64_t n) { return (n + 3) / 4 * 4; }
 
   static Result<BackProjectStage> Create(const Device& device, const BackProjectBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<BackProjectStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, BackProjectBuffers{&b.params, &b.flags, &b.point_pixel, &b.pixel_point,
+                                             &b.pixel_label, &b.f_range, &b.f_height, &b.r2, &b.zt,
+                                             &b.coarse, &b.label_why});
+  }
 
   // Records the dispatch over n points (no barrier: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const { return Record(cmd, size.n); }
 
  private:
   explicit BackProjectStage(Kernel kernel) : kernel_(std::move(kernel)) {}

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -35,10 +36,20 @@ class ClassifyPixelsStage {
 
   static Result<ClassifyPixelsStage> Create(const Device& device,
                                             const ClassifyPixelsBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<ClassifyPixelsStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device,
+                  ClassifyPixelsBuffers{&b.params, &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
+                                        &b.f_slope, &b.f_varz, &b.f_vari, &b.pixel_class});
+  }
 
   // Records the dispatches over `pixels` pixels (no barrier: the caller orders it with the stages
   // around).
   Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.pixels);
+  }
 
  private:
   explicit ClassifyPixelsStage(Kernel kernel) : kernel_(std::move(kernel)) {}

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -47,10 +48,22 @@ class CoarseSegmentStage {
 
   static Result<CoarseSegmentStage> Create(const Device& device,
                                            const CoarseSegmentBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<CoarseSegmentStage> Create(const Device& device, const FrameBuffers& b) {
+    const TableBuffers& t = *b.tables;
+    return Create(
+        device, CoarseSegmentBuffers{&b.params, &b.points, &b.zt, &b.point_cell, &b.cell_zmin,
+                                     &b.cell_zmax, &b.cell_count, &t.ring_inner, &b.cell_seed_mode,
+                                     &b.cell_plane, &b.coarse, &b.coarse_scratch});
+  }
 
   // Records the six passes over `cells` cells and n points with a compute -> compute barrier
   // between each two (none before or after: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.n, size.cells);
+  }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }

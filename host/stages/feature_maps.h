@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -47,6 +48,13 @@ class FeatureMapsStage {
   static VkDeviceSize PackBytes(uint64_t pixels) { return 16 * (pixels == 0 ? 1 : pixels); }
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<FeatureMapsStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, FeatureMapsBuffers{&b.params, &b.pixel_point, &b.r2, &b.zt, &b.inten,
+                                             &b.pixel_filled, &b.f_range, &b.f_inten, &b.f_height,
+                                             &b.f_slope, &b.f_edge_l, &b.f_edge_r, &b.f_varz,
+                                             &b.f_vari, &b.feature_pack});
+  }
 
   // Records the measure-and-fill pass over the width x beams image (pass 1, one invocation per
   // four pixels, when the width is a multiple of 4, else pass 0, one per pixel), a compute ->
@@ -54,6 +62,10 @@ class FeatureMapsStage {
   // kCpuItems or 1, pixels of a row), with no barrier before or after (the caller orders it with
   // the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.width, size.beams);
+  }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }

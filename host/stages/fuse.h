@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -32,11 +33,20 @@ class FuseStage {
   static constexpr uint32_t kLocalSize = 64;
 
   static Result<FuseStage> Create(const Device& device, const FuseBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<FuseStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, FuseBuffers{&b.params, &b.pixel_class, &b.pixel_point, &b.coarse,
+                                      &b.pixel_filled, &b.f_range, &b.f_height, &b.pixel_fused});
+  }
 
   // Records the dispatch over a width x beams image (the Params uploaded must say the same; four
   // pixels an invocation when the width is a multiple of 4). No barrier: the caller orders it
   // with the stages around.
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.width, size.beams);
+  }
 
  private:
   explicit FuseStage(Kernel kernel) : kernel_(std::move(kernel)) {}

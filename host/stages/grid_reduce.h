@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -38,10 +39,21 @@ class GridReduceStage {
   static constexpr uint32_t kCpuItems = 32;
 
   static Result<GridReduceStage> Create(const Device& device, const GridReduceBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<GridReduceStage> Create(const Device& device, const FrameBuffers& b) {
+    const TableBuffers& t = *b.tables;
+    return Create(
+        device, GridReduceBuffers{&b.params, &b.flags, &b.r2, &b.zt, &b.point_pixel, &t.ring_bound2,
+                                  &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count});
+  }
 
   // Records the clear of `cells` cells, a compute -> compute barrier and the reduction over n
   // points (no barrier before or after: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.n, size.cells);
+  }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -39,11 +40,21 @@ class GrowStage {
   static VkDeviceSize ReachBytes(uint64_t pixels) { return 4 * (VkDeviceSize(pixels) + 1); }
 
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<GrowStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, GrowBuffers{&b.params, &b.pixel_fused, &b.f_inten, &b.f_height,
+                                      &b.f_range, &b.pixel_grown, &b.pixel_comp, &b.pixel_label,
+                                      &b.grow_reach, &b.grow_sizes});
+  }
 
   // Records the whole stage over a width x beams image (the Params uploaded to buffers.params
   // must say the same), with compute-to-compute barriers between its passes but none before the
   // first or after the last (the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.width, size.beams);
+  }
 
  private:
   explicit GrowStage(Kernel kernel) : kernel_(std::move(kernel)) {}

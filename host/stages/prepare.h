@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -32,9 +33,16 @@ class PrepareStage {
   static constexpr uint32_t kLocalSize = 64;
 
   static Result<PrepareStage> Create(const Device& device, const PrepareBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<PrepareStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device,
+                  PrepareBuffers{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten});
+  }
 
   // Records the dispatch over n points (no barrier: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const { return Record(cmd, size.n); }
 
  private:
   explicit PrepareStage(Kernel kernel) : kernel_(std::move(kernel)) {}

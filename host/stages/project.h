@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -42,6 +43,14 @@ class ProjectStage {
   static VkDeviceSize ExactListBytes(uint64_t n) { return 4 * (4 + n); }
 
   static Result<ProjectStage> Create(const Device& device, const ProjectBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<ProjectStage> Create(const Device& device, const FrameBuffers& b) {
+    const TableBuffers& t = *b.tables;
+    return Create(device,
+                  ProjectBuffers{&b.params, &b.points, &b.ring, &b.flags, &b.r2, &t.column_dir,
+                                 &t.beam_bound, &t.beam_origin, &b.point_pixel, &b.pixel_key,
+                                 &b.pixel_point, &b.project_exact});
+  }
 
   // Records the clear of pixel_key and pixel_point to kNone and of the exact list's header, the
   // pixel pass 0, the exact pass 1 over the listed points (indirect), and the winner pass 2 over
@@ -49,6 +58,8 @@ class ProjectStage {
   // dispatch: the caller orders them with the stages around (stage 1's writes must be visible
   // to compute and the clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const { return Record(cmd, size.n); }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }
