@@ -85,7 +85,7 @@ TEST_F(SegmenterVk, AllBuffersEqualTheReferencesOnBothBackends) {
     EXPECT_GT(test::ExpectSameFrame(gpu.params(), c, g, &cloud, "seed " + std::to_string(seed)),
               0u);
     EXPECT_GT(times.total_ms, 0.0);
-    EXPECT_GE(times.total_ms, times.stage_ms[7]);
+    for (double stage_ms : times.stage_ms) EXPECT_GE(times.total_ms, stage_ms);
   }
 }
 
