@@ -2,6 +2,7 @@
 // table (reference_cpu/stage_table.def).
 #include "host/frame_pipeline.h"
 
+#include <cassert>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -339,14 +340,8 @@ Status FramePipeline::Stage(uint32_t index, const Cloud& cloud) {
   if (index >= slots_.size() || slots_[index].busy || slots_[index].staged || slots_[index].frames)
     return PipelineError("slot " + std::to_string(index) + " is not free");
   const uint64_t n = cloud.size();
-  if (n > max_points_)
-    return PipelineError("the cloud has " + std::to_string(n) +
-                         " points, more than the pipeline's maximum of " +
-                         std::to_string(max_points_));
   const bool has_ring = !cloud.ring.empty();
-  if (has_ring && cloud.ring.size() != n)
-    return PipelineError("the cloud has " + std::to_string(cloud.ring.size()) +
-                         " ring entries for " + std::to_string(n) + " points");
+  assert(n <= max_points_ && (!has_ring || cloud.ring.size() == n));  // checked by the caller
   Slot& slot = slots_[index];
   auto* upload = static_cast<char*>(slot.upload.mapped());
   if (n) std::memcpy(upload, cloud.xyzi.data(), 16 * n);

@@ -59,8 +59,9 @@ class FramePipeline {
   // (SubmitStaged of one frame).
   Status Submit(uint32_t slot, const Cloud& cloud);
   // Copies `cloud` into slot `slot`'s staging buffer. The slot must be free: never used, or
-  // collected since, and not the first of a batch with frames still to collect. An error
-  // (nothing staged) for a cloud over max_points or with a ring field of another length.
+  // collected since, and not the first of a batch with frames still to collect (an error,
+  // nothing staged, otherwise). The cloud must fit, as the caller checks (Segmenter::Submit
+  // does): at most max_points points, a ring field empty or one entry a point.
   Status Stage(uint32_t slot, const Cloud& cloud);
   // Records the frames staged in slots first .. first + count - 1 into one command buffer
   // (slot first's; interleaved pass by pass when count > 1) and submits it. Each frame is

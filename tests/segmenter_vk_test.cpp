@@ -176,6 +176,30 @@ TEST_F(SegmenterVk, OversizedCloudIsAnErrorOnBothBackends) {
   }
 }
 
+// The Segmenter checks every cloud once, before either backend sees it: a ring field of another
+// length than the cloud is an invalid_argument on both, and nothing is left pending.
+TEST_F(SegmenterVk, RingsOfAnotherLengthAreAnErrorOnBothBackends) {
+  for (Backend b : {Backend::kVulkan, Backend::kCpu}) {
+    Segmenter s(Vlp16(), Options(b));
+    Cloud cloud = Street(Vlp16(), 2);
+    ASSERT_EQ(cloud.ring.size(), cloud.size());
+    cloud.ring.pop_back();
+    try {
+      s.Submit(cloud);
+      ADD_FAILURE() << "no error for " << cloud.ring.size() << " rings";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(
+          std::string(e.what()).find(std::to_string(cloud.ring.size()) + " ring entries for " +
+                                     std::to_string(cloud.size()) + " points"),
+          std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(s.pending(), 0u);
+    cloud.ring.clear();
+    EXPECT_EQ(s.Segment(cloud).n, cloud.size()) << "the segmenter still works after the error";
+  }
+}
+
 TEST_F(SegmenterVk, ANamedDeviceThatIsNotThereIsAnError) {
   SegmenterOptions o = Options(Backend::kAuto);
   o.device = "no-such-gpu";

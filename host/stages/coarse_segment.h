@@ -1,20 +1,15 @@
 // Stage 4, coarse segment, on Vulkan: shaders/coarse_segment.comp behind the generic dispatcher.
-// CoarseSegmentStage is the per-frame piece (bound once to the frame's buffers, recorded every
-// frame: six passes with a compute -> compute barrier between each two); RunCoarseSegment is the
-// one-shot twin of lpir::CoarseSegment for tests and tools.
+// CoarseSegmentStage is bound once to the frame's buffers and recorded every frame: six passes
+// with a compute -> compute barrier between each two.
 #pragma once
 #include <cstdint>
 
 #include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/cloud.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -73,13 +68,5 @@ class CoarseSegmentStage {
 
   Kernel kernel_;
 };
-
-// Stage 4 on the GPU, the twin of lpir::CoarseSegment(cloud, p, t, f): reads cloud.xyzi, f.n,
-// f.zt, f.point_cell, f.cell_zmin, f.cell_zmax, f.cell_count and t.ring_inner, allocates
-// device-local buffers, uploads, runs, and fills f.cell_seed_mode, f.cell_plane and f.coarse
-// (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of the six passes in
-// nanoseconds (-1 without timestamps). Waits for the GPU.
-Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params& p,
-                        const Tables& t, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

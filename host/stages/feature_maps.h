@@ -1,19 +1,15 @@
 // Stage 5, feature maps, on Vulkan: shaders/feature_maps.comp behind the generic dispatcher.
-// FeatureMapsStage is the per-frame piece (bound once to the frame's buffers, recorded every
-// frame: measure and fill, a barrier, slope, edges and variances); RunFeatureMaps is the one-shot
-// twin of lpir::FeatureMaps for tests and tools.
+// FeatureMapsStage is bound once to the frame's buffers and recorded every frame: measure and
+// fill, a barrier, slope, edges and variances.
 #pragma once
 #include <cstdint>
 
 #include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -75,12 +71,5 @@ class FeatureMapsStage {
 
   Kernel kernel_;
 };
-
-// Stage 5 on the GPU, the twin of lpir::FeatureMaps(p, f): reads f.n, f.r2, f.zt, f.inten and
-// f.pixel_point (width * beams), allocates device-local buffers, uploads, runs, and fills
-// f.pixel_filled, f.f_range, f.f_inten, f.f_height, f.f_slope, f.f_edge_l, f.f_edge_r, f.f_varz
-// and f.f_vari (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of both
-// passes in nanoseconds (-1 without timestamps on the queue).
-Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,19 +1,15 @@
-// Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is the
-// per-frame piece (bound once to the frame's buffers, recorded every frame: five passes, one
-// pixel an invocation, whatever the data); RunGrow is the one-shot twin of lpir::Grow for tests
-// and tools.
+// Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is bound
+// once to the frame's buffers and recorded every frame: five passes, one pixel an invocation,
+// whatever the data.
 #pragma once
 #include <cstdint>
 
 #include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -61,12 +57,5 @@ class GrowStage {
 
   Kernel kernel_;
 };
-
-// Stage 8 on the GPU, the twin of lpir::Grow(p, f): allocates device-local buffers, uploads
-// f.pixel_fused, f.f_inten, f.f_height and f.f_range, runs, and fills f.pixel_grown,
-// f.pixel_comp and f.pixel_label (nothing else of f is touched). An error when a per-pixel input
-// does not hold width * beams elements. `gpu_ns`, when given, gets the stage's GPU time in
-// nanoseconds (-1 without timestamps). Waits for the GPU.
-Status RunGrow(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

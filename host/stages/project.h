@@ -1,19 +1,14 @@
 // Stage 2, project, on Vulkan: shaders/project.comp behind the generic dispatcher. ProjectStage
-// is the per-frame piece (bound once to the frame's buffers, recorded every frame); RunProject is
-// the one-shot twin of lpir::Project for tests and tools.
+// is bound once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>
 
 #include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/cloud.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -77,13 +72,5 @@ class ProjectStage {
   const Buffer* pixel_point_;
   const Buffer* project_exact_;
 };
-
-// Stage 2 on the GPU, the twin of lpir::Project(cloud, p, t, f): reads f.n, f.flags and f.r2
-// (stage 1's outputs, uploaded as they are), allocates device-local buffers, runs, and fills
-// f.point_pixel, f.pixel_key and f.pixel_point (nothing else of f is touched). has_ring is taken
-// from the cloud, as reference_cpu/pipeline.cpp does. `gpu_ns`, when given, gets the GPU time of
-// the clear and both dispatches in nanoseconds (-1 without timestamps on the queue).
-Status RunProject(const Context& context, const Cloud& cloud, const Params& p, const Tables& t,
-                  Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk
