@@ -1,4 +1,4 @@
-// One whole frame, end to end (upload, stages 1-9, download; Segmenter::Segment), on the CPU
+// One whole frame, end to end (upload, every stage, download; Segmenter::Segment), on the CPU
 // reference and on the Vulkan device (lavapipe unless LPIR_VK_DEVICE names another), on the six
 // consecutive SemanticKITTI 00 scans: one benchmark per scan and backend, 20 repetitions, median
 // reported. Before timing, each checks that its labels equal the CPU reference's byte for byte.

@@ -1,5 +1,5 @@
 // The CPU reference, single-threaded, on the six consecutive SemanticKITTI 00 scans: one
-// benchmark per scan, each repetition one whole frame (stages 1-9), 20 repetitions so the
+// benchmark per scan, each repetition one whole frame (every stage), 20 repetitions so the
 // reported median is over 20 runs. Per-stage milliseconds are counters (mean per frame).
 // Run: build/reference_bench  (data from ../shared/data; absent -> nothing to run, says so).
 #include <benchmark/benchmark.h>

@@ -1,19 +1,13 @@
-// The frame pipeline: buffers, stages and the recording of one frame.
+// The frame pipeline: buffers, stages and the recording of one frame, all made from the stage
+// table (reference_cpu/stage_table.def).
 #include "host/frame_pipeline.h"
 
+#include <cassert>
 #include <cstdio>
 #include <cstring>
 #include <string>
 
-#include "host/stages/back_project.h"
-#include "host/stages/classify_pixels.h"
-#include "host/stages/coarse_segment.h"
-#include "host/stages/feature_maps.h"
-#include "host/stages/fuse.h"
-#include "host/stages/grid_reduce.h"
-#include "host/stages/grow.h"
-#include "host/stages/prepare.h"
-#include "host/stages/project.h"
+#include "host/stages/stage_headers.h"  // generated: every stage's host/stages/<name>.h
 #include "host/vk/transfer.h"
 
 namespace lpir::vk {
@@ -34,6 +28,136 @@ std::string BytesText(uint64_t bytes) {
       return text;
     }
   return std::to_string(bytes) + " bytes";
+}
+
+// Each slot's staging: the points (16 bytes each) and rings (4 each) up, label_why down.
+VkDeviceSize UploadBytes(uint32_t max_points) { return 20 * VkDeviceSize(max_points); }
+VkDeviceSize DownloadBytes(uint32_t max_points) {
+  return BackProjectStage::LabelWhyBytes(max_points);
+}
+
+// Bytes of a device buffer of `elements` elements of `size` bytes: whole 32-bit words.
+VkDeviceSize DeviceBytes(uint64_t elements, size_t size) {
+  return (VkDeviceSize(elements) * size + 3) / 4 * 4;
+}
+
+// One storage buffer of a slot: where it is, its name, what it scales with and its bytes.
+struct Sized {
+  Buffer* buffer;
+  const char* name;
+  Per per;
+  VkDeviceSize bytes;
+};
+
+// Every storage buffer of a slot (all but Params), in table order, sized for max_points points.
+std::vector<Sized> SizesOf(FrameBuffers& b, const Params& p, uint32_t max_points) {
+  auto items = [&](Per per) { return ItemsOf(per, max_points, p); };
+  return {
+      {&b.points, "points", Per::kPoint, DeviceBytes(items(Per::kPoint), 16)},
+      {&b.ring, "ring", Per::kPoint, DeviceBytes(items(Per::kPoint), 4)},
+#define LPIR_STAGE LPIR_IGNORE
+#define LPIR_BUFFER(stage, name, type, per, stride) \
+  {&b.name, #name, Per::per, DeviceBytes(items(Per::per) * stride, sizeof(type))},
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH(stage, name, type, per, stride, extra) \
+  {&b.name, #name, Per::per, DeviceBytes(items(Per::per) * stride + extra, sizeof(type))},
+#include "reference_cpu/stage_table.def"
+  };
+}
+
+// What a buffer of `per` items scales with, as the limit errors name it.
+std::string NeedOf(Per per, const Params& p, uint32_t max_points) {
+  switch (per) {
+    case Per::kPoint:
+      return "max_points " + std::to_string(max_points);
+    case Per::kPixel:
+      return "an image of " + std::to_string(p.beams) + " x " + std::to_string(p.width) + " pixels";
+    case Per::kCell:
+      break;
+  }
+  return "a grid of " + std::to_string(CellCount(p)) + " cells";
+}
+
+// The arguments Create refuses before looking at the device.
+Status CheckArguments(const Params& params, const Tables& tables, uint32_t max_points,
+                      uint32_t slots) {
+  if (max_points == 0 || max_points > UINT32_MAX / 16)
+    return PipelineError("max_points must be between 1 and " + std::to_string(UINT32_MAX / 16));
+  if (slots == 0) return PipelineError("at least one frame slot is needed");
+  const uint64_t pixels = uint64_t(params.width) * params.beams;
+  const uint32_t cells = CellCount(params), rings = params.rings_near + params.rings_far;
+  if (pixels == 0 || pixels > UINT32_MAX / 32 || cells == 0)
+    return PipelineError("an image of " + std::to_string(pixels) + " pixels and a grid of " +
+                         std::to_string(cells) + " cells");
+  if (tables.column_dir.size() != 2 * size_t(params.width) ||
+      tables.beam_bound.size() + 1 != params.beams ||
+      tables.beam_origin.size() + 1 != params.beams || tables.ring_bound2.size() != rings ||
+      tables.ring_inner.size() != rings)
+    return PipelineError("the tables do not match the parameters (see MakeTables)");
+  return Status();
+}
+
+// The tables' device buffers, each with its values.
+struct TableValues {
+  Buffer* buffer;
+  const std::vector<float>* values;
+};
+std::vector<TableValues> TablesOf(TableBuffers& t, const Tables& tables) {
+  return {{&t.column_dir, &tables.column_dir},
+          {&t.beam_bound, &tables.beam_bound},
+          {&t.beam_origin, &tables.beam_origin},
+          {&t.ring_bound2, &tables.ring_bound2},
+          {&t.ring_inner, &tables.ring_inner}};
+}
+
+// Params against maxUniformBufferRange, every storage buffer and table against
+// maxStorageBufferRange. Returns the device-local bytes of them all: the tables once, the frame
+// buffers once a slot, and the staging buffers once a slot when they share the heap.
+Result<uint64_t> CheckRanges(const std::vector<Sized>& sizes, const Params& params,
+                             const Tables& tables, uint32_t max_points, uint32_t slots,
+                             const DeviceLimits& limits) {
+  const uint64_t storage = limits.max_storage_buffer_range;
+  if (sizeof(Params) > limits.max_uniform_buffer_range)
+    return PipelineError("the parameters need a " + std::to_string(sizeof(Params)) +
+                         "-byte uniform buffer; this device's maxUniformBufferRange is " +
+                         std::to_string(limits.max_uniform_buffer_range));
+  uint64_t total = sizeof(Params);
+  for (const Sized& s : sizes) {
+    total += s.bytes;
+    if (s.bytes > storage)
+      return PipelineError(NeedOf(s.per, params, max_points) + " needs a " + BytesText(s.bytes) +
+                           " (" + std::to_string(s.bytes) + " bytes) " + s.name +
+                           " buffer; this device's maxStorageBufferRange is " +
+                           std::to_string(storage));
+  }
+  total *= slots;  // every slot owns its frame buffers; the tables are shared
+  for (const std::vector<float>* values :
+       {&tables.column_dir, &tables.beam_bound, &tables.beam_origin, &tables.ring_bound2,
+        &tables.ring_inner}) {
+    const uint64_t bytes = 4 * uint64_t(values->size());
+    total += bytes;
+    if (bytes > storage)
+      return PipelineError(NeedOf(Per::kPixel, params, max_points) + " and " +
+                           NeedOf(Per::kCell, params, max_points) + " need a " + BytesText(bytes) +
+                           " table; this device's maxStorageBufferRange is " +
+                           std::to_string(storage));
+  }
+  if (limits.staging_in_device_heap)
+    total += uint64_t(slots) * (UploadBytes(max_points) + DownloadBytes(max_points));
+  return total;
+}
+
+// The sum of every buffer against the device-local heap.
+Status CheckHeap(uint64_t total, const Params& params, uint32_t max_points, uint32_t slots,
+                 const DeviceLimits& limits) {
+  if (total <= limits.device_local_heap) return Status();
+  return PipelineError(
+      NeedOf(Per::kPoint, params, max_points) + " and " + NeedOf(Per::kPixel, params, max_points) +
+      " need " + BytesText(total) + " (" + std::to_string(total) + " bytes) of device memory" +
+      (limits.staging_in_device_heap ? " (" + std::to_string(slots) + " staging slots included)"
+                                     : std::string()) +
+      "; this device's device-local memory heap holds " + std::to_string(limits.device_local_heap) +
+      " bytes");
 }
 
 }  // namespace
@@ -57,33 +181,12 @@ DeviceLimits DeviceLimits::Of(const Device& device) {
   return limits;
 }
 
-struct FramePipeline::TableBuffers {
-  Buffer column_dir, beam_bound, beam_origin, ring_bound2, ring_inner;
-};
-
-struct FramePipeline::Buffers {
-  Buffer params, points, ring;
-  Buffer flags, zt, r2, inten;                                // 1 prepare
-  Buffer point_pixel, pixel_key, pixel_point, project_exact;  // 2 project
-  Buffer point_cell, cell_zmin, cell_zmax, cell_count;        // 3 grid reduce
-  Buffer cell_seed_mode, cell_plane, coarse, coarse_scratch;  // 4 coarse segment
-  Buffer pixel_filled, f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz, f_vari,
-      feature_pack;                                                     // 5 feature maps
-  Buffer pixel_class, pixel_fused;                                      // 6 classify, 7 fuse
-  Buffer pixel_grown, pixel_comp, pixel_label, grow_reach, grow_sizes;  // 8 grow
-  Buffer label_why;                                                     // 9 back-project
-};
-
 struct FramePipeline::Stages {
-  PrepareStage prepare;
-  ProjectStage project;
-  GridReduceStage grid_reduce;
-  CoarseSegmentStage coarse_segment;
-  FeatureMapsStage feature_maps;
-  ClassifyPixelsStage classify_pixels;
-  FuseStage fuse;
-  GrowStage grow;
-  BackProjectStage back_project;
+#define LPIR_STAGE(name, Type, parameters) Type##Stage name;
+#define LPIR_BUFFER LPIR_IGNORE
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
 };
 
 // Frames still in flight are waited for: their command buffers use what is about to be freed.
@@ -113,259 +216,119 @@ FramePipeline& FramePipeline::operator=(FramePipeline&& other) noexcept {
   return *this;
 }
 
-// The nine stages bound to one slot's buffers and the shared tables.
+// Every stage bound to one slot's buffers (and through them the shared tables).
 Result<std::unique_ptr<FramePipeline::Stages>> FramePipeline::MakeStages(const Device& device,
-                                                                         const TableBuffers& t,
-                                                                         Buffers& b) {
-  PrepareBuffers prepare{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten};
-  ProjectBuffers project{&b.params,      &b.points,     &b.ring,        &b.flags,
-                         &b.r2,          &t.column_dir, &t.beam_bound,  &t.beam_origin,
-                         &b.point_pixel, &b.pixel_key,  &b.pixel_point, &b.project_exact};
-  GridReduceBuffers grid{&b.params,      &b.flags,      &b.r2,        &b.zt,        &b.point_pixel,
-                         &t.ring_bound2, &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count};
-  CoarseSegmentBuffers coarse{&b.params,         &b.points,     &b.zt,         &b.point_cell,
-                              &b.cell_zmin,      &b.cell_zmax,  &b.cell_count, &t.ring_inner,
-                              &b.cell_seed_mode, &b.cell_plane, &b.coarse,     &b.coarse_scratch};
-  FeatureMapsBuffers features{&b.params,   &b.pixel_point,  &b.r2,          &b.zt,
-                              &b.inten,    &b.pixel_filled, &b.f_range,     &b.f_inten,
-                              &b.f_height, &b.f_slope,      &b.f_edge_l,    &b.f_edge_r,
-                              &b.f_varz,   &b.f_vari,       &b.feature_pack};
-  ClassifyPixelsBuffers classify{&b.params,  &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
-                                 &b.f_slope, &b.f_varz,       &b.f_vari,   &b.pixel_class};
-  FuseBuffers fuse{&b.params,       &b.pixel_class, &b.pixel_point, &b.coarse,
-                   &b.pixel_filled, &b.f_range,     &b.f_height,    &b.pixel_fused};
-  GrowBuffers grow{&b.params,      &b.pixel_fused, &b.f_inten,     &b.f_height,   &b.f_range,
-                   &b.pixel_grown, &b.pixel_comp,  &b.pixel_label, &b.grow_reach, &b.grow_sizes};
-  BackProjectBuffers back{&b.params,      &b.flags,   &b.point_pixel, &b.pixel_point,
-                          &b.pixel_label, &b.f_range, &b.f_height,    &b.r2,
-                          &b.zt,          &b.coarse,  &b.label_why};
-  LPIR_VK_ASSIGN_OR_RETURN(PrepareStage s1, PrepareStage::Create(device, prepare));
-  LPIR_VK_ASSIGN_OR_RETURN(ProjectStage s2, ProjectStage::Create(device, project));
-  LPIR_VK_ASSIGN_OR_RETURN(GridReduceStage s3, GridReduceStage::Create(device, grid));
-  LPIR_VK_ASSIGN_OR_RETURN(CoarseSegmentStage s4, CoarseSegmentStage::Create(device, coarse));
-  LPIR_VK_ASSIGN_OR_RETURN(FeatureMapsStage s5, FeatureMapsStage::Create(device, features));
-  LPIR_VK_ASSIGN_OR_RETURN(ClassifyPixelsStage s6, ClassifyPixelsStage::Create(device, classify));
-  LPIR_VK_ASSIGN_OR_RETURN(FuseStage s7, FuseStage::Create(device, fuse));
-  LPIR_VK_ASSIGN_OR_RETURN(GrowStage s8, GrowStage::Create(device, grow));
-  LPIR_VK_ASSIGN_OR_RETURN(BackProjectStage s9, BackProjectStage::Create(device, back));
-  return std::unique_ptr<Stages>(new Stages{std::move(s1), std::move(s2), std::move(s3),
-                                            std::move(s4), std::move(s5), std::move(s6),
-                                            std::move(s7), std::move(s8), std::move(s9)});
+                                                                         const FrameBuffers& b) {
+#define LPIR_STAGE(name, Type, parameters)                   \
+  Result<Type##Stage> name = Type##Stage::Create(device, b); \
+  if (!name.ok()) return name.error();
+#define LPIR_BUFFER LPIR_IGNORE
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
+  return std::unique_ptr<Stages>(new Stages{
+#define LPIR_STAGE(name, Type, parameters) std::move(name).value(),
+#define LPIR_BUFFER LPIR_IGNORE
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
+  });
+}
+
+// Calls fn(stage) for every stage of `s` in run order; stops at the first error.
+template <typename Fn>
+Status FramePipeline::ForEachStage(const Stages& s, Fn&& fn) {
+#define LPIR_STAGE(name, Type, parameters) LPIR_VK_RETURN_IF_ERROR(fn(s.name));
+#define LPIR_BUFFER LPIR_IGNORE
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
+  return Status();
 }
 
 Result<FramePipeline> FramePipeline::Create(const Context& context, const Params& params,
                                             const Tables& tables, uint32_t max_points,
                                             uint32_t slots, const DeviceLimits* limits) {
+  LPIR_VK_RETURN_IF_ERROR(CheckArguments(params, tables, max_points, slots));
   const Device& device = context.device();
-  if (max_points == 0 || max_points > UINT32_MAX / 16)
-    return PipelineError("max_points must be between 1 and " + std::to_string(UINT32_MAX / 16));
-  if (slots == 0) return PipelineError("at least one frame slot is needed");
-  const uint64_t pixels = uint64_t(params.width) * params.beams;
-  const uint32_t cells = CellCount(params), rings = params.rings_near + params.rings_far;
-  if (pixels == 0 || pixels > UINT32_MAX / 32 || cells == 0)
-    return PipelineError("an image of " + std::to_string(pixels) + " pixels and a grid of " +
-                         std::to_string(cells) + " cells");
-  if (tables.column_dir.size() != 2 * size_t(params.width) ||
-      tables.beam_bound.size() + 1 != params.beams ||
-      tables.beam_origin.size() + 1 != params.beams || tables.ring_bound2.size() != rings ||
-      tables.ring_inner.size() != rings)
-    return PipelineError("the tables do not match the parameters (see MakeTables)");
-
+  {
+    // The device's limits, before anything is allocated (the sizes are every slot's).
+    const DeviceLimits device_limits = limits ? *limits : DeviceLimits::Of(device);
+    FrameBuffers sizing;
+    LPIR_VK_ASSIGN_OR_RETURN(const uint64_t total,
+                             CheckRanges(SizesOf(sizing, params, max_points), params, tables,
+                                         max_points, slots, device_limits));
+    LPIR_VK_RETURN_IF_ERROR(CheckHeap(total, params, max_points, slots, device_limits));
+  }
   FramePipeline fp;
   fp.context_ = &context;
   fp.params_ = params;
   fp.max_points_ = max_points;
-  fp.cells_ = cells;
-  fp.pixels_ = uint32_t(pixels);
-  fp.tables_ = std::make_unique<TableBuffers>();
-  TableBuffers& t = *fp.tables_;
-  Buffers b;  // the sizes below, and their names in the limit errors, are those of every slot's
-  const VkDeviceSize point = 4 * VkDeviceSize(max_points), pixel = 4 * pixels, cell = 4 * cells;
-  // Each slot's staging: the points (16 bytes each) and rings (4 each) up, label_why down.
-  const VkDeviceSize upload_bytes = 5 * point;
-  const VkDeviceSize download_bytes = BackProjectStage::LabelWhyBytes(max_points);
-  auto make = [&](Buffer& buffer, VkDeviceSize bytes) -> Status {
-    LPIR_VK_ASSIGN_OR_RETURN(buffer, Buffer::Create(device, bytes, MemoryKind::kDeviceLocal));
-    fp.device_bytes_ += buffer.size();
-    return Status();
-  };
-  auto table = [&](Buffer& buffer, const std::vector<float>& values) -> Status {
-    return make(buffer, 4 * VkDeviceSize(values.size()));
-  };
-  struct Sized {
-    Buffer* buffer;
-    VkDeviceSize bytes;
-  };
-  // Every frame buffer of a slot and its size.
-  auto sizes_of = [&](Buffers& x) {
-    return std::vector<Sized>{{&x.params, sizeof(Params)},
-                              {&x.points, 4 * point},
-                              {&x.ring, point},
-                              {&x.flags, point},
-                              {&x.zt, point},
-                              {&x.r2, point},
-                              {&x.inten, point},
-                              {&x.point_pixel, point},
-                              {&x.pixel_key, pixel},
-                              {&x.pixel_point, pixel},
-                              {&x.point_cell, point},
-                              {&x.cell_zmin, cell},
-                              {&x.project_exact, ProjectStage::ExactListBytes(max_points)},
-                              {&x.cell_zmax, cell},
-                              {&x.cell_count, cell},
-                              {&x.cell_seed_mode, cell},
-                              {&x.cell_plane, 8 * cell},
-                              {&x.coarse, point},
-                              {&x.coarse_scratch, CoarseSegmentStage::ScratchBytes(cells)},
-                              {&x.pixel_filled, pixel},
-                              {&x.f_range, pixel},
-                              {&x.f_inten, pixel},
-                              {&x.f_height, pixel},
-                              {&x.f_slope, pixel},
-                              {&x.f_edge_l, pixel},
-                              {&x.f_edge_r, pixel},
-                              {&x.f_varz, pixel},
-                              {&x.f_vari, pixel},
-                              {&x.feature_pack, FeatureMapsStage::PackBytes(pixels)},
-                              {&x.pixel_class, pixel},
-                              {&x.pixel_fused, pixel},
-                              {&x.pixel_grown, pixel},
-                              {&x.pixel_comp, pixel},
-                              {&x.pixel_label, pixel},
-                              {&x.grow_reach, GrowStage::ReachBytes(pixels)},
-                              {&x.grow_sizes, pixel},
-                              {&x.label_why, BackProjectStage::LabelWhyBytes(max_points)}};
-  };
-  const std::vector<Sized> sizes = sizes_of(b);
-  {
-    // The device's limits, before anything is allocated: every storage buffer's size (what it
-    // scales with named in the error), Params, and the sum of all against the heap.
-    const DeviceLimits device_limits = limits ? *limits : DeviceLimits::Of(device);
-    const std::string points_need = "max_points " + std::to_string(max_points);
-    const std::string pixels_need = "an image of " + std::to_string(params.beams) + " x " +
-                                    std::to_string(params.width) + " pixels";
-    const std::string cells_need = "a grid of " + std::to_string(cells) + " cells";
-    const struct {
-      const Buffer* buffer;
-      const char* name;
-      const std::string* need;
-    } names[] = {{&b.points, "points", &points_need},
-                 {&b.ring, "ring", &points_need},
-                 {&b.flags, "flags", &points_need},
-                 {&b.zt, "zt", &points_need},
-                 {&b.r2, "r2", &points_need},
-                 {&b.inten, "inten", &points_need},
-                 {&b.point_pixel, "point_pixel", &points_need},
-                 {&b.project_exact, "project_exact", &points_need},
-                 {&b.point_cell, "point_cell", &points_need},
-                 {&b.coarse, "coarse", &points_need},
-                 {&b.label_why, "label_why", &points_need},
-                 {&b.pixel_key, "pixel_key", &pixels_need},
-                 {&b.pixel_point, "pixel_point", &pixels_need},
-                 {&b.feature_pack, "feature_pack", &pixels_need},
-                 {&b.grow_reach, "grow_reach", &pixels_need},
-                 {&b.cell_plane, "cell_plane", &cells_need},
-                 {&b.coarse_scratch, "coarse_scratch", &cells_need}};
-    const std::string other_need = points_need + " and " + pixels_need;
-    uint64_t total = 0;
-    for (const auto& s : sizes) {
-      total += s.bytes;
-      if (s.buffer == &b.params) {
-        if (s.bytes > device_limits.max_uniform_buffer_range)
-          return PipelineError("the parameters need a " + std::to_string(s.bytes) +
-                               "-byte uniform buffer; this device's maxUniformBufferRange is " +
-                               std::to_string(device_limits.max_uniform_buffer_range));
-        continue;
-      }
-      if (s.bytes <= device_limits.max_storage_buffer_range) continue;
-      const char* name = "device";
-      const std::string* need = &other_need;
-      for (const auto& n : names)
-        if (n.buffer == s.buffer) name = n.name, need = n.need;
-      return PipelineError(*need + " needs a " + BytesText(s.bytes) + " (" +
-                           std::to_string(s.bytes) + " bytes) " + name +
-                           " buffer; this device's maxStorageBufferRange is " +
-                           std::to_string(device_limits.max_storage_buffer_range));
-    }
-    total *= slots;  // every slot owns its frame buffers; the tables are shared
-    const std::vector<float>* table_values[] = {&tables.column_dir, &tables.beam_bound,
-                                                &tables.beam_origin, &tables.ring_bound2,
-                                                &tables.ring_inner};
-    for (const std::vector<float>* values : table_values) {
-      const uint64_t bytes = 4 * uint64_t(values->size());
-      total += bytes;
-      if (bytes > device_limits.max_storage_buffer_range)
-        return PipelineError(pixels_need + " and " + cells_need + " need a " + BytesText(bytes) +
-                             " table; this device's maxStorageBufferRange is " +
-                             std::to_string(device_limits.max_storage_buffer_range));
-    }
-    const uint64_t staging = uint64_t(slots) * (upload_bytes + download_bytes);
-    if (device_limits.staging_in_device_heap) total += staging;
-    if (total > device_limits.device_local_heap)
-      return PipelineError(points_need + " and " + pixels_need + " need " + BytesText(total) +
-                           " (" + std::to_string(total) + " bytes) of device memory" +
-                           (device_limits.staging_in_device_heap
-                                ? " (" + std::to_string(slots) + " staging slots included)"
-                                : std::string()) +
-                           "; this device's device-local memory heap holds " +
-                           std::to_string(device_limits.device_local_heap) + " bytes");
-  }
-  LPIR_VK_RETURN_IF_ERROR(table(t.column_dir, tables.column_dir));
-  LPIR_VK_RETURN_IF_ERROR(table(t.beam_bound, tables.beam_bound));
-  LPIR_VK_RETURN_IF_ERROR(table(t.beam_origin, tables.beam_origin));
-  LPIR_VK_RETURN_IF_ERROR(table(t.ring_bound2, tables.ring_bound2));
-  LPIR_VK_RETURN_IF_ERROR(table(t.ring_inner, tables.ring_inner));
-  {
-    LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(device));
-    const struct {
-      const Buffer* buffer;
-      const std::vector<float>* values;
-    } uploads[] = {{&t.column_dir, &tables.column_dir},
-                   {&t.beam_bound, &tables.beam_bound},
-                   {&t.beam_origin, &tables.beam_origin},
-                   {&t.ring_bound2, &tables.ring_bound2},
-                   {&t.ring_inner, &tables.ring_inner}};
-    for (const auto& u : uploads)
-      if (!u.values->empty())
-        LPIR_VK_RETURN_IF_ERROR(transfer.Upload(*u.buffer, u.values->data(), 4 * u.values->size()));
-  }
-
-  const bool timed = device.timestamp_valid_bits() != 0;
-  for (uint32_t i = 0; i < slots; ++i) {
-    LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
-    LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
-    LPIR_VK_ASSIGN_OR_RETURN(Buffer upload,
-                             Buffer::Create(device, upload_bytes, MemoryKind::kHostVisible));
-    LPIR_VK_ASSIGN_OR_RETURN(Buffer download,
-                             Buffer::Create(device, download_bytes, MemoryKind::kHostVisible));
-    fp.device_bytes_ += upload.size() + download.size();
-    Slot slot{std::move(cmd), std::move(fence), std::move(upload), std::move(download), {}, {}, {}};
-    slot.buffers = std::make_unique<Buffers>();
-    for (const Sized& own : sizes_of(*slot.buffers))
-      LPIR_VK_RETURN_IF_ERROR(make(*own.buffer, own.bytes));
-    LPIR_VK_ASSIGN_OR_RETURN(slot.stages, MakeStages(device, t, *slot.buffers));
-    if (timed) {
-      LPIR_VK_ASSIGN_OR_RETURN(TimestampQueries q, TimestampQueries::Create(device, kQueries));
-      slot.queries.push_back(std::move(q));
-    }
-    fp.slots_.push_back(std::move(slot));
-  }
-  // The largest frame's dispatches, recorded once and never submitted (Record begins the
-  // command buffer anew every frame): a stage over more workgroups than the device dispatches
-  // fails here, naming maxComputeWorkGroupCount[0].
-  {
-    Slot& first = fp.slots_.front();
-    first.n = max_points;
-    first.has_ring = true;
-    Status status = first.cmd.Begin();
-    if (status.ok()) status = fp.RecordFrame(first, first.cmd);
-    if (status.ok()) status = first.cmd.End();
-    first.n = 0;
-    first.has_ring = false;
-    if (!status.ok())
-      return PipelineError("max_points " + std::to_string(max_points) + ": " + status.message());
-  }
+  fp.cells_ = CellCount(params);
+  fp.pixels_ = params.width * params.beams;
+  LPIR_VK_RETURN_IF_ERROR(fp.MakeTables(tables));
+  for (uint32_t i = 0; i < slots; ++i) LPIR_VK_RETURN_IF_ERROR(fp.AddSlot());
+  LPIR_VK_RETURN_IF_ERROR(fp.RecordLargestFrame());
   return fp;
+}
+
+Status FramePipeline::Allocate(Buffer& buffer, VkDeviceSize bytes, MemoryKind kind) {
+  LPIR_VK_ASSIGN_OR_RETURN(buffer, Buffer::Create(context_->device(), bytes, kind));
+  device_bytes_ += buffer.size();
+  return Status();
+}
+
+Status FramePipeline::MakeTables(const Tables& tables) {
+  tables_ = std::make_unique<TableBuffers>();
+  const std::vector<TableValues> all = TablesOf(*tables_, tables);
+  for (const TableValues& t : all)
+    LPIR_VK_RETURN_IF_ERROR(Allocate(*t.buffer, 4 * VkDeviceSize(t.values->size())));
+  LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(context_->device()));
+  for (const TableValues& t : all)
+    if (!t.values->empty())
+      LPIR_VK_RETURN_IF_ERROR(transfer.Upload(*t.buffer, t.values->data(), 4 * t.values->size()));
+  return Status();
+}
+
+Status FramePipeline::AddSlot() {
+  const Device& device = context_->device();
+  LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
+  LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
+  Slot slot{std::move(cmd), std::move(fence), {}, {}, {}, {}, {}};
+  LPIR_VK_RETURN_IF_ERROR(
+      Allocate(slot.upload, UploadBytes(max_points_), MemoryKind::kHostVisible));
+  LPIR_VK_RETURN_IF_ERROR(
+      Allocate(slot.download, DownloadBytes(max_points_), MemoryKind::kHostVisible));
+  slot.buffers = std::make_unique<FrameBuffers>();
+  FrameBuffers& b = *slot.buffers;
+  b.tables = tables_.get();
+  LPIR_VK_RETURN_IF_ERROR(Allocate(b.params, sizeof(Params)));
+  for (const Sized& s : SizesOf(b, params_, max_points_))
+    LPIR_VK_RETURN_IF_ERROR(Allocate(*s.buffer, s.bytes));
+  LPIR_VK_ASSIGN_OR_RETURN(slot.stages, MakeStages(device, b));
+  if (device.timestamp_valid_bits() != 0) {
+    LPIR_VK_ASSIGN_OR_RETURN(TimestampQueries q, TimestampQueries::Create(device, kQueries));
+    slot.queries.push_back(std::move(q));
+  }
+  slots_.push_back(std::move(slot));
+  return Status();
+}
+
+// The largest frame's dispatches, recorded once and never submitted (Record begins the command
+// buffer anew every frame): a stage over more workgroups than the device dispatches fails here,
+// naming maxComputeWorkGroupCount[0].
+Status FramePipeline::RecordLargestFrame() {
+  Slot& first = slots_.front();
+  first.n = max_points_;
+  first.has_ring = true;
+  Status status = first.cmd.Begin();
+  if (status.ok()) status = RecordFrame(first, first.cmd);
+  if (status.ok()) status = first.cmd.End();
+  first.n = 0;
+  first.has_ring = false;
+  if (!status.ok())
+    return PipelineError("max_points " + std::to_string(max_points_) + ": " + status.message());
+  return Status();
 }
 
 Status FramePipeline::Submit(uint32_t slot, const Cloud& cloud) {
@@ -377,14 +340,8 @@ Status FramePipeline::Stage(uint32_t index, const Cloud& cloud) {
   if (index >= slots_.size() || slots_[index].busy || slots_[index].staged || slots_[index].frames)
     return PipelineError("slot " + std::to_string(index) + " is not free");
   const uint64_t n = cloud.size();
-  if (n > max_points_)
-    return PipelineError("the cloud has " + std::to_string(n) +
-                         " points, more than the pipeline's maximum of " +
-                         std::to_string(max_points_));
   const bool has_ring = !cloud.ring.empty();
-  if (has_ring && cloud.ring.size() != n)
-    return PipelineError("the cloud has " + std::to_string(cloud.ring.size()) +
-                         " ring entries for " + std::to_string(n) + " points");
+  assert(n <= max_points_ && (!has_ring || cloud.ring.size() == n));  // checked by the caller
   Slot& slot = slots_[index];
   auto* upload = static_cast<char*>(slot.upload.mapped());
   if (n) std::memcpy(upload, cloud.xyzi.data(), 16 * n);
@@ -429,8 +386,7 @@ Status FramePipeline::SubmitStaged(uint32_t first, uint32_t count) {
 }
 
 Status FramePipeline::RecordFrame(Slot& slot, CommandBuffer& cmd) {
-  Buffers& b = *slot.buffers;
-  Stages& s = *slot.stages;
+  const FrameBuffers& b = *slot.buffers;
   const uint32_t n = slot.n;
   const bool has_ring = slot.has_ring;
   const VkDeviceSize point = 4 * VkDeviceSize(max_points_);
@@ -451,35 +407,20 @@ Status FramePipeline::RecordFrame(Slot& slot, CommandBuffer& cmd) {
   if (n && has_ring) cmd.CopyBuffer(slot.upload, b.ring, 4 * VkDeviceSize(n), 4 * point);
   cmd.TransferToCompute();
   time();
-  LPIR_VK_RETURN_IF_ERROR(s.prepare.Record(cmd, n));
-  cmd.ComputeToCompute();
-  time();
-  // Project starts with fills (transfer writes) of its pixel buffers, which nothing of this
-  // frame has touched yet; the head barrier ordered them after the slot's previous frame.
-  LPIR_VK_RETURN_IF_ERROR(s.project.Record(cmd, n));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.grid_reduce.Record(cmd, n, cells_));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.coarse_segment.Record(cmd, n, cells_));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.feature_maps.Record(cmd, params_.width, params_.beams));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.classify_pixels.Record(cmd, pixels_));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.fuse.Record(cmd, params_.width, params_.beams));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.grow.Record(cmd, params_.width, params_.beams));
-  cmd.ComputeToCompute();
-  time();
-  LPIR_VK_RETURN_IF_ERROR(s.back_project.Record(cmd, n));
-  cmd.ComputeToTransfer();
-  time();
+  // Each stage after a barrier for the one before. A stage may start with fills (transfer
+  // writes) of buffers nothing of this frame has touched yet: the head barrier ordered them
+  // after the slot's previous frame. The last one's writes go to the download.
+  const FrameSize size{n, params_.width, params_.beams, pixels_, cells_};
+  int stage = 0;
+  LPIR_VK_RETURN_IF_ERROR(ForEachStage(*slot.stages, [&](const auto& s) -> Status {
+    LPIR_VK_RETURN_IF_ERROR(s.Record(cmd, size));
+    if (++stage < kStageCount)
+      cmd.ComputeToCompute();
+    else
+      cmd.ComputeToTransfer();
+    time();
+    return Status();
+  }));
   if (n) cmd.CopyBuffer(b.label_why, slot.download, BackProjectStage::LabelWhyBytes(n));
   cmd.TransferToHost();
   time();
@@ -507,62 +448,45 @@ Status FramePipeline::Collect(uint32_t index, Frame& out, bool all_buffers, Fram
     out.label[i] = LabelOf(label_why[i]);
     out.why[i] = WhyOf(label_why[i]);
   }
-
-  if (times) {
-    *times = FrameTimes{};
-    times->upload_ms = times->download_ms = times->total_ms = -1;
-    for (double& ms : times->stage_ms) ms = -1;
-    if (!slot.queries.empty()) {
-      double ns[kQueries];
-      LPIR_VK_RETURN_IF_ERROR(slot.queries[0].Read(ns));
-      times->upload_ms = (ns[1] - ns[0]) / 1e6;
-      for (int k = 0; k < kStageCount; ++k) times->stage_ms[k] = (ns[k + 2] - ns[k + 1]) / 1e6;
-      const uint32_t last = kQueries - 1;  // after the download
-      times->download_ms = (ns[last] - ns[last - 1]) / 1e6;
-      times->total_ms = (ns[last] - ns[0]) / 1e6;
-    }
-  }
-
-  if (all_buffers) {
-    const Buffers& b = *slot.buffers;
-    LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(context_->device()));
-    Status status;
-    auto read = [&](const Buffer& src, auto& dst, size_t count) {
-      dst.resize(count);
-      if (status.ok() && count) status = transfer.Download(src, dst.data(), count * sizeof(dst[0]));
-    };
-    const size_t px = pixels_, cells = cells_;
-    read(b.flags, out.flags, n);
-    read(b.zt, out.zt, n);
-    read(b.r2, out.r2, n);
-    read(b.inten, out.inten, n);
-    read(b.point_pixel, out.point_pixel, n);
-    read(b.pixel_key, out.pixel_key, px);
-    read(b.pixel_point, out.pixel_point, px);
-    read(b.point_cell, out.point_cell, n);
-    read(b.cell_zmin, out.cell_zmin, cells);
-    read(b.cell_zmax, out.cell_zmax, cells);
-    read(b.cell_count, out.cell_count, cells);
-    read(b.cell_seed_mode, out.cell_seed_mode, cells);
-    read(b.cell_plane, out.cell_plane, 8 * cells);
-    read(b.coarse, out.coarse, n);
-    read(b.pixel_filled, out.pixel_filled, px);
-    read(b.f_range, out.f_range, px);
-    read(b.f_inten, out.f_inten, px);
-    read(b.f_height, out.f_height, px);
-    read(b.f_slope, out.f_slope, px);
-    read(b.f_edge_l, out.f_edge_l, px);
-    read(b.f_edge_r, out.f_edge_r, px);
-    read(b.f_varz, out.f_varz, px);
-    read(b.f_vari, out.f_vari, px);
-    read(b.pixel_class, out.pixel_class, px);
-    read(b.pixel_fused, out.pixel_fused, px);
-    read(b.pixel_grown, out.pixel_grown, px);
-    read(b.pixel_comp, out.pixel_comp, px);
-    read(b.pixel_label, out.pixel_label, px);
-    LPIR_VK_RETURN_IF_ERROR(status);
-  }
+  if (times) LPIR_VK_RETURN_IF_ERROR(ReadTimes(slot, *times));
+  if (all_buffers) LPIR_VK_RETURN_IF_ERROR(ReadBuffers(slot, out));
   return Status();
+}
+
+// The slot's timestamps as times (all -1 without timestamps).
+Status FramePipeline::ReadTimes(const Slot& slot, FrameTimes& times) const {
+  times = FrameTimes{};
+  times.upload_ms = times.download_ms = times.total_ms = -1;
+  for (double& ms : times.stage_ms) ms = -1;
+  if (slot.queries.empty()) return Status();
+  double ns[kQueries];
+  LPIR_VK_RETURN_IF_ERROR(slot.queries[0].Read(ns));
+  times.upload_ms = (ns[1] - ns[0]) / 1e6;
+  for (int k = 0; k < kStageCount; ++k) times.stage_ms[k] = (ns[k + 2] - ns[k + 1]) / 1e6;
+  const uint32_t last = kQueries - 1;  // after the download
+  times.download_ms = (ns[last] - ns[last - 1]) / 1e6;
+  times.total_ms = (ns[last] - ns[0]) / 1e6;
+  return Status();
+}
+
+// Every table buffer of the slot's frame into `out`, but label_why (the frame's download).
+Status FramePipeline::ReadBuffers(const Slot& slot, Frame& out) const {
+  const FrameBuffers& b = *slot.buffers;
+  LPIR_VK_ASSIGN_OR_RETURN(Transfer transfer, Transfer::Create(context_->device()));
+  Status status;
+  auto read = [&](const Buffer& src, auto& dst, Per per, uint32_t stride) {
+    const void* to = &dst;
+    if (to == &out.label_why) return;
+    const size_t count = ItemsOf(per, slot.n, params_) * stride;
+    dst.resize(count);
+    if (status.ok() && count) status = transfer.Download(src, dst.data(), count * sizeof(dst[0]));
+  };
+#define LPIR_STAGE LPIR_IGNORE
+#define LPIR_BUFFER(stage, name, type, per, stride) read(b.name, out.name, Per::per, stride);
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
+  return status;
 }
 
 }  // namespace lpir::vk

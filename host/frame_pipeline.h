@@ -1,5 +1,6 @@
-// FramePipeline: the whole method (stages 1-9) on one Vulkan device. A frame is one command
-// buffer: the cloud's upload, the nine stages back to back with barriers, the labels' download;
+// FramePipeline: the whole method (every stage of reference_cpu/stage_table.def) on one Vulkan
+// device. A frame is one command buffer: the cloud's upload, the stages back to back with
+// barriers, the labels' download;
 // the number of dispatches is the same for every frame. Every device buffer is
 // allocated once, for `max_points` points and the sensor's image and grid; a frame allocates
 // nothing. Several frames in flight: each slot owns its command buffer, fence, staging buffers,
@@ -13,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -40,7 +42,7 @@ struct DeviceLimits {
 
 class FramePipeline {
  public:
-  // Builds the nine stages over buffers for clouds of up to `max_points` points (at least 1) and
+  // Builds every stage over buffers for clouds of up to `max_points` points (at least 1) and
   // uploads the tables. `slots`: frames that may be in flight at once (at least 1). Before
   // allocating, checks every storage buffer against maxStorageBufferRange, Params against
   // maxUniformBufferRange and the sum of the buffers against the device-local heap (`limits`:
@@ -57,8 +59,9 @@ class FramePipeline {
   // (SubmitStaged of one frame).
   Status Submit(uint32_t slot, const Cloud& cloud);
   // Copies `cloud` into slot `slot`'s staging buffer. The slot must be free: never used, or
-  // collected since, and not the first of a batch with frames still to collect. An error
-  // (nothing staged) for a cloud over max_points or with a ring field of another length.
+  // collected since, and not the first of a batch with frames still to collect (an error,
+  // nothing staged, otherwise). The cloud must fit, as the caller checks (Segmenter::Submit
+  // does): at most max_points points, a ring field empty or one entry a point.
   Status Stage(uint32_t slot, const Cloud& cloud);
   // Records the frames staged in slots first .. first + count - 1 into one command buffer
   // (slot first's; interleaved pass by pass when count > 1) and submits it. Each frame is
@@ -84,17 +87,15 @@ class FramePipeline {
   FramePipeline& operator=(FramePipeline&&) noexcept;
 
  private:
-  struct TableBuffers;  // the tables' device buffers, shared by the slots
-  struct Buffers;       // one slot's frame buffers, at stable addresses (the stages keep pointers)
-  struct Stages;        // the nine stages bound to one slot's buffers
+  struct Stages;  // every stage bound to one slot's buffers
   struct Slot {
     CommandBuffer cmd;
     Fence fence;
     Buffer upload;    // host-visible: points (16 bytes each), then rings (4 bytes each)
     Buffer download;  // host-visible: label_why bytes (four points a word)
     std::vector<TimestampQueries> queries;  // one pool of kQueries, or none without timestamps
-    std::unique_ptr<Buffers> buffers;
-    std::unique_ptr<Stages> stages;  // after buffers: destroyed first
+    std::unique_ptr<FrameBuffers> buffers;  // at a stable address: the stages keep pointers
+    std::unique_ptr<Stages> stages;         // after buffers: destroyed first
     bool busy = false, staged = false, has_ring = false;
     uint32_t n = 0;
     uint32_t lead = 0;  // the slot whose command buffer and fence carry this frame
@@ -107,10 +108,21 @@ class FramePipeline {
   static constexpr uint32_t kQueries = kStageCount + 3;
 
   FramePipeline() = default;
+  // Create's steps, each on a pipeline whose context_, params_ and sizes are set: a
+  // device-local (or `kind`) buffer counted in device_bytes_; the tables' buffers, uploaded;
+  // one slot more; the check of the largest frame's dispatches.
+  Status Allocate(Buffer& buffer, VkDeviceSize bytes, MemoryKind kind = MemoryKind::kDeviceLocal);
+  Status MakeTables(const Tables& tables);
+  Status AddSlot();
+  Status RecordLargestFrame();
+  static Result<std::unique_ptr<Stages>> MakeStages(const Device& device, const FrameBuffers& b);
+  template <typename Fn>
+  static Status ForEachStage(const Stages& s, Fn&& fn);
   // Records slot's frame (slot.n points, slot.has_ring) into cmd, begun by the caller.
   Status RecordFrame(Slot& slot, CommandBuffer& cmd);
-  static Result<std::unique_ptr<Stages>> MakeStages(const Device& device, const TableBuffers& t,
-                                                    Buffers& b);
+  // Collect's parts: the slot's GPU times, and every buffer of its frame.
+  Status ReadTimes(const Slot& slot, FrameTimes& times) const;
+  Status ReadBuffers(const Slot& slot, Frame& out) const;
   void WaitForAll();
 
   const Context* context_ = nullptr;

@@ -3,8 +3,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "host/frame_pipeline.h"
-#include "host/vk/context.h"
+#include "host/cpu_pipeline.h"
+#include "host/vulkan_pipeline.h"
 
 namespace lpir {
 
@@ -40,48 +40,35 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
     context_options.device = options.device;
     context_options.validation = options.validation;
     context_options.gpu_only = options.backend == Backend::kAuto && options.device.empty();
-    vk::Result<vk::Context> context = vk::Context::Create(context_options);
-    std::string failure;
-    if (context.ok()) {
-      context_ = std::make_unique<vk::Context>(std::move(context).value());
-      vk::Result<vk::FramePipeline> pipeline = vk::FramePipeline::Create(
-          *context_, params_, tables_, uint32_t(options_.max_points), slots_);
-      if (pipeline.ok()) {
-        pipeline_ = std::make_unique<vk::FramePipeline>(std::move(pipeline).value());
-        backend_ = Backend::kVulkan;
-        backend_note_ = "Vulkan on " + context_->device().name();
-      } else {
-        failure = pipeline.error().message;
-        context_.reset();
-      }
+    vk::Result<std::unique_ptr<VulkanPipeline>> vulkan = VulkanPipeline::Create(
+        context_options, params_, tables_, uint32_t(options_.max_points), slots_, options.batch);
+    if (vulkan.ok()) {
+      backend_ = Backend::kVulkan;
+      backend_note_ = "Vulkan on " + vulkan.value()->device_name();
+      pipeline_ = std::move(vulkan).value();
     } else {
-      failure = context.error().message;
-    }
-    if (!pipeline_) {
+      const vk::Error& failure = vulkan.error();
       if (options.backend == Backend::kVulkan || !options.device.empty())
-        throw std::runtime_error("the Vulkan backend could not be set up: " + failure);
-      const bool cpu_driver_only = !context.ok() && context.error().cpu_driver_only;
-      const bool no_device = !context.ok() && context.error().no_device;
-      backend_note_ = (cpu_driver_only ? "CPU reference: "
-                       : no_device     ? "CPU reference, no Vulkan device: "
-                                       : "CPU reference, the Vulkan set-up failed: ") +
-                      failure;
+        throw std::runtime_error("the Vulkan backend could not be set up: " + failure.message);
+      backend_note_ = (failure.cpu_driver_only ? "CPU reference: "
+                       : failure.no_device     ? "CPU reference, no Vulkan device: "
+                                               : "CPU reference, the Vulkan set-up failed: ") +
+                      failure.message;
     }
   } else {
     backend_note_ = "CPU reference (asked for)";
   }
-  if (backend_ == Backend::kCpu) cpu_frames_.resize(slots_), cpu_times_.resize(slots_);
-  batch_ = backend_ == Backend::kCpu ? 1u : options.batch;
+  if (!pipeline_) pipeline_ = std::make_unique<CpuPipeline>(params_, tables_, slots_);
+  batch_ = pipeline_->batch();
 }
 
-Segmenter::~Segmenter() = default;  // the pipeline (waiting for its frames) before the context
+Segmenter::~Segmenter() = default;
 Segmenter::Segmenter(Segmenter&&) noexcept = default;
+Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
 
-bool Segmenter::on_cpu_driver() const {
-  return context_ && context_->device().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-}
+bool Segmenter::on_cpu_driver() const { return pipeline_->on_cpu_driver(); }
 
-uint64_t Segmenter::device_bytes() const { return pipeline_ ? pipeline_->device_bytes() : 0; }
+uint64_t Segmenter::device_bytes() const { return pipeline_->device_bytes(); }
 
 void Segmenter::CheckCloud(const Cloud& cloud) const {
   if (cloud.size() > options_.max_points)
@@ -96,11 +83,6 @@ void Segmenter::CheckCloud(const Cloud& cloud) const {
 const Frame& Segmenter::Segment(const Cloud& cloud, FrameTimes* times) {
   if (!pending_.empty())
     throw std::logic_error("Segment called with frames pending: Collect them first");
-  if (backend_ == Backend::kCpu) {  // straight into the frame returned: one set of buffers, reused
-    CheckCloud(cloud);
-    RunReference(cloud, params_, tables_, frame_, times);
-    return frame_;
-  }
   Submit(cloud);
   return Collect(times);
 }
@@ -119,16 +101,10 @@ void Segmenter::Submit(const Cloud& cloud) {
   CheckCloud(cloud);
   if (staged_ == 0) next_slot_ = next_block_ * batch_;
   const uint32_t slot = next_slot_;
-  if (backend_ == Backend::kCpu) {
-    RunReference(cloud, params_, tables_, cpu_frames_[slot], &cpu_times_[slot]);
-  } else {
-    const vk::Status status = pipeline_->Stage(slot, cloud);
-    if (!status.ok()) throw std::runtime_error("Vulkan: " + status.message());
-    ++staged_;
-  }
+  pipeline_->Stage(slot, cloud);
+  ++staged_;
   pending_.push_back(slot);
   next_slot_ = slot + 1;
-  if (backend_ == Backend::kCpu) next_block_ = next_slot_ % slots_;
   if (staged_ == batch_) SubmitStaged();
 }
 
@@ -137,8 +113,7 @@ void Segmenter::SubmitStaged() {
   const uint32_t count = staged_;
   staged_ = 0;
   next_block_ = (first / batch_ + 1) % (slots_ / batch_);
-  const vk::Status status = pipeline_->SubmitStaged(first, count);
-  if (!status.ok()) throw std::runtime_error("Vulkan: " + status.message());
+  pipeline_->SubmitStaged(first, count);
 }
 
 const Frame& Segmenter::Collect(FrameTimes* times) {
@@ -146,13 +121,7 @@ const Frame& Segmenter::Collect(FrameTimes* times) {
   if (staged_ == pending_.size()) SubmitStaged();  // the oldest frame waits in a partial batch
   const uint32_t slot = pending_.front();
   pending_.pop_front();
-  if (backend_ == Backend::kCpu) {
-    std::swap(frame_, cpu_frames_[slot]);  // the buffers go back to the slot for its next frame
-    if (times) *times = cpu_times_[slot];
-    return frame_;
-  }
-  const vk::Status status = pipeline_->Collect(slot, frame_, options_.all_buffers, times);
-  if (!status.ok()) throw std::runtime_error("Vulkan: " + status.message());
+  pipeline_->Collect(slot, frame_, options_.all_buffers, times);
   return frame_;
 }
 

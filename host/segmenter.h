@@ -1,6 +1,6 @@
 // The library's entry point: a Segmenter is made once per sensor and labels clouds one by one,
-// on a Vulkan device (host/frame_pipeline.h) or on the CPU reference (reference_cpu/), with the
-// same bytes either way. Its buffers are allocated once, for options.max_points points; a frame
+// on a Vulkan device (host/vulkan_pipeline.h) or on the CPU reference (host/cpu_pipeline.h), with
+// the same bytes either way. Its buffers are allocated once, for options.max_points points; a frame
 // allocates nothing on the device (and nothing on the host once its vectors have grown).
 #pragma once
 #include <cstddef>
@@ -8,7 +8,6 @@
 #include <deque>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
@@ -18,10 +17,7 @@
 
 namespace lpir {
 
-namespace vk {
-class Context;
-class FramePipeline;
-}  // namespace vk
+class FrameBackend;  // host/frame_backend.h
 
 // The largest cloud a segmenter takes unless told: the profile's max_points, else one point per
 // pixel of the sensor's image and as many again for second returns (beams x width x 2).
@@ -69,7 +65,7 @@ class Segmenter {
   explicit Segmenter(const SensorProfile& sensor, const SegmenterOptions& options = {});
   ~Segmenter();
   Segmenter(Segmenter&&) noexcept;
-  Segmenter& operator=(Segmenter&&) = delete;  // would free the old context before its pipeline
+  Segmenter& operator=(Segmenter&&) noexcept;
 
   // Labels one cloud: Submit then Collect. The frame stays valid until the next Segment or
   // Collect. Throws std::length_error when the cloud holds more than max_points points,
@@ -109,8 +105,8 @@ class Segmenter {
   size_t max_points() const { return options_.max_points; }  // DefaultMaxPoints resolved
 
  private:
-  void CheckCloud(const Cloud& cloud) const;
-  void SubmitStaged();  // the staged frames, as one batch
+  void CheckCloud(const Cloud& cloud) const;  // the one check of every cloud, before Stage
+  void SubmitStaged();                        // the staged frames, as one batch
 
   SensorProfile sensor_;
   SegmenterOptions options_;
@@ -118,15 +114,12 @@ class Segmenter {
   Tables tables_;
   Backend backend_ = Backend::kCpu;
   std::string backend_note_;
-  uint32_t slots_ = 1;       // frames_in_flight * batch
-  uint32_t batch_ = 1;       // slots a block (1 on the CPU)
-  uint32_t staged_ = 0;      // Vulkan: the newest pending frames, staged but not yet submitted
-  uint32_t next_block_ = 0;  // where the next batch starts
-  std::unique_ptr<vk::Context> context_;         // Vulkan only
-  std::unique_ptr<vk::FramePipeline> pipeline_;  // Vulkan only; uses *context_
-  std::vector<Frame> cpu_frames_;                // CPU: the frames computed at Submit, per slot
-  std::vector<FrameTimes> cpu_times_;            // and their times
-  std::deque<uint32_t> pending_;                 // slots submitted, oldest first
+  std::unique_ptr<FrameBackend> pipeline_;  // the backend's twin: CpuPipeline or VulkanPipeline
+  uint32_t slots_ = 1;                      // frames_in_flight * batch
+  uint32_t batch_ = 1;                      // slots a block: pipeline_->batch() (1 on the CPU)
+  uint32_t staged_ = 0;           // the newest pending frames, staged but not yet submitted
+  uint32_t next_block_ = 0;       // where the next batch starts
+  std::deque<uint32_t> pending_;  // slots submitted, oldest first
   uint32_t next_slot_ = 0;
   Frame frame_;  // what Segment and Collect return
 };

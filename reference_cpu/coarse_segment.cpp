@@ -247,17 +247,14 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   return t - int32_t(float(t) > y);
 }
 
-}  // namespace
+// The passes of CoarseSegment, in the contract's order. Each is kept out of line (noinline), so
+// that its loop over the points has the registers to itself.
 
-void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
-  const uint32_t n = f.n, cells = CellCount(p);
-  f.cell_seed_mode.assign(cells, 0u);
-  f.cell_plane.assign(size_t(cells) * 8, 0);
-  f.coarse.resize(n);
-  Scratch& s = scratch;
+// Seed mode per cell (eq. 5), in cell order; cells that may have seeds get the next slot
+// (slot 0: none). Writes cell_seed_mode, s.test and s.cell_of.
+[[gnu::noinline]] void SeedModes(const Params& p, const Tables& t, Frame& f, Scratch& s) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
-
-  // Seed mode per cell (eq. 5); cells that may have seeds get a slot (slot 0: none).
+  const uint32_t cells = CellCount(p);
   const float lambda_near = exact::Ftz0(exact::Ftz0(p.ring_res_near * p.slope_max) + p.seed_margin);
   const float lambda_far = exact::Ftz0(exact::Ftz0(p.ring_res_far * p.slope_max) + p.seed_margin);
   const uint32_t near_cells = p.rings_near * p.sectors_near;
@@ -281,77 +278,84 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
     s.test[size_t(c) + 1] = mode == 2 ? SeedTest{kInf, 0.0f, slot} : SeedTest{hmin, lam, slot};
     s.cell_of.push_back(c);
   }
-  const uint32_t slots = uint32_t(s.cell_of.size());
+}
 
-  // Every point with a cell in mm (0 without one), SSE-wide; the scalar path of the contract if
-  // any coordinate lies beyond 2^30 mm.
+// Every point with a cell in mm (0 without one): x, y and z_t into s.qx, s.qy, s.qz, SSE-wide;
+// the scalar path of the contract if any coordinate lies beyond 2^30 mm.
+[[gnu::noinline]] void ToMillimetres(const Cloud& cloud, const Frame& f, Scratch& s) {
+  const uint32_t n = f.n;
   s.qx.resize(n), s.qy.resize(n), s.qz.resize(n);
-  {
-    const float* __restrict xyzi = cloud.xyzi.data();
-    const float* __restrict zt = f.zt.data();
-    const uint32_t* __restrict point_cell = f.point_cell.data();
-    int32_t* __restrict qx = s.qx.data();
-    int32_t* __restrict qy = s.qy.data();
-    int32_t* __restrict qz = s.qz.data();
-    uint32_t bad = 0;
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t keep = 0u - uint32_t(point_cell[i] != kNone);
-      qx[i] = ToMm(Keep(xyzi[4 * size_t(i)], keep), bad);
-      qy[i] = ToMm(Keep(xyzi[4 * size_t(i) + 1], keep), bad);
-      qz[i] = ToMm(Keep(zt[i], keep), bad);
-    }
-    for (uint32_t i = 0; bad && i < n; ++i) {
-      if (point_cell[i] == kNone) continue;
-      qx[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i)], kMm));
-      qy[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i) + 1], kMm));
-      qz[i] = int32_t(exact::ToFixed(zt[i], kMm));
-    }
+  const float* __restrict xyzi = cloud.xyzi.data();
+  const float* __restrict zt = f.zt.data();
+  const uint32_t* __restrict point_cell = f.point_cell.data();
+  int32_t* __restrict qx = s.qx.data();
+  int32_t* __restrict qy = s.qy.data();
+  int32_t* __restrict qz = s.qz.data();
+  uint32_t bad = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t keep = 0u - uint32_t(point_cell[i] != kNone);
+    qx[i] = ToMm(Keep(xyzi[4 * size_t(i)], keep), bad);
+    qy[i] = ToMm(Keep(xyzi[4 * size_t(i) + 1], keep), bad);
+    qz[i] = ToMm(Keep(zt[i], keep), bad);
   }
+  for (uint32_t i = 0; bad && i < n; ++i) {
+    if (point_cell[i] == kNone) continue;
+    qx[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i)], kMm));
+    qy[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i) + 1], kMm));
+    qz[i] = int32_t(exact::ToFixed(zt[i], kMm));
+  }
+}
 
-  // Seeds, and their sums per cell (int64, order-independent). Points come in runs of one cell
-  // (scan order): a run's sums stay in registers and go to the cell's when the run ends.
-  s.sums.assign(slots, SeedSums{});
+// The seed test of every point (s.seed), and the seeds' sums per slot (s.sums, int64,
+// order-independent). Points come in runs of one cell (scan order): a run's sums stay in
+// registers and go to the cell's when the run ends.
+[[gnu::noinline]] void SumSeeds(const Frame& f, Scratch& s) {
+  const uint32_t n = f.n;
+  s.sums.assign(s.cell_of.size(), SeedSums{});
   s.seed.resize(n);
-  {
-    const float* __restrict zt = f.zt.data();
-    const uint32_t* __restrict point_cell = f.point_cell.data();
-    const int32_t* __restrict qx = s.qx.data();
-    const int32_t* __restrict qy = s.qy.data();
-    const int32_t* __restrict qz = s.qz.data();
-    const SeedTest* __restrict test = s.test.data();
-    SeedSums* __restrict sums = s.sums.data();
-    uint8_t* __restrict seed = s.seed.data();
-    SeedTest st = test[0];
-    uint32_t run_cell = kNone;
-    int64_t rn = 0, rx = 0, ry = 0, rz = 0;
-    uint64_t rxx = 0, rxy = 0, rxz = 0, ryy = 0, ryz = 0, rzz = 0;
-    auto flush = [&] {
-      SeedSums& a = sums[st.slot];
-      a.n += rn, a.x += rx, a.y += ry, a.z += rz;
-      a.xx += rxx, a.xy += rxy, a.xz += rxz, a.yy += ryy, a.yz += ryz, a.zz += rzz;
-      rn = rx = ry = rz = 0;
-      rxx = rxy = rxz = ryy = ryz = rzz = 0;
-    };
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t c = point_cell[i];
-      if (c != run_cell) {
-        flush();
-        run_cell = c;
-        st = test[c + 1u];
-      }
-      const float dz = exact::Ftz0(zt[i] - st.h);
-      const bool is_seed = dz <= st.lambda;
-      seed[i] = is_seed;
-      if (!is_seed) continue;
-      const int64_t x = qx[i], y = qy[i], z = qz[i];
-      rn += 1, rx += x, ry += y, rz += z;
-      rxx += uint64_t(x * x), rxy += uint64_t(x * y), rxz += uint64_t(x * z);
-      ryy += uint64_t(y * y), ryz += uint64_t(y * z), rzz += uint64_t(z * z);
+  const float* __restrict zt = f.zt.data();
+  const uint32_t* __restrict point_cell = f.point_cell.data();
+  const int32_t* __restrict qx = s.qx.data();
+  const int32_t* __restrict qy = s.qy.data();
+  const int32_t* __restrict qz = s.qz.data();
+  const SeedTest* __restrict test = s.test.data();
+  SeedSums* __restrict sums = s.sums.data();
+  uint8_t* __restrict seed = s.seed.data();
+  SeedTest st = test[0];
+  uint32_t run_cell = kNone;
+  int64_t rn = 0, rx = 0, ry = 0, rz = 0;
+  uint64_t rxx = 0, rxy = 0, rxz = 0, ryy = 0, ryz = 0, rzz = 0;
+  auto flush = [&] {
+    SeedSums& a = sums[st.slot];
+    a.n += rn, a.x += rx, a.y += ry, a.z += rz;
+    a.xx += rxx, a.xy += rxy, a.xz += rxz, a.yy += ryy, a.yz += ryz, a.zz += rzz;
+    rn = rx = ry = rz = 0;
+    rxx = rxy = rxz = ryy = ryz = rzz = 0;
+  };
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t c = point_cell[i];
+    if (c != run_cell) {
+      flush();
+      run_cell = c;
+      st = test[c + 1u];
     }
-    flush();
+    const float dz = exact::Ftz0(zt[i] - st.h);
+    const bool is_seed = dz <= st.lambda;
+    seed[i] = is_seed;
+    if (!is_seed) continue;
+    const int64_t x = qx[i], y = qy[i], z = qz[i];
+    rn += 1, rx += x, ry += y, rz += z;
+    rxx += uint64_t(x * x), rxy += uint64_t(x * y), rxz += uint64_t(x * z);
+    ryy += uint64_t(y * y), ryz += uint64_t(y * z), rzz += uint64_t(z * z);
   }
+  flush();
+}
 
-  // Mean, centred moments and normal per cell (eqs. 6-7).
+// Mean, centred moments and normal per slot with seeds (eqs. 6-7) into cell_plane (all but the
+// threshold); the slots whose normal is flat enough get their s.fit and s.ground, the others
+// threshold -1 (no ground).
+[[gnu::noinline]] void FitPlanes(const Params& p, Frame& f, Scratch& s) {
+  const uint32_t cells = CellCount(p), slots = uint32_t(s.cell_of.size());
   const int64_t min_z2 = exact::ToFixed(p.normal_min_z2, float(kQ * kQ));
   s.fit.assign(size_t(cells) + 1, Fit{0, 0, 0, 0});
   s.ground.assign(slots, 0);
@@ -381,43 +385,48 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
         plane[0] * int64_t(plane[3]) + plane[1] * int64_t(plane[4]) + plane[2] * int64_t(plane[5])};
     s.ground[k] = 1;
   }
+}
 
-  // Distances in mm * 2^14 of every point (0 in cells without ground); the seeds' sum per cell,
-  // again kept in a register over a run of one cell.
-  s.dist_sum.assign(size_t(cells) + 1, 0);
+// Distance in mm * 2^14 of every point to its cell's plane (s.dist; 0 in cells without ground),
+// and the seeds' sum per cell (s.dist_sum), again kept in a register over a run of one cell.
+[[gnu::noinline]] void SumDistances(const Params& p, const Frame& f, Scratch& s) {
+  const uint32_t n = f.n;
+  s.dist_sum.assign(size_t(CellCount(p)) + 1, 0);
   s.dist.resize(n);
-  {
-    const int32_t* __restrict qx = s.qx.data();
-    const int32_t* __restrict qy = s.qy.data();
-    const int32_t* __restrict qz = s.qz.data();
-    const uint32_t* __restrict point_cell = f.point_cell.data();
-    const uint8_t* __restrict seed = s.seed.data();
-    const Fit* __restrict fit = s.fit.data();
-    int64_t* __restrict dist_sum = s.dist_sum.data();
-    int64_t* __restrict dist = s.dist.data();
-    uint32_t run_cell = kNone;
-    Fit g = fit[0];
-    int64_t run_sum = 0;
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t c = point_cell[i];
-      if (c != run_cell) {
-        dist_sum[run_cell + 1u] += run_sum;
-        run_sum = 0;
-        run_cell = c;
-        g = fit[c + 1u];
-      }
-      int64_t d = g.nx * qx[i] + g.ny * qy[i] + g.nz * qz[i] - g.offset;
-      d = d < 0 ? -d : d;
-      dist[i] = d;
-      run_sum += d & -int64_t(seed[i]);
+  const int32_t* __restrict qx = s.qx.data();
+  const int32_t* __restrict qy = s.qy.data();
+  const int32_t* __restrict qz = s.qz.data();
+  const uint32_t* __restrict point_cell = f.point_cell.data();
+  const uint8_t* __restrict seed = s.seed.data();
+  const Fit* __restrict fit = s.fit.data();
+  int64_t* __restrict dist_sum = s.dist_sum.data();
+  int64_t* __restrict dist = s.dist.data();
+  uint32_t run_cell = kNone;
+  Fit g = fit[0];
+  int64_t run_sum = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t c = point_cell[i];
+    if (c != run_cell) {
+      dist_sum[run_cell + 1u] += run_sum;
+      run_sum = 0;
+      run_cell = c;
+      g = fit[c + 1u];
     }
-    dist_sum[run_cell + 1u] += run_sum;
+    int64_t d = g.nx * qx[i] + g.ny * qy[i] + g.nz * qz[i] - g.offset;
+    d = d < 0 ? -d : d;
+    dist[i] = d;
+    run_sum += d & -int64_t(seed[i]);
   }
+  dist_sum[run_cell + 1u] += run_sum;
+}
 
-  // Threshold: mean |distance| of the seeds.
+// Threshold per slot with ground: max(plane_dist_floor, plane_dist_scale * mean seed |distance|)
+// into cell_plane and s.thr (-1 for every other cell).
+[[gnu::noinline]] void Thresholds(const Params& p, Frame& f, Scratch& s) {
+  const uint32_t slots = uint32_t(s.cell_of.size());
   const int64_t floor_q = exact::ToFixed(p.plane_dist_floor, kDistUnit);
   const int64_t scale_q = exact::ToFixed(p.plane_dist_scale, 256.0f);
-  s.thr.assign(size_t(cells) + 1, -1);
+  s.thr.assign(size_t(CellCount(p)) + 1, -1);
   for (uint32_t k = 1; k < slots; ++k) {
     if (!s.ground[k]) continue;
     int32_t* plane = &f.cell_plane[size_t(s.cell_of[k]) * 8];
@@ -426,16 +435,34 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
     plane[6] = int32_t(std::min<int64_t>(std::max(floor_q, mean_scaled), 0x7FFFFFFF));
     s.thr[size_t(s.cell_of[k]) + 1] = plane[6];
   }
+}
 
-  // Coarse label per point: distances are >= 0, so a threshold of -1 (no seeds, no ground) or
-  // any negative one says 0.
-  {
-    const uint32_t* __restrict point_cell = f.point_cell.data();
-    const int64_t* __restrict dist = s.dist.data();
-    const int64_t* __restrict thr = s.thr.data();
-    uint32_t* __restrict coarse = f.coarse.data();
-    for (uint32_t i = 0; i < n; ++i) coarse[i] = dist[i] <= thr[point_cell[i] + 1u];
-  }
+// Coarse label per point: distances are >= 0, so a threshold of -1 (no seeds, no ground) or any
+// negative one says 0.
+[[gnu::noinline]] void Label(Frame& f, const Scratch& s) {
+  const uint32_t n = f.n;
+  const uint32_t* __restrict point_cell = f.point_cell.data();
+  const int64_t* __restrict dist = s.dist.data();
+  const int64_t* __restrict thr = s.thr.data();
+  uint32_t* __restrict coarse = f.coarse.data();
+  for (uint32_t i = 0; i < n; ++i) coarse[i] = dist[i] <= thr[point_cell[i] + 1u];
+}
+
+}  // namespace
+
+void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
+  const uint32_t cells = CellCount(p);
+  f.cell_seed_mode.assign(cells, 0u);
+  f.cell_plane.assign(size_t(cells) * 8, 0);
+  f.coarse.resize(f.n);
+  Scratch& s = scratch;
+  SeedModes(p, t, f, s);
+  ToMillimetres(cloud, f, s);
+  SumSeeds(f, s);
+  FitPlanes(p, f, s);
+  SumDistances(p, f, s);
+  Thresholds(p, f, s);
+  Label(f, s);
 }
 
 }  // namespace lpir

@@ -1,8 +1,11 @@
-// Every buffer the pipeline writes, stage by stage, in the layout the shaders use. Tests compare
-// these byte for byte between backends; the pictures read them.
+// Every buffer the pipeline writes, stage by stage, in the layout the shaders use
+// (reference_cpu/stage_table.def lists them). Tests compare them byte for byte between the
+// backends; the pictures read them.
 #pragma once
 #include <cstdint>
 #include <vector>
+
+#include "reference_cpu/params.h"
 
 namespace lpir {
 
@@ -26,48 +29,52 @@ constexpr uint8_t PackLabelWhy(uint8_t label, uint8_t why) { return uint8_t(labe
 constexpr uint8_t LabelOf(uint8_t label_why) { return label_why & 1u; }
 constexpr uint8_t WhyOf(uint8_t label_why) { return uint8_t(label_why >> 1); }
 
+// What a buffer's items are: a frame's n points, its width * beams pixels (row-major), or its
+// CellCount(p) grid cells.
+enum class Per { kPoint, kPixel, kCell };
+
+// Items of a `per` buffer in a frame of n points under p.
+inline uint64_t ItemsOf(Per per, uint64_t n, const Params& p) {
+  return per == Per::kPoint   ? n
+         : per == Per::kPixel ? uint64_t(p.width) * p.beams
+                              : uint64_t(CellCount(p));
+}
+
+// The stage table's no-op: a consumer's macro for the kinds of lines it does not use
+// (reference_cpu/stage_table.def).
+#define LPIR_IGNORE(...)
+
+// Every buffer of every stage: a std::vector per LPIR_BUFFER and LPIR_HOST_BUFFER line of
+// reference_cpu/stage_table.def, in its order, named, typed and sized (items x stride) as there.
 struct Frame {
   uint32_t n = 0;  // points
-
-  // 1 prepare: per point.
-  std::vector<uint32_t> flags;  // kPoint* bits
-  std::vector<float> zt;        // corrected height, eq. 3
-  std::vector<float> r2;        // squared planar range x^2 + y^2
-  std::vector<float> inten;     // intensity * intensity_scale
-
-  // 2 project: per point and per pixel (row-major, width columns).
-  std::vector<uint32_t> point_pixel;  // v * width + u, or kNone when invalid
-  std::vector<uint32_t> pixel_key;    // ordered key of the nearest r2 on the pixel, kNone empty
-  std::vector<uint32_t> pixel_point;  // winning point (nearest, then lowest index), kNone empty
-
-  // 3 grid reduce: per point and per cell.
-  std::vector<uint32_t> point_cell;  // cell index, kNone for invalid and noise points
-  std::vector<uint32_t> cell_zmin;   // ordered key of min z_t, kNone when empty
-  std::vector<uint32_t> cell_zmax;   // ordered key of max z_t, 0 when empty
-  std::vector<uint32_t> cell_count;
-
-  // 4 coarse segment: per cell and per point.
-  std::vector<uint32_t> cell_seed_mode;  // 0 no seeds, 1 lowest points, 2 whole cell (eq. 5)
-  std::vector<int32_t> cell_plane;       // per cell 8 ints: n (Q14 unit normal x,y,z), mean (mm
-                                         // x,y,z), threshold (mm * 2^14; -1: no ground), seeds
-  std::vector<uint32_t> coarse;          // per point 1 ground, 0 non-ground
-
-  // 5 feature maps: per pixel (empty pixels hold 0).
-  std::vector<uint32_t> pixel_filled;  // 1 measured, 2 hole filled by morphology, 0 empty
-  std::vector<float> f_range, f_inten, f_height, f_slope, f_edge_l, f_edge_r, f_varz, f_vari;
-
-  // 6 classify, 7 fuse, 8 grow: per pixel class kPix*.
-  std::vector<uint32_t> pixel_class;
-  std::vector<uint32_t> pixel_fused;
-  std::vector<uint32_t> pixel_grown;  // after growing, before the connectivity constraint
-  std::vector<uint32_t> pixel_comp;   // component label (lowest pixel index) of ground pixels
-  std::vector<uint32_t> pixel_label;  // final, kPixGround or kPixNonGround (kPixEmpty when empty)
-
-  // 9 back-project: per point.
-  std::vector<uint8_t> label;      // 1 ground, 0 non-ground
-  std::vector<uint8_t> why;        // kWhy*
-  std::vector<uint8_t> label_why;  // PackLabelWhy(label, why): the bytes the GPU writes, and all
-                                   // that a frame downloads (four points a word)
+#define LPIR_STAGE LPIR_IGNORE
+#define LPIR_BUFFER(stage, name, type, per, stride) std::vector<type> name;
+#define LPIR_HOST_BUFFER(stage, name, type, per, stride) std::vector<type> name;
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
 };
+
+// One buffer of Frame, as its table line gives it.
+struct BufferInfo {
+  const char* stage;  // the stage that writes it
+  const char* name;   // its Frame member
+  Per per;
+  uint32_t stride;  // elements per item
+  bool on_device;   // an LPIR_BUFFER line: a device buffer of the same layout too
+};
+
+// Calls fn(info, frames.name...) for every buffer of Frame in table order: the same member of
+// each frame, so that one call compares, checks or reads a buffer whatever the stage.
+template <typename Fn, typename... Frames>
+void ForEachBuffer(Fn&& fn, Frames&... frames) {
+#define LPIR_STAGE LPIR_IGNORE
+#define LPIR_BUFFER(stage, name, type, per, stride) \
+  fn(BufferInfo{#stage, #name, Per::per, stride, true}, frames.name...);
+#define LPIR_HOST_BUFFER(stage, name, type, per, stride) \
+  fn(BufferInfo{#stage, #name, Per::per, stride, false}, frames.name...);
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
+}
 
 }  // namespace lpir

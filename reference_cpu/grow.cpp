@@ -80,8 +80,8 @@ inline void Union(uint32_t* __restrict up, uint32_t a, uint32_t b) {
     up[a] = b;
 }
 
-// The growing state of every pixel (separate functions, so that the loops vectorise: a byte
-// store in Grow could alias the pointers its lambdas capture).
+// The growing state of every pixel (ToState and WriteOutputs take __restrict pointers, so that
+// their loops vectorise: a byte store may alias any pointer not marked so).
 void ToState(const uint32_t* __restrict fused, uint8_t* __restrict s, uint32_t pixels) {
   for (uint32_t pix = 0; pix < pixels; ++pix) {
     const uint32_t c = fused[pix];
@@ -103,36 +103,82 @@ void WriteOutputs(const uint32_t* __restrict fused, const uint8_t* __restrict s,
   }
 }
 
-}  // namespace
+// Growing, driven by the (few) unknown pixels rather than the (many) seeds: an unknown pixel
+// that a ground neighbour may step to becomes ground, and a depth-first search grows on from it.
+// Every pair (ground, unknown neighbour) is tested, when the scan reaches the unknown pixel or
+// when the ground pixel is grown, so the search ends at the fixed point. Each neighbour is named
+// by hand (columns wrap, rows do not; `moved` when its column differs), without dividing by the
+// width.
+class Growing {
+ public:
+  Growing(const Params& p, const Frame& f, uint8_t* s)
+      : p_(p),
+        w_(p.width),
+        h_(p.beams),
+        inten_(f.f_inten.data()),
+        height_(f.f_height.data()),
+        range_(f.f_range.data()),
+        s_(s) {}
 
-void Grow(const Params& p, Frame& f) {
-  const uint32_t w = p.width, h = p.beams, pixels = w * h;
-  const uint32_t* __restrict fused = f.pixel_fused.data();
-  const float* __restrict inten = f.f_inten.data();
-  const float* __restrict height = f.f_height.data();
-  const float* __restrict range = f.f_range.data();
-  state.resize(pixels);
-  uint8_t* __restrict s = state.data();
-  ToState(fused, s, pixels);
+  // Visits every unknown pixel in scan order (eight at a time where a word holds none).
+  void Scan() {
+    stack.clear();
+    for (uint32_t v = 0; v < h_; ++v) {
+      const uint8_t* row = s_ + v * w_;
+      uint32_t u = 0;
+      for (; u + 8 <= w_; u += 8)
+        if (Word(row + u) & (kBytes * kUnknown))
+          for (uint32_t j = u; j < u + 8; ++j)
+            if (row[j] == kUnknown) Visit(v, j);
+      for (; u < w_; ++u)
+        if (row[u] == kUnknown) Visit(v, u);
+    }
+  }
 
-  // Growing, driven by the (few) unknown pixels rather than the (many) seeds: an unknown pixel
-  // that a ground neighbour may step to becomes ground, and a depth-first search grows on from
-  // it. Every pair (ground, unknown neighbour) is tested, when the scan reaches the unknown pixel
-  // or when the ground pixel is grown, so the search ends at the fixed point.
-  stack.clear();
-  // Grows on from the pixels on the stack until it is empty. Each neighbour is named by hand
-  // (columns wrap, rows do not; `moved` when its column differs), without dividing by the width.
-  auto drain = [&] {
+ private:
+  // Tests the unknown pixel (v, u) against its ground neighbours; grows from it if one passes.
+  // The scan reads each pixel's state when it reaches it: pixels grown meanwhile are skipped.
+  void Visit(uint32_t v, uint32_t u) {
+    const uint32_t w = w_, h = h_;
+    const uint8_t* s = s_;
+    const uint32_t at = v * w, r = at + u;
+    const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
+    const bool left = ul != u, right = ur != u;
+    const float ir = inten_[r], zr = height_[r], rr = range_[r];
+    auto from = [&](uint32_t q, bool moved) {
+      if (s[q] != kGround) return false;
+      return StepAllowed(p_, inten_[q], height_[q], range_[q], ir, zr, rr, moved);
+    };
+    bool grows = from(at + ul, left) || from(at + ur, right);
+    if (!grows && v > 0) {
+      const uint32_t above = at - w;
+      grows = from(above + ul, left) || from(above + u, false) || from(above + ur, right);
+    }
+    if (!grows && v + 1 < h) {
+      const uint32_t below = at + w;
+      grows = from(below + ul, left) || from(below + u, false) || from(below + ur, right);
+    }
+    if (grows) {
+      s_[r] = kGround;
+      stack.push_back({r, v});
+      Drain();
+    }
+  }
+
+  // Grows on from the pixels on the stack until it is empty.
+  void Drain() {
+    const uint32_t w = w_, h = h_;
+    uint8_t* s = s_;
     while (!stack.empty()) {
       const Pixel q = stack.back();
       stack.pop_back();
       const uint32_t v = q.v, at = v * w, u = q.pix - at;
       const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
       const bool left = ul != u, right = ur != u;
-      const float iq = inten[q.pix], zq = height[q.pix], rq = range[q.pix];
+      const float iq = inten_[q.pix], zq = height_[q.pix], rq = range_[q.pix];
       auto to = [&](uint32_t r, uint32_t rv, bool moved) {
         if (s[r] != kUnknown) return;
-        if (StepAllowed(p, iq, zq, rq, inten[r], height[r], range[r], moved)) {
+        if (StepAllowed(p_, iq, zq, rq, inten_[r], height_[r], range_[r], moved)) {
           s[r] = kGround;
           stack.push_back({r, rv});
         }
@@ -147,47 +193,19 @@ void Grow(const Params& p, Frame& f) {
         to(below + ul, v + 1, left), to(below + u, v + 1, false), to(below + ur, v + 1, right);
       }
     }
-  };
-  // Tests the unknown pixel (v, u) against its ground neighbours; grows from it if one passes.
-  // The scan reads each pixel's state when it reaches it: pixels grown meanwhile are skipped.
-  auto visit = [&](uint32_t v, uint32_t u) {
-    const uint32_t at = v * w, r = at + u;
-    const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
-    const bool left = ul != u, right = ur != u;
-    const float ir = inten[r], zr = height[r], rr = range[r];
-    auto from = [&](uint32_t q, bool moved) {
-      if (s[q] != kGround) return false;
-      return StepAllowed(p, inten[q], height[q], range[q], ir, zr, rr, moved);
-    };
-    bool grows = from(at + ul, left) || from(at + ur, right);
-    if (!grows && v > 0) {
-      const uint32_t above = at - w;
-      grows = from(above + ul, left) || from(above + u, false) || from(above + ur, right);
-    }
-    if (!grows && v + 1 < h) {
-      const uint32_t below = at + w;
-      grows = from(below + ul, left) || from(below + u, false) || from(below + ur, right);
-    }
-    if (grows) {
-      s[r] = kGround;
-      stack.push_back({r, v});
-      drain();
-    }
-  };
-  for (uint32_t v = 0; v < h; ++v) {
-    const uint8_t* row = s + v * w;
-    uint32_t u = 0;
-    for (; u + 8 <= w; u += 8)
-      if (Word(row + u) & (kBytes * kUnknown))
-        for (uint32_t j = u; j < u + 8; ++j)
-          if (row[j] == kUnknown) visit(v, j);
-    for (; u < w; ++u)
-      if (row[u] == kUnknown) visit(v, u);
   }
 
-  // Connectivity on runs of ground pixels: runs touching on the same row (across the wrap) or on
-  // adjacent rows (8-connected, across the wrap too) are joined; a component's lowest pixel is
-  // the start of its lowest run.
+  const Params& p_;
+  const uint32_t w_, h_;
+  const float* const inten_;
+  const float* const height_;
+  const float* const range_;
+  uint8_t* const s_;
+};
+
+// The runs of ground pixels of every row, row by row (row_runs[v] .. row_runs[v + 1] - 1 are row
+// v's), skipping eight pixels at a time where a word is all in or all out of the current run.
+void FindRuns(const uint8_t* s, uint32_t w, uint32_t h) {
   runs.clear();
   row_runs.resize(h + 1);
   for (uint32_t v = 0; v < h; ++v) {
@@ -212,6 +230,12 @@ void Grow(const Params& p, Frame& f) {
     if (in_run) runs.push_back({row + u0, u0, w - 1});
   }
   row_runs[h] = uint32_t(runs.size());
+}
+
+// Joins the runs that touch: on the same row across the wrap, on adjacent rows (8-connected,
+// across the wrap too). Leaves every run's root in parent (the component's lowest run) and each
+// root's pixel count in comp_size.
+void JoinRuns(uint32_t w, uint32_t h) {
   const uint32_t n = uint32_t(runs.size());
   parent.resize(n);
   comp_size.assign(n, 0);
@@ -246,21 +270,40 @@ void Grow(const Params& p, Frame& f) {
     up[k] = Find(up, k);  // roots come first, so one pass flattens every set
     comp_size[up[k]] += run[k].u1 - run[k].u0 + 1;
   }
+}
 
-  // The outputs in one pass (unknown pixels left over are non-ground), then the runs.
-  f.pixel_grown.resize(pixels);
-  f.pixel_comp.resize(pixels);
-  f.pixel_label.resize(pixels);
-  uint32_t* __restrict grown = f.pixel_grown.data();
+// Each run's pixels get their component's label (the start of its root run) in pixel_comp, and
+// non-ground in pixel_label when the component has fewer than min_component pixels.
+void LabelComponents(const Params& p, Frame& f) {
   uint32_t* __restrict comp = f.pixel_comp.data();
   uint32_t* __restrict label = f.pixel_label.data();
-  WriteOutputs(fused, s, pixels, grown, label, comp);
+  const uint32_t* __restrict up = parent.data();
+  const Run* __restrict run = runs.data();
+  const uint32_t n = uint32_t(runs.size());
   for (uint32_t k = 0; k < n; ++k) {
     const uint32_t root = up[k], len = run[k].u1 - run[k].u0 + 1;
     std::fill(comp + run[k].start, comp + run[k].start + len, run[root].start);
     if (comp_size[root] < p.min_component)
       std::fill(label + run[k].start, label + run[k].start + len, kPixNonGround);
   }
+}
+
+}  // namespace
+
+void Grow(const Params& p, Frame& f) {
+  const uint32_t w = p.width, h = p.beams, pixels = w * h;
+  state.resize(pixels);
+  uint8_t* s = state.data();
+  ToState(f.pixel_fused.data(), s, pixels);
+  Growing(p, f, s).Scan();
+  FindRuns(s, w, h);
+  JoinRuns(w, h);
+  f.pixel_grown.resize(pixels);
+  f.pixel_comp.resize(pixels);
+  f.pixel_label.resize(pixels);
+  WriteOutputs(f.pixel_fused.data(), s, pixels, f.pixel_grown.data(), f.pixel_label.data(),
+               f.pixel_comp.data());
+  LabelComponents(p, f);
 }
 
 }  // namespace lpir

@@ -70,7 +70,8 @@ Params DefaultParams() {
   p.sectors_far = 64;
   p.ring_res_near = 2.0f;
   p.ring_res_far = 4.0f;
-  // Stages 4-9: tuned on the two labelled scans, then rounded (docs/decisions/params.md).
+  // Stages 4-9: the measurements behind each default are in docs/decisions/params.md and the
+  // stages' pages beside it.
   p.slope_max = 0.10f;
   p.seed_margin = 0.06f;
   p.h_athr = 0.12f;

@@ -5,10 +5,28 @@
 #include "reference_cpu/stages.h"
 
 namespace lpir {
+namespace {
 
-const char* const kStageNames[kStageCount] = {"prepare",        "project",      "grid_reduce",
-                                              "coarse_segment", "feature_maps", "classify_pixels",
-                                              "fuse",           "grow",         "back_project"};
+// A stage's call with the arguments its parameter list takes: the four lists a table line may
+// give (reference_cpu/stage_table.def).
+void Call(void (*stage)(const Cloud&, const Params&, Frame&), const Cloud& cloud, const Params& p,
+          const Tables&, Frame& f) {
+  stage(cloud, p, f);
+}
+void Call(void (*stage)(const Cloud&, const Params&, const Tables&, Frame&), const Cloud& cloud,
+          const Params& p, const Tables& t, Frame& f) {
+  stage(cloud, p, t, f);
+}
+void Call(void (*stage)(const Params&, const Tables&, Frame&), const Cloud&, const Params& p,
+          const Tables& t, Frame& f) {
+  stage(p, t, f);
+}
+void Call(void (*stage)(const Params&, Frame&), const Cloud&, const Params& p, const Tables&,
+          Frame& f) {
+  stage(p, f);
+}
+
+}  // namespace
 
 void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
                   FrameTimes* times) {
@@ -27,15 +45,11 @@ void RunReference(const Cloud& cloud, const Params& params, const Tables& tables
     t0 = t1;
     ++stage;
   };
-  Prepare(cloud, p, frame), lap();
-  Project(cloud, p, tables, frame), lap();
-  GridReduce(p, tables, frame), lap();
-  CoarseSegment(cloud, p, tables, frame), lap();
-  FeatureMaps(p, frame), lap();
-  ClassifyPixels(p, frame), lap();
-  Fuse(p, frame), lap();
-  Grow(p, frame), lap();
-  BackProject(p, frame), lap();
+#define LPIR_STAGE(name, Type, parameters) Call(Type, cloud, p, tables, frame), lap();
+#define LPIR_BUFFER LPIR_IGNORE
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
 }
 
 }  // namespace lpir

@@ -1,6 +1,7 @@
-// Stages 1-9 of the method (SPEC section 2), one file each: reference_cpu/<stage>.cpp. Each is a
-// pure function of the cloud, the parameters, the host tables and earlier stages' buffers in
-// `frame`, and (re)writes only its own buffers. Their GPU twins are shaders/<stage>.comp.
+// The stages of the method (SPEC section 2), one file each: reference_cpu/<stage>.cpp, declared
+// here from reference_cpu/stage_table.def. Each is a pure function of the cloud, the parameters,
+// the host tables and earlier stages' buffers in the frame, and (re)writes only its own buffers.
+// Their GPU twins are shaders/<stage>.comp.
 #pragma once
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
@@ -8,15 +9,11 @@
 
 namespace lpir {
 
-void Prepare(const Cloud& cloud, const Params& p, Frame& f);                         // 1
-void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f);        // 2
-void GridReduce(const Params& p, const Tables& t, Frame& f);                         // 3
-void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f);  // 4
-void FeatureMaps(const Params& p, Frame& f);                                         // 5
-void ClassifyPixels(const Params& p, Frame& f);                                      // 6
-void Fuse(const Params& p, Frame& f);                                                // 7
-void Grow(const Params& p, Frame& f);                                                // 8
-void BackProject(const Params& p, Frame& f);                                         // 9
+#define LPIR_STAGE(name, Type, parameters) void Type parameters;
+#define LPIR_BUFFER LPIR_IGNORE
+#define LPIR_HOST_BUFFER LPIR_IGNORE
+#define LPIR_SCRATCH LPIR_IGNORE
+#include "reference_cpu/stage_table.def"
 
 // Exact geometric lookups shared by the stages and their tests.
 uint32_t ColumnOf(float x, float y, const float* column_dir, uint32_t width);  // eq. 1, u

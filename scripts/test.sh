@@ -2,7 +2,12 @@
 # The whole test suite in one command: installs what is missing, checks that every C++ source
 # is as clang-format leaves it (.clang-format; `git ls-files '*.cpp' '*.h' | xargs clang-format
 # -i` fixes it), then
-#   1. builds everything (Release, Ninja, ./build or $LPIR_BUILD_DIR) and runs ctest;
+#   1. builds everything (Release, Ninja, ./build or $LPIR_BUILD_DIR) and runs ctest; then the
+#      package check: a library-only build (LPIR_BUILD_TESTS/BENCH/APPS=OFF; ./build-pkg or
+#      $LPIR_PKG_BUILD_DIR, through ccache when installed) installed to a temporary prefix,
+#      examples/cpp built against that prefix alone, its labels of a KITTI scan (a simulated one
+#      without ../shared/data) compared byte for byte with `lpir-gseg segment --backend cpu`'s,
+#      from the CPU reference and from Vulkan on lavapipe;
 #   2. builds everything again under AddressSanitizer + UBSan (LPIR_SANITIZE=ON, -O1, no
 #      benchmarks; ./build-asan or $LPIR_ASAN_BUILD_DIR) and runs ctest there. With clang++ when
 #      installed (a third less build time than g++ on 2 cores, and a second compiler's view:
@@ -29,6 +34,7 @@ jobs="$(nproc 2> /dev/null || echo 2)"
 build_dir="${LPIR_BUILD_DIR:-${root}/build}"
 asan_dir="${LPIR_ASAN_BUILD_DIR:-${root}/build-asan}"
 fuzz_dir="${LPIR_FUZZ_BUILD_DIR:-${root}/build-fuzz}"
+pkg_dir="${LPIR_PKG_BUILD_DIR:-${root}/build-pkg}"
 say() { echo "[test] $*"; }
 failed=()
 summary=()
@@ -62,11 +68,82 @@ format_check() {
 }
 step "format" format_check || true
 
+# package_check: the installed C++ package (docs/usage.md, The library) against the CLI of step 1,
+# in a temporary folder (removed after) holding the prefix, the example's build and the labels.
+package_check() {
+  local work rc=0
+  work="$(mktemp -d)"
+  package_steps "${work}" || rc=1
+  rm -rf "${work}"
+  return "${rc}"
+}
+package_steps() {
+  local work="$1" prefix="$1/prefix" cli scan icd launcher=() rc=0
+  cli="$(cd "${build_dir}" && pwd)/lpir-gseg"
+  if [[ -z "${CMAKE_CXX_COMPILER_LAUNCHER:-}" ]] && command -v ccache > /dev/null 2>&1; then
+    launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  fi
+  # The prefix is compiled into the library (DefaultSensorsDir()), so it is set when configuring.
+  if ! {
+    cmake -S "${root}" -B "${pkg_dir}" -G Ninja -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" \
+      -DLPIR_BUILD_TESTS=OFF -DLPIR_BUILD_BENCH=OFF -DLPIR_BUILD_APPS=OFF \
+      -DCMAKE_INSTALL_PREFIX="${prefix}" &&
+      cmake --build "${pkg_dir}" --parallel "${jobs}" && cmake --install "${pkg_dir}"
+  } > "${work}/package.log" 2>&1; then
+    cat "${work}/package.log"
+    return 1
+  fi
+  # A library-only configuration never looks for the apps', tests' or benchmarks' packages.
+  if grep -E '^(OpenCV_core_LIBRARY|PNG_LIBRARY_RELEASE|GTest_DIR|benchmark_DIR)[:=]' \
+    "${pkg_dir}/CMakeCache.txt"; then
+    say "the library-only configuration looked for the packages above"
+    return 1
+  fi
+  # The example sees the prefix only: no package registry, the source tree on none of its paths.
+  if ! {
+    cmake -S "${root}/examples/cpp" -B "${work}/example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="${prefix}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF &&
+      cmake --build "${work}/example"
+  } > "${work}/example.log" 2>&1; then
+    cat "${work}/example.log"
+    return 1
+  fi
+  scan="${LPIR_DATA_DIR:-${root}/../shared/data}/kitti/00/velodyne/000000.bin"
+  if [[ ! -f "${scan}" ]]; then
+    say "no ${scan}: a simulated HDL-64E scan instead"
+    scan="${work}/000000.bin"
+    "${cli}" simulate --sensor hdl64e --seed 1 --out "${scan}" \
+      --labels "${work}/truth.label" > /dev/null || return 1
+  fi
+  (cd "${work}" && env -u LPIR_SENSORS_DIR "${cli}" segment "${scan}" \
+    --sensor hdl64e --backend cpu --out cli --quiet > /dev/null) || return 1
+  # A profile that only the prefix holds: found only when DefaultSensorsDir() is the installed one.
+  cp "${prefix}/share/lpir_gseg/sensors/hdl64e.txt" \
+    "${prefix}/share/lpir_gseg/sensors/installed-hdl64e.txt" || return 1
+  if ! (cd "${work}" && env -u LPIR_SENSORS_DIR example/segment_file "${scan}" installed-hdl64e \
+    cpu.label cpu && cmp cpu.label cli/000000.label); then
+    rc=1
+  fi
+  icd="$(compgen -G '/usr/share/vulkan/icd.d/lvp_icd.*.json' | head -n 1 || true)"
+  if [[ -n "${icd}" ]]; then
+    if ! (cd "${work}" && env -u LPIR_SENSORS_DIR VK_ICD_FILENAMES="${icd}" \
+      example/segment_file "${scan}" installed-hdl64e vulkan.label vulkan &&
+      cmp vulkan.label cli/000000.label); then
+      rc=1
+    fi
+  else
+    say "no lavapipe ICD: the example's Vulkan run is skipped"
+  fi
+  return "${rc}"
+}
+
 say "step 1/3: Release build and suite"
 built=0
 if step "build" bash "${root}/scripts/build.sh"; then
   built=1
   step "suite" ctest --test-dir "${build_dir}" --output-on-failure -j "${jobs}" "$@" || true
+  say "package: library-only build installed to a temporary prefix, examples/cpp against it"
+  step "package" package_check || true
 fi
 
 # python_suite: the package installed into a fresh venv, and its pytest suite (see the top).

@@ -25,6 +25,7 @@
 #include "reference_cpu/exact.h"
 #include "reference_cpu/pipeline.h"
 #include "reference_cpu/stages.h"
+#include "tests/stage_harness.h"
 #include "tests/stage_test_util.h"
 #include "tests/test_util.h"
 #include "tests/vk_test_util.h"
@@ -91,7 +92,44 @@ size_t CompareBytes(const std::vector<uint8_t>& cpu, const std::vector<uint8_t>&
   return n;
 }
 
-// Runs lpir::BackProject and vk::RunBackProject on the same inputs and compares label_why, then
+// Stage 9 on the GPU, as lpir::BackProject(p, f): *words gets the LabelWhyBytes(n) bytes the
+// shader wrote (the last word's padding included), f.label_why their first n, f.label and f.why
+// unpacked from them. An error when a byte is no PackLabelWhy of a label and a why.
+vk::Status BackProjectOnGpu(const vk::Device& device, const Params& p, Frame& f,
+                            std::vector<uint8_t>* words, double* gpu_ns) {
+  const uint32_t n = f.n;
+  const size_t pixels = size_t(p.width) * p.beams;
+  test::StageHarness h(device, "back_project");
+  vk::BackProjectBuffers b;
+  b.params = h.Uniform(p);
+  b.flags = h.In("flags", f.flags, n);
+  b.point_pixel = h.In("point_pixel", f.point_pixel, n);
+  b.pixel_point = h.In("pixel_point", f.pixel_point, pixels);
+  b.pixel_label = h.In("pixel_label", f.pixel_label, pixels);
+  b.f_range = h.In("f_range", f.f_range, pixels);
+  b.f_height = h.In("f_height", f.f_height, pixels);
+  b.r2 = h.In("r2", f.r2, n);
+  b.zt = h.In("zt", f.zt, n);
+  b.coarse = h.In("coarse", f.coarse, n);
+  b.label_why = h.Out(words, vk::BackProjectStage::LabelWhyBytes(n));
+  LPIR_VK_RETURN_IF_ERROR(h.Run<vk::BackProjectStage>(
+      b, [&](const vk::BackProjectStage& s, vk::CommandBuffer& cmd) { return s.Record(cmd, n); },
+      gpu_ns));
+  f.label_why.assign(words->begin(), words->begin() + n);
+  f.label.resize(n);
+  f.why.resize(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint8_t byte = f.label_why[i];
+    if (WhyOf(byte) > kWhyNoise || LabelOf(byte) != (WhyOf(byte) == kWhyGround))
+      return vk::UsageError("back_project", "point " + std::to_string(i) + ": byte " +
+                                                std::to_string(byte) + " is no label and why");
+    f.label[i] = LabelOf(byte);
+    f.why[i] = WhyOf(byte);
+  }
+  return vk::Status();
+}
+
+// Runs lpir::BackProject and BackProjectOnGpu on the same inputs and compares label_why, then
 // the unpacked label and why. Returns the number of bytes compared (1 per point).
 uint64_t ExpectSameBackProject(const vk::Context& context, const Params& p, const Frame& in,
                                const Cloud* cloud, const std::string& what) {
@@ -99,13 +137,12 @@ uint64_t ExpectSameBackProject(const vk::Context& context, const Params& p, cons
   cpu.label.clear(), cpu.why.clear(), cpu.label_why.clear();
   gpu.label.assign(in.n, 0xEE), gpu.why.assign(in.n, 0xEE), gpu.label_why.assign(in.n, 0xEE);
   BackProject(p, cpu);
-  vk::BackProjectWords words;
-  words.label_why.assign(in.n, 0xEE);
+  std::vector<uint8_t> words(in.n, 0xEE);
   double gpu_ns = 0;
-  const vk::Status status = vk::RunBackProject(context, p, gpu, &words, &gpu_ns);
+  const vk::Status status = BackProjectOnGpu(context.device(), p, gpu, &words, &gpu_ns);
   EXPECT_TRUE(status.ok()) << what << ": " << status.message();
   if (!status.ok()) return 0;
-  const uint64_t compared = CompareBytes(cpu.label_why, words.label_why, p, in, cloud, what);
+  const uint64_t compared = CompareBytes(cpu.label_why, words, p, in, cloud, what);
   EXPECT_EQ(gpu.label_why, cpu.label_why) << what << ": Frame label_why";
   EXPECT_EQ(gpu.label, cpu.label) << what << ": unpacked label";
   EXPECT_EQ(gpu.why, cpu.why) << what << ": unpacked why";

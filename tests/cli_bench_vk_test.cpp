@@ -10,6 +10,7 @@
 #include <regex>
 #include <string>
 
+#include "reference_cpu/pipeline.h"
 #include "tests/test_util.h"
 
 namespace lpir {
@@ -43,8 +44,7 @@ TEST(CliBench, JsonHoldsEveryField) {
   EXPECT_EQ(json.find("\"device\": \"none"), std::string::npos) << json;
   EXPECT_NE(json.find("\"end_to_end\": {\"cpu\": {\"median_ms\": "), std::string::npos) << json;
   EXPECT_NE(json.find("\"vulkan\": {\"median_ms\": "), std::string::npos) << json;
-  for (const char* stage : {"prepare", "project", "grid_reduce", "coarse_segment", "feature_maps",
-                            "classify_pixels", "fuse", "grow", "back_project"})
+  for (const char* stage : kStageNames)
     EXPECT_NE(json.find(std::string("{\"name\": \"") + stage + "\", \"cpu_ms\": "),
               std::string::npos)
         << stage;

@@ -327,24 +327,12 @@ TEST_F(FramePipelineVk, ErrorsLeaveThePipelineUsable) {
   EXPECT_EQ(pipeline.max_points(), 1000u);
   EXPECT_GT(pipeline.device_bytes(), 0u);
 
-  vk::Status status = pipeline.Submit(0, RandomCloud(1001, 1.7f, 1));
-  ASSERT_FALSE(status.ok());
-  EXPECT_NE(status.message().find("1001 points, more than the pipeline's maximum of 1000"),
-            std::string::npos)
-      << status.message();
-
-  Cloud bad_rings = RandomCloud(10, 1.7f, 2);
-  bad_rings.ring.assign(9, 0);
-  status = pipeline.Submit(0, bad_rings);
-  ASSERT_FALSE(status.ok());
-  EXPECT_NE(status.message().find("9 ring entries for 10 points"), std::string::npos)
-      << status.message();
-
+  // The cloud itself is the caller's to check (Segmenter::Submit; segmenter_vk_test).
   Frame f;
-  status = pipeline.Collect(0, f);
+  vk::Status status = pipeline.Collect(0, f);
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("holds no submitted frame"), std::string::npos);
-  status = pipeline.Submit(1, bad_rings);
+  status = pipeline.Submit(1, RandomCloud(10, 1.7f, 2));
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("slot 1 is not free"), std::string::npos) << status.message();
 

@@ -247,219 +247,296 @@ std::string JsonString(const std::string& s) {
   return out + "\"";
 }
 
-}  // namespace
+// What the command line asks for.
+struct BenchArgs {
+  int runs = 20, scaling_runs = 15, frames = 24;
+  std::string data, device;
+  bool json = false;
+};
 
-int RunBench(int argc, char** argv) {
-  const Args args(argc, argv, {"--json", "--help"},
-                  {"--data", "--runs", "--scaling-runs", "--frames", "--device"});
-  if (args.Has("--help")) {
-    std::fputs(kHelp, stdout);
-    return 0;
-  }
-  const int runs = int(args.GetNumber("--runs", 20));
-  const int scaling_runs = int(args.GetNumber("--scaling-runs", 15));
-  const int frames = int(args.GetNumber("--frames", 24));
-  if (runs < 1 || scaling_runs < 1 || frames < 1)
+// The command line's options, checked; std::invalid_argument names the bad one.
+BenchArgs ParseBenchArgs(const Args& args) {
+  BenchArgs a;
+  a.runs = int(args.GetNumber("--runs", 20));
+  a.scaling_runs = int(args.GetNumber("--scaling-runs", 15));
+  a.frames = int(args.GetNumber("--frames", 24));
+  if (a.runs < 1 || a.scaling_runs < 1 || a.frames < 1)
     throw std::invalid_argument("--runs, --scaling-runs and --frames must be at least 1");
   const char* env_data = std::getenv("LPIR_DATA_DIR");
   // ../shared/data beside the repository, whose sensors/ folder SensorsDir() is.
   const std::string beside =
       (fs::path(SensorsDir()).parent_path().parent_path() / "shared" / "data").string();
-  const std::string data = args.Get("--data", env_data && *env_data ? env_data : beside);
-  const bool json = args.Has("--json");
-  auto say = [&](const char* what) {
-    if (!json) std::fprintf(stderr, "bench: %s\n", what);
-  };
+  a.data = args.Get("--data", env_data && *env_data ? env_data : beside);
+  a.device = args.Get("--device");
+  a.json = args.Has("--json");
+  return a;
+}
 
-  // The frames: the six consecutive kitti/00 scans, or simulated HDL-64E streets.
-  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", SensorsDir());
+// The timed frames and their names.
+struct Scans {
   std::vector<Cloud> clouds;
   std::vector<std::string> names;
+  size_t points = 0;  // over all clouds
+};
+
+// The six consecutive kitti/00 scans under `data`, or simulated HDL-64E streets without them.
+Scans LoadScans(const std::string& data, const SensorProfile& hdl64e) {
+  Scans s;
   const fs::path kitti = fs::path(data) / "kitti" / "00" / "velodyne";
   std::error_code ec;
   if (fs::is_directory(kitti, ec)) {
     for (const auto& entry : fs::directory_iterator(kitti, ec))
-      if (entry.path().extension() == ".bin") names.push_back(entry.path().string());
-    std::sort(names.begin(), names.end());
-    for (const std::string& n : names) clouds.push_back(ReadKittiBin(n));
-    for (std::string& n : names) n = "kitti/00/" + fs::path(n).stem().string();
+      if (entry.path().extension() == ".bin") s.names.push_back(entry.path().string());
+    std::sort(s.names.begin(), s.names.end());
+    for (const std::string& n : s.names) s.clouds.push_back(ReadKittiBin(n));
+    for (std::string& n : s.names) n = "kitti/00/" + fs::path(n).stem().string();
   }
-  if (clouds.empty()) {
+  if (s.clouds.empty()) {
     for (uint32_t seed = 1; seed <= 6; ++seed) {
       SimOptions o;
       o.seed = seed;
-      clouds.push_back(Simulate(hdl64e, o).cloud);
-      names.push_back("simulated hdl64e street " + std::to_string(seed));
+      s.clouds.push_back(Simulate(hdl64e, o).cloud);
+      s.names.push_back("simulated hdl64e street " + std::to_string(seed));
     }
   }
-  size_t points = 0;
-  for (const Cloud& c : clouds) points += c.size();
+  for (const Cloud& c : s.clouds) s.points += c.size();
+  return s;
+}
+
+// Everything the report shows.
+struct BenchReport {
+  std::string device, cpu_name, first_scan;
+  size_t frames = 0, mean_points = 0;
+  int runs = 0, throughput_frames = 0, scaling_runs = 0;
+  bool has_gpu = false;
+  Timed c, g;                                     // the CPU's and the device's timed frames
+  double cpu_fps = 0, fps[4] = {-1, -1, -1, -1};  // 1, 2, 4 in flight, batches of 8
+  double rss = 0;
+  uint64_t device_bytes = 0;
+  std::vector<GpuCost> costs;
+  std::vector<ScalingRow> scaling;
+};
+
+// Both shapes' counted GPU cost of every scan on the device `device`.
+std::vector<GpuCost> MeasureGpuCosts(const std::string& device, Segmenter& reference,
+                                     const std::vector<Cloud>& clouds, size_t max_points) {
+  vk::ContextOptions context_options;
+  context_options.device = device;
+  vk::Result<vk::Context> context = vk::Context::Create(context_options);
+  if (!context.ok()) throw std::runtime_error("Vulkan: " + context.error().message);
+  std::vector<Labels> reference_labels;
+  for (const Cloud& cloud : clouds) reference_labels.push_back(reference.Segment(cloud).label);
+  std::vector<GpuCost> costs;
+  for (const char* shape : {"gpu", "cpu"})
+    costs.push_back(
+        MeasureGpuCost(shape, context.value(), reference, clouds, reference_labels, max_points));
+  return costs;
+}
+
+// Frames per second of the CPU, and with a device of 1, 2 and 4 frames in flight and of two
+// batches of 8 in flight.
+void MeasureThroughput(const SensorProfile& sensor, const SegmenterOptions& cpu_options,
+                       const SegmenterOptions& vk_options, const std::vector<Cloud>& clouds,
+                       BenchReport& r) {
+  r.cpu_fps = Throughput(sensor, cpu_options, clouds, 1, r.throughput_frames);
+  if (!r.has_gpu) return;
+  const uint32_t in_flight[3] = {1, 2, 4};
+  constexpr uint32_t kBatch = 8;  // frames a batch, two batches in flight
+  for (int k = 0; k < 3; ++k)
+    r.fps[k] = Throughput(sensor, vk_options, clouds, in_flight[k], r.throughput_frames);
+  r.fps[3] = Throughput(sensor, vk_options, clouds, 2, r.throughput_frames, kBatch);
+}
+
+// The scaling table: a simulated street for VLP-16 and OS1-128's field of view with 32 to 256
+// beams, every row's labels checked, then `runs` end-to-end frames of each row round-robin, so
+// that a burst of load on the machine slows all rows alike instead of one row's whole block.
+std::vector<ScalingRow> MeasureScaling(const SegmenterOptions& cpu_options,
+                                       const SegmenterOptions& vk_options, bool has_gpu, int runs) {
+  const SensorProfile os1_128 = LoadSensorProfile("os1-128", SensorsDir());
+  std::vector<SensorProfile> sensors = {LoadSensorProfile("vlp16", SensorsDir())};
+  for (uint32_t beams : {32u, 64u, 128u, 256u}) sensors.push_back(Os1With(os1_128, beams));
+  std::vector<ScalingRow> scaling;
+  std::vector<std::vector<Cloud>> scenes;
+  std::vector<std::unique_ptr<Segmenter>> cpus, gpus;
+  for (const SensorProfile& sensor : sensors) {
+    SimOptions o;
+    o.seed = 1;
+    scenes.push_back({Simulate(sensor, o).cloud});
+    const std::vector<std::string> scene_name = {sensor.name + " simulated street"};
+    SegmenterOptions co = cpu_options, vo = vk_options;
+    co.max_points = vo.max_points = std::max<size_t>(scenes.back()[0].size(), 1);
+    Segmenter sref(sensor, co);
+    cpus.push_back(std::make_unique<Segmenter>(sensor, co));
+    CheckAgainstReference(*cpus.back(), sref, scenes.back(), scene_name);
+    if (has_gpu) {
+      gpus.push_back(std::make_unique<Segmenter>(sensor, vo));
+      CheckAgainstReference(*gpus.back(), sref, scenes.back(), scene_name);
+    }
+    scaling.push_back({sensor.name, sensor.beams, sensor.width, scenes.back()[0].size(), 0, -1});
+  }
+  std::vector<Timed> cpu_t(sensors.size()), gpu_t(sensors.size());
+  for (int r = 0; r < runs; ++r)
+    for (size_t k = 0; k < sensors.size(); ++k)
+      TimeFramesInTurns(*cpus[k], has_gpu ? gpus[k].get() : nullptr, scenes[k], 1, cpu_t[k],
+                        gpu_t[k]);
+  for (size_t k = 0; k < sensors.size(); ++k) {
+    scaling[k].cpu_ms = SpreadOf(cpu_t[k].wall).median;
+    if (has_gpu) scaling[k].vulkan_ms = SpreadOf(gpu_t[k].wall).median;
+  }
+  return scaling;
+}
+
+// The device's segmenter, its name in `device`; or none, and "none (why)".
+std::unique_ptr<Segmenter> VulkanOrNone(const SensorProfile& sensor,
+                                        const SegmenterOptions& options, std::string& device) {
+  try {
+    auto gpu = std::make_unique<Segmenter>(sensor, options);
+    device = gpu->backend_note().substr(std::string("Vulkan on ").size());
+    return gpu;
+  } catch (const std::exception& e) {
+    device = std::string("none (") + e.what() + ")";
+    return nullptr;
+  }
+}
+
+// Checks, times and measures everything the report shows.
+BenchReport Measure(const BenchArgs& a) {
+  auto say = [&](const char* what) {
+    if (!a.json) std::fprintf(stderr, "bench: %s\n", what);
+  };
+  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", SensorsDir());
+  const Scans scans = LoadScans(a.data, hdl64e);
+  BenchReport r;
+  r.frames = scans.clouds.size();
+  r.mean_points = scans.points / scans.clouds.size();
+  r.first_scan = scans.names[0];
+  r.runs = a.runs, r.throughput_frames = a.frames, r.scaling_runs = a.scaling_runs;
 
   SegmenterOptions cpu_options = SegmenterOptions::For(Backend::kCpu);
   SegmenterOptions vk_options = SegmenterOptions::For(Backend::kVulkan);
-  vk_options.device = args.Get("--device");
+  vk_options.device = a.device;
   vk_options.frames_in_flight = 1;
   Segmenter reference(hdl64e, cpu_options);
-  std::unique_ptr<Segmenter> gpu;
-  std::string no_device;
-  try {
-    gpu = std::make_unique<Segmenter>(hdl64e, vk_options);
-  } catch (const std::exception& e) {
-    no_device = e.what();
-  }
-  const std::string device = gpu ? gpu->backend_note().substr(std::string("Vulkan on ").size())
-                                 : std::string("none (") + no_device + ")";
-  const std::string cpu_name = CpuName() + ", 1 thread";
+  std::unique_ptr<Segmenter> gpu = VulkanOrNone(hdl64e, vk_options, r.device);
+  r.has_gpu = gpu != nullptr;
+  r.cpu_name = CpuName() + ", 1 thread";
 
   say("checking the labels of both backends against the reference");
   Segmenter cpu(hdl64e, cpu_options);
-  CheckAgainstReference(cpu, reference, clouds, names);
-  if (gpu) CheckAgainstReference(*gpu, reference, clouds, names);
-  std::vector<GpuCost> costs;
+  CheckAgainstReference(cpu, reference, scans.clouds, scans.names);
+  if (gpu) CheckAgainstReference(*gpu, reference, scans.clouds, scans.names);
   if (gpu) {
     say("counting the commands of a frame in each shape");
-    vk::ContextOptions context_options;
-    context_options.device = vk_options.device;
-    vk::Result<vk::Context> context = vk::Context::Create(context_options);
-    if (!context.ok()) throw std::runtime_error("Vulkan: " + context.error().message);
-    std::vector<Labels> reference_labels;
-    for (const Cloud& cloud : clouds) reference_labels.push_back(reference.Segment(cloud).label);
-    for (const char* shape : {"gpu", "cpu"})
-      costs.push_back(MeasureGpuCost(shape, context.value(), reference, clouds, reference_labels,
-                                     gpu->max_points()));
+    r.costs = MeasureGpuCosts(vk_options.device, reference, scans.clouds, gpu->max_points());
   }
   say("timing frames");
-  Timed c, g;
-  TimeFramesInTurns(cpu, gpu.get(), clouds, runs, c, g);
-  const uint64_t device_bytes = gpu ? gpu->device_bytes() : 0;
-
+  TimeFramesInTurns(cpu, gpu.get(), scans.clouds, a.runs, r.c, r.g);
+  r.device_bytes = gpu ? gpu->device_bytes() : 0;
   say("throughput");
-  const double cpu_fps = Throughput(hdl64e, cpu_options, clouds, 1, frames);
-  double fps[4] = {-1, -1, -1, -1};
-  const uint32_t in_flight[3] = {1, 2, 4};
-  constexpr uint32_t kBatch = 8;  // frames a batch, two batches in flight
-  if (gpu) {
-    for (int k = 0; k < 3; ++k)
-      fps[k] = Throughput(hdl64e, vk_options, clouds, in_flight[k], frames);
-    fps[3] = Throughput(hdl64e, vk_options, clouds, 2, frames, kBatch);
-  }
-
+  MeasureThroughput(hdl64e, cpu_options, vk_options, scans.clouds, r);
   // Peak host memory of the KITTI frames and the throughput runs, before the scaling table keeps
   // ten segmenters of its own alive.
-  const double rss = PeakRssMiB();
-
+  r.rss = PeakRssMiB();
   say("scaling");
-  std::vector<ScalingRow> scaling;
-  {
-    // Every row's segmenters first, then the timed frames round-robin over the rows, so that a
-    // burst of load on the machine slows all rows alike instead of one row's whole block.
-    const SensorProfile os1_128 = LoadSensorProfile("os1-128", SensorsDir());
-    std::vector<SensorProfile> sensors = {LoadSensorProfile("vlp16", SensorsDir())};
-    for (uint32_t beams : {32u, 64u, 128u, 256u}) sensors.push_back(Os1With(os1_128, beams));
-    std::vector<std::vector<Cloud>> scenes;
-    std::vector<std::unique_ptr<Segmenter>> cpus, gpus;
-    for (const SensorProfile& sensor : sensors) {
-      SimOptions o;
-      o.seed = 1;
-      scenes.push_back({Simulate(sensor, o).cloud});
-      const std::vector<std::string> scene_name = {sensor.name + " simulated street"};
-      SegmenterOptions co = cpu_options, vo = vk_options;
-      co.max_points = vo.max_points = std::max<size_t>(scenes.back()[0].size(), 1);
-      Segmenter sref(sensor, co);
-      cpus.push_back(std::make_unique<Segmenter>(sensor, co));
-      CheckAgainstReference(*cpus.back(), sref, scenes.back(), scene_name);
-      if (gpu) {
-        gpus.push_back(std::make_unique<Segmenter>(sensor, vo));
-        CheckAgainstReference(*gpus.back(), sref, scenes.back(), scene_name);
-      }
-      scaling.push_back({sensor.name, sensor.beams, sensor.width, scenes.back()[0].size(), 0, -1});
-    }
-    std::vector<Timed> cpu_t(sensors.size()), gpu_t(sensors.size());
-    for (int r = 0; r < scaling_runs; ++r)
-      for (size_t k = 0; k < sensors.size(); ++k)
-        TimeFramesInTurns(*cpus[k], gpu ? gpus[k].get() : nullptr, scenes[k], 1, cpu_t[k],
-                          gpu_t[k]);
-    for (size_t k = 0; k < sensors.size(); ++k) {
-      scaling[k].cpu_ms = SpreadOf(cpu_t[k].wall).median;
-      if (gpu) scaling[k].vulkan_ms = SpreadOf(gpu_t[k].wall).median;
-    }
-  }
+  r.scaling = MeasureScaling(cpu_options, vk_options, r.has_gpu, a.scaling_runs);
+  return r;
+}
 
-  const Spread cpu_e2e = SpreadOf(c.wall), gpu_e2e = SpreadOf(g.wall);
-  if (json) {
-    std::string j = "{\"device\": " + JsonString(device) + ", \"cpu\": " + JsonString(cpu_name) +
-                    ", \"frames\": " + std::to_string(clouds.size()) +
-                    ", \"mean_points\": " + std::to_string(points / clouds.size()) +
-                    ", \"runs\": " + std::to_string(runs);
-    auto spread = [](const Spread& s) {
-      char b[128];
-      std::snprintf(b, sizeof b, "{\"median_ms\": %.4f, \"p25_ms\": %.4f, \"p75_ms\": %.4f}",
-                    s.median, s.p25, s.p75);
-      return std::string(b);
-    };
-    j += ", \"end_to_end\": {\"cpu\": " + spread(cpu_e2e) +
-         (gpu ? ", \"vulkan\": " + spread(gpu_e2e) : std::string(", \"vulkan\": null"));
-    if (gpu) j += ", \"vulkan_gpu_total\": " + spread(SpreadOf(g.gpu_total));
-    j += "}, \"stages\": [";
-    for (int k = 0; k < kStageCount; ++k) {
-      char b[256];
-      const Spread cs = SpreadOf(c.stage[k]), gs = SpreadOf(g.stage[k]);
-      std::snprintf(b, sizeof b,
-                    "%s{\"name\": \"%s\", \"cpu_ms\": %.4f, \"vulkan_ms\": %.4f, "
-                    "\"cpu_p25_ms\": %.4f, \"cpu_p75_ms\": %.4f, \"vulkan_p25_ms\": %.4f, "
-                    "\"vulkan_p75_ms\": %.4f}",
-                    k ? ", " : "", kStageNames[k], cs.median, gpu ? gs.median : -1.0, cs.p25,
-                    cs.p75, gpu ? gs.p25 : -1.0, gpu ? gs.p75 : -1.0);
-      j += b;
-    }
+std::string JsonSpread(const Spread& s) {
+  char b[128];
+  std::snprintf(b, sizeof b, "{\"median_ms\": %.4f, \"p25_ms\": %.4f, \"p75_ms\": %.4f}", s.median,
+                s.p25, s.p75);
+  return b;
+}
+
+// The "stages" array's entries: every stage's spreads on both backends (-1 without a device).
+std::string JsonStages(const BenchReport& r) {
+  std::string j;
+  for (int k = 0; k < kStageCount; ++k) {
+    char b[256];
+    const Spread cs = SpreadOf(r.c.stage[k]), gs = SpreadOf(r.g.stage[k]);
+    const bool gpu = r.has_gpu;
+    std::snprintf(b, sizeof b,
+                  "%s{\"name\": \"%s\", \"cpu_ms\": %.4f, \"vulkan_ms\": %.4f, "
+                  "\"cpu_p25_ms\": %.4f, \"cpu_p75_ms\": %.4f, \"vulkan_p25_ms\": %.4f, "
+                  "\"vulkan_p75_ms\": %.4f}",
+                  k ? ", " : "", kStageNames[k], cs.median, gpu ? gs.median : -1.0, cs.p25, cs.p75,
+                  gpu ? gs.p25 : -1.0, gpu ? gs.p75 : -1.0);
+    j += b;
+  }
+  return j;
+}
+
+// The "scaling" array's entries.
+std::string JsonScaling(const std::vector<ScalingRow>& scaling) {
+  std::string j;
+  for (size_t k = 0; k < scaling.size(); ++k) {
+    const ScalingRow& r = scaling[k];
     char b[512];
     std::snprintf(b, sizeof b,
-                  "], \"throughput_fps\": {\"cpu\": %.2f, \"1\": %.2f, \"2\": %.2f, \"4\": %.2f, "
-                  "\"batch_8\": %.2f}, "
-                  "\"peak_host_mib\": %.1f, \"device_mib\": %.1f, \"scaling\": [",
-                  cpu_fps, fps[0], fps[1], fps[2], fps[3], rss, double(device_bytes) / (1 << 20));
+                  "%s{\"sensor\": \"%s\", \"beams\": %u, \"width\": %u, \"points\": %zu, "
+                  "\"cpu_ms\": %.4f, \"vulkan_ms\": %.4f}",
+                  k ? ", " : "", r.sensor.c_str(), r.beams, r.width, r.points, r.cpu_ms,
+                  r.vulkan_ms);
     j += b;
-    for (size_t k = 0; k < scaling.size(); ++k) {
-      const ScalingRow& r = scaling[k];
+  }
+  return j;
+}
+
+// The "gpu_cost" object: one entry per shape, null without a device.
+std::string JsonCosts(const std::vector<GpuCost>& costs) {
+  if (costs.empty()) return "null";
+  std::string j;
+  for (size_t k = 0; k < costs.size(); ++k) {
+    const GpuCost& gc = costs[k];
+    j += (k ? ", " : "{") + JsonString(gc.shape) + ": ";
+    if (!gc.error.empty()) {
+      j += "{\"error\": " + JsonString(gc.error) + ", \"labels_equal_reference\": false}";
+    } else {
+      char b[512];
+      const double frames_d = double(gc.frames);
+      const double points_d = double(std::max<uint64_t>(gc.points, 1));
       std::snprintf(b, sizeof b,
-                    "%s{\"sensor\": \"%s\", \"beams\": %u, \"width\": %u, \"points\": %zu, "
-                    "\"cpu_ms\": %.4f, \"vulkan_ms\": %.4f}",
-                    k ? ", " : "", r.sensor.c_str(), r.beams, r.width, r.points, r.cpu_ms,
-                    r.vulkan_ms);
+                    "{\"frames\": %zu, \"dispatches_per_frame_min\": %u, "
+                    "\"dispatches_per_frame_max\": %u, \"indirect_dispatches_per_frame\": %u, "
+                    "\"barriers_per_frame\": %u, \"workgroups_per_frame\": %.1f, "
+                    "\"upload_bytes_per_point\": %.3f, \"download_bytes_per_point\": %.3f, "
+                    "\"device_mib\": %.1f, \"labels_equal_reference\": %s}",
+                    gc.frames, gc.dispatches_min, gc.dispatches_max, gc.indirect_max,
+                    gc.barriers_max, double(gc.workgroups) / frames_d,
+                    double(gc.upload_bytes) / points_d, double(gc.download_bytes) / points_d,
+                    double(gc.device_bytes) / (1 << 20),
+                    gc.labels_equal_reference ? "true" : "false");
       j += b;
     }
-    j += "], \"gpu_cost\": ";
-    if (costs.empty()) j += "null";
-    for (size_t k = 0; k < costs.size(); ++k) {
-      const GpuCost& gc = costs[k];
-      j += (k ? ", " : "{") + JsonString(gc.shape) + ": ";
-      if (!gc.error.empty()) {
-        j += "{\"error\": " + JsonString(gc.error) + ", \"labels_equal_reference\": false}";
-      } else {
-        const double frames_d = double(gc.frames);
-        const double points_d = double(std::max<uint64_t>(gc.points, 1));
-        std::snprintf(b, sizeof b,
-                      "{\"frames\": %zu, \"dispatches_per_frame_min\": %u, "
-                      "\"dispatches_per_frame_max\": %u, \"indirect_dispatches_per_frame\": %u, "
-                      "\"barriers_per_frame\": %u, \"workgroups_per_frame\": %.1f, "
-                      "\"upload_bytes_per_point\": %.3f, \"download_bytes_per_point\": %.3f, "
-                      "\"device_mib\": %.1f, \"labels_equal_reference\": %s}",
-                      gc.frames, gc.dispatches_min, gc.dispatches_max, gc.indirect_max,
-                      gc.barriers_max, double(gc.workgroups) / frames_d,
-                      double(gc.upload_bytes) / points_d, double(gc.download_bytes) / points_d,
-                      double(gc.device_bytes) / (1 << 20),
-                      gc.labels_equal_reference ? "true" : "false");
-        j += b;
-      }
-      if (k + 1 == costs.size()) j += "}";
-    }
-    std::printf("%s}\n", j.c_str());
-    return AllEqual(costs) ? 0 : 1;
   }
+  return j + "}";
+}
 
-  std::printf("lpir-gseg bench: %zu frames (%s..., %zu points on average), %d runs each\n",
-              clouds.size(), names[0].c_str(), points / clouds.size(), runs);
-  std::printf("CPU: %s | Vulkan device: %s\n\n", cpu_name.c_str(), device.c_str());
+// The report as one JSON object.
+std::string ReportJson(const BenchReport& r) {
+  std::string j = "{\"device\": " + JsonString(r.device) + ", \"cpu\": " + JsonString(r.cpu_name) +
+                  ", \"frames\": " + std::to_string(r.frames) +
+                  ", \"mean_points\": " + std::to_string(r.mean_points) +
+                  ", \"runs\": " + std::to_string(r.runs);
+  j += ", \"end_to_end\": {\"cpu\": " + JsonSpread(SpreadOf(r.c.wall)) +
+       (r.has_gpu ? ", \"vulkan\": " + JsonSpread(SpreadOf(r.g.wall))
+                  : std::string(", \"vulkan\": null"));
+  if (r.has_gpu) j += ", \"vulkan_gpu_total\": " + JsonSpread(SpreadOf(r.g.gpu_total));
+  j += "}, \"stages\": [" + JsonStages(r);
+  char b[512];
+  std::snprintf(b, sizeof b,
+                "], \"throughput_fps\": {\"cpu\": %.2f, \"1\": %.2f, \"2\": %.2f, \"4\": %.2f, "
+                "\"batch_8\": %.2f}, "
+                "\"peak_host_mib\": %.1f, \"device_mib\": %.1f, \"scaling\": [",
+                r.cpu_fps, r.fps[0], r.fps[1], r.fps[2], r.fps[3], r.rss,
+                double(r.device_bytes) / (1 << 20));
+  j += b + JsonScaling(r.scaling) + "], \"gpu_cost\": " + JsonCosts(r.costs);
+  return j + "}";
+}
+
+// The stage table: upload, every stage, download, GPU total and end to end, CPU beside device.
+void PrintStages(const BenchReport& r) {
   std::printf("%-16s %-26s %-26s %8s   %s\n", "stage", "cpu ms median (p25-p75)",
               "vulkan ms median (p25-p75)", "vk/cpu", "device");
   auto row = [&](const char* name, const std::vector<double>& cv, const std::vector<double>& gv) {
@@ -467,29 +544,27 @@ int RunBench(int argc, char** argv) {
     char cpu_text[64] = "-", gpu_text[64] = "-", ratio[32] = "-";
     if (!cv.empty())
       std::snprintf(cpu_text, sizeof cpu_text, "%.3f (%.3f-%.3f)", cs.median, cs.p25, cs.p75);
-    if (gpu && !gv.empty()) {
+    if (r.has_gpu && !gv.empty()) {
       std::snprintf(gpu_text, sizeof gpu_text, "%.3f (%.3f-%.3f)", gs.median, gs.p25, gs.p75);
       if (!cv.empty() && cs.median > 0)
         std::snprintf(ratio, sizeof ratio, "%.1fx", gs.median / cs.median);
     }
-    std::printf("%-16s %-26s %-26s %8s   %s\n", name, cpu_text, gpu_text, ratio, device.c_str());
+    std::printf("%-16s %-26s %-26s %8s   %s\n", name, cpu_text, gpu_text, ratio, r.device.c_str());
   };
   const std::vector<double> none;
-  row("upload", none, g.upload);
-  for (int k = 0; k < kStageCount; ++k) row(kStageNames[k], c.stage[k], g.stage[k]);
-  row("download", none, g.download);
-  row("gpu total", none, g.gpu_total);
-  row("end to end", c.wall, g.wall);
-  std::printf(
-      "\nthroughput (frames/s over %d frames): cpu %.1f | vulkan, frames in flight 1: "
-      "%.1f, 2: %.1f, 4: %.1f, batches of 8: %.1f   %s\n",
-      frames, cpu_fps, fps[0], fps[1], fps[2], fps[3], device.c_str());
-  std::printf("memory: peak host RSS %.1f MiB | device memory allocated %.1f MiB   %s\n", rss,
-              double(device_bytes) / (1 << 20), device.c_str());
-  for (const GpuCost& gc : costs) {
+  row("upload", none, r.g.upload);
+  for (int k = 0; k < kStageCount; ++k) row(kStageNames[k], r.c.stage[k], r.g.stage[k]);
+  row("download", none, r.g.download);
+  row("gpu total", none, r.g.gpu_total);
+  row("end to end", r.c.wall, r.g.wall);
+}
+
+// One line per shape's counted GPU cost.
+void PrintCosts(const BenchReport& r) {
+  for (const GpuCost& gc : r.costs) {
     if (!gc.error.empty()) {
       std::printf("gpu cost, shape %s: %s   %s\n", gc.shape.c_str(), gc.error.c_str(),
-                  device.c_str());
+                  r.device.c_str());
       continue;
     }
     const double points_d = double(std::max<uint64_t>(gc.points, 1));
@@ -500,27 +575,64 @@ int RunBench(int argc, char** argv) {
         gc.shape.c_str(), gc.dispatches_min, gc.dispatches_max, gc.indirect_max, gc.barriers_max,
         double(gc.workgroups) / double(gc.frames), double(gc.upload_bytes) / points_d,
         double(gc.download_bytes) / points_d, double(gc.device_bytes) / (1 << 20),
-        gc.labels_equal_reference ? "equal" : "DIFFER from", device.c_str());
+        gc.labels_equal_reference ? "equal" : "DIFFER from", r.device.c_str());
   }
+}
+
+// The scaling table, each row's growth from the row above.
+void PrintScaling(const BenchReport& r) {
   std::printf("\nscaling (simulated street, seed 1, median of %d end-to-end frames):\n",
-              scaling_runs);
+              r.scaling_runs);
   std::printf("(x: growth from the row above; linear cost: time x equal to points x)\n");
   std::printf("%-10s %6s %6s %9s %9s %10s %10s %12s %14s   %s\n", "sensor", "beams", "width",
               "points", "points x", "cpu ms", "cpu x", "vulkan ms", "vulkan x", "device");
-  for (size_t k = 0; k < scaling.size(); ++k) {
-    const ScalingRow& r = scaling[k];
+  for (size_t k = 0; k < r.scaling.size(); ++k) {
+    const ScalingRow& s = r.scaling[k];
     char px[32] = "-", cr[32] = "-", gr[32] = "-", gms[32] = "-";
     if (k > 0) {
-      const ScalingRow& q = scaling[k - 1];
-      std::snprintf(px, sizeof px, "%.2f", double(r.points) / double(q.points));
-      std::snprintf(cr, sizeof cr, "%.2f", r.cpu_ms / q.cpu_ms);
-      if (gpu) std::snprintf(gr, sizeof gr, "%.2f", r.vulkan_ms / q.vulkan_ms);
+      const ScalingRow& q = r.scaling[k - 1];
+      std::snprintf(px, sizeof px, "%.2f", double(s.points) / double(q.points));
+      std::snprintf(cr, sizeof cr, "%.2f", s.cpu_ms / q.cpu_ms);
+      if (r.has_gpu) std::snprintf(gr, sizeof gr, "%.2f", s.vulkan_ms / q.vulkan_ms);
     }
-    if (gpu) std::snprintf(gms, sizeof gms, "%.2f", r.vulkan_ms);
-    std::printf("%-10s %6u %6u %9zu %9s %10.2f %10s %12s %14s   %s\n", r.sensor.c_str(), r.beams,
-                r.width, r.points, px, r.cpu_ms, cr, gms, gr, device.c_str());
+    if (r.has_gpu) std::snprintf(gms, sizeof gms, "%.2f", s.vulkan_ms);
+    std::printf("%-10s %6u %6u %9zu %9s %10.2f %10s %12s %14s   %s\n", s.sensor.c_str(), s.beams,
+                s.width, s.points, px, s.cpu_ms, cr, gms, gr, r.device.c_str());
   }
-  return AllEqual(costs) ? 0 : 1;
+}
+
+// The report as tables.
+void PrintReport(const BenchReport& r) {
+  std::printf("lpir-gseg bench: %zu frames (%s..., %zu points on average), %d runs each\n",
+              r.frames, r.first_scan.c_str(), r.mean_points, r.runs);
+  std::printf("CPU: %s | Vulkan device: %s\n\n", r.cpu_name.c_str(), r.device.c_str());
+  PrintStages(r);
+  std::printf(
+      "\nthroughput (frames/s over %d frames): cpu %.1f | vulkan, frames in flight 1: "
+      "%.1f, 2: %.1f, 4: %.1f, batches of 8: %.1f   %s\n",
+      r.throughput_frames, r.cpu_fps, r.fps[0], r.fps[1], r.fps[2], r.fps[3], r.device.c_str());
+  std::printf("memory: peak host RSS %.1f MiB | device memory allocated %.1f MiB   %s\n", r.rss,
+              double(r.device_bytes) / (1 << 20), r.device.c_str());
+  PrintCosts(r);
+  PrintScaling(r);
+}
+
+}  // namespace
+
+int RunBench(int argc, char** argv) {
+  const Args args(argc, argv, {"--json", "--help"},
+                  {"--data", "--runs", "--scaling-runs", "--frames", "--device"});
+  if (args.Has("--help")) {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  const BenchArgs a = ParseBenchArgs(args);
+  const BenchReport r = Measure(a);
+  if (a.json)
+    std::printf("%s\n", ReportJson(r).c_str());
+  else
+    PrintReport(r);
+  return AllEqual(r.costs) ? 0 : 1;
 }
 
 }  // namespace lpir

@@ -115,6 +115,145 @@ class Timings {
   std::vector<double> upload_, download_, total_, stage_[kStageCount];
 };
 
+// What the command line asks for.
+struct SegmentArgs {
+  std::vector<std::string> inputs;
+  std::string sensor, out_dir, format, gt;
+  bool images = false, has_gt = false, quiet = false, timings = false;
+  SegmenterOptions options;
+  ReadOptions read;
+};
+
+// The command line's options, checked; std::invalid_argument names the bad one.
+SegmentArgs ParseSegmentArgs(const Args& args) {
+  SegmentArgs a;
+  a.inputs = args.positional();
+  if (a.inputs.empty()) throw std::invalid_argument("no INPUT given\n" + std::string(kHelp));
+  a.format = args.Get("--format", "label");
+  if (a.format != "label" && a.format != "pcd" && a.format != "ply")
+    throw std::invalid_argument("--format must be label, pcd or ply, not '" + a.format + "'");
+  const double max_points = args.GetNumber("--max-points", 0);  // 0: from the sensor profile
+  if (args.Has("--max-points") && (!(max_points >= 1) || max_points > 1e8))
+    throw std::invalid_argument("--max-points must be between 1 and 1e8");
+  a.out_dir = args.Require("--out");
+  a.options.backend = ParseBackend(args.Get("--backend", "auto"));
+  a.options.device = args.Get("--device");
+  a.options.max_points = size_t(max_points);
+  a.images = args.Has("--images");
+  a.options.all_buffers = a.images;  // the pictures show every stage
+  const double batch = args.GetNumber("--batch", 1);
+  if (!(batch >= 1 && batch <= 64) || batch != double(uint32_t(batch)))
+    throw std::invalid_argument("--batch must be a whole number from 1 to 64");
+  a.options.batch = uint32_t(batch);
+  const char* validation = std::getenv("LPIR_VK_VALIDATION");
+  a.options.validation = validation && *validation && std::string(validation) != "0";
+  a.sensor = args.Require("--sensor");
+  if (args.Has("--nuscenes")) a.read.bin_layout = BinLayout::kNuScenes5;
+  a.has_gt = args.Has("--gt");
+  a.gt = args.Get("--gt");
+  a.quiet = args.Has("--quiet");
+  a.timings = args.Has("--timings");
+  return a;
+}
+
+// The files through one segmenter, frames in flight: each read while the device works on the
+// ones before, collected oldest first, its labels (and pictures) written, a failure reported
+// and counted.
+class SegmentRun {
+ public:
+  SegmentRun(const SegmentArgs& a, Segmenter& segmenter, size_t files)
+      : a_(a),
+        segmenter_(segmenter),
+        progress_(files, files > 1),
+        timings_(segmenter.backend() == Backend::kVulkan) {}
+
+  // Reads `file` and submits it, first collecting frames until the segmenter takes one more.
+  void Submit(const std::string& file) {
+    Job job{file, fs::path(file).stem().string(), {}};
+    try {
+      job.cloud = ReadCloud(file, a_.read);
+      while (!segmenter_.CanSubmit()) Finish();
+      segmenter_.Submit(job.cloud);
+      jobs_.push_back(std::move(job));
+    } catch (const std::exception& e) {
+      Report(file, e);
+      progress_.Step(job.stem);
+    }
+  }
+
+  // Collects every frame still in flight; returns the files that failed.
+  size_t FinishAll() {
+    while (!jobs_.empty()) Finish();
+    if (a_.timings) timings_.PrintMedians();
+    return failures_;
+  }
+
+ private:
+  void Report(const std::string& file, const std::exception& e) {
+    ++failures_;
+    if (dynamic_cast<const IoError*>(&e))  // names the file already
+      std::fprintf(stderr, "lpir-gseg segment: error: %s\n", e.what());
+    else
+      std::fprintf(stderr, "lpir-gseg segment: error: %s: %s\n", file.c_str(), e.what());
+  }
+
+  // Collects the oldest frame in flight and writes what it gives.
+  void Finish() {
+    const Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    try {
+      FrameTimes times;
+      const Frame& frame = segmenter_.Collect(&times);
+      Write(job, frame);
+      if (!a_.quiet) PrintFrame(job, frame, times);
+      if (a_.timings) timings_.Add(job.stem, times);
+    } catch (const std::exception& e) {
+      Report(job.file, e);
+    }
+    progress_.Step(job.stem);
+  }
+
+  // The labels as a .label file or a labelled cloud, and with --images the pictures.
+  void Write(const Job& job, const Frame& frame) const {
+    const fs::path out(a_.out_dir);
+    if (a_.format == "label") {
+      std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
+      WriteLabelFile((out / (job.stem + ".label")).string(), labels);
+    } else {
+      WriteLabelledCloud((out / (job.stem + "." + a_.format)).string(), job.cloud, frame.label,
+                         a_.format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
+    }
+    if (!a_.images) return;
+    std::vector<uint8_t> truth;
+    if (a_.has_gt) truth = LoadTruth(a_.gt, job.stem, job.cloud.size());
+    WriteImages((out / "images").string(), job.stem, job.cloud, frame, segmenter_.params(),
+                truth.empty() ? nullptr : &truth);
+  }
+
+  // "<stem>: N points, G % ground, T ms", and the invalid points when there are any.
+  static void PrintFrame(const Job& job, const Frame& frame, const FrameTimes& times) {
+    size_t ground = 0, invalid = 0;
+    for (uint32_t i = 0; i < frame.n; ++i) {
+      ground += frame.label[i];
+      invalid += frame.why[i] == kWhyInvalid;
+    }
+    const size_t n = job.cloud.size();
+    std::printf("%s: %zu points, %.1f %% ground, %.2f ms", job.stem.c_str(), n,
+                n ? 100.0 * double(ground) / double(n) : 0.0, times.total_ms);
+    if (invalid)
+      std::printf(" (%zu invalid points: NaN/Inf, at the origin or out of range; non-ground)",
+                  invalid);
+    std::printf("\n");
+  }
+
+  const SegmentArgs& a_;
+  Segmenter& segmenter_;
+  Progress progress_;
+  Timings timings_;
+  std::deque<Job> jobs_;
+  size_t failures_ = 0;
+};
+
 }  // namespace
 
 int RunSegment(int argc, char** argv) {
@@ -125,111 +264,25 @@ int RunSegment(int argc, char** argv) {
     std::fputs(kHelp, stdout);
     return 0;
   }
-  if (args.positional().empty())
-    throw std::invalid_argument("no INPUT given\n" + std::string(kHelp));
-  const std::string format = args.Get("--format", "label");
-  if (format != "label" && format != "pcd" && format != "ply")
-    throw std::invalid_argument("--format must be label, pcd or ply, not '" + format + "'");
-  const double max_points = args.GetNumber("--max-points", 0);  // 0: from the sensor profile
-  if (args.Has("--max-points") && (!(max_points >= 1) || max_points > 1e8))
-    throw std::invalid_argument("--max-points must be between 1 and 1e8");
-  const std::string out_dir = args.Require("--out");
-  SegmenterOptions options;
-  options.backend = ParseBackend(args.Get("--backend", "auto"));
-  options.device = args.Get("--device");
-  options.max_points = size_t(max_points);
-  options.all_buffers = args.Has("--images");  // the pictures show every stage
-  const double batch = args.GetNumber("--batch", 1);
-  if (!(batch >= 1 && batch <= 64) || batch != double(uint32_t(batch)))
-    throw std::invalid_argument("--batch must be a whole number from 1 to 64");
-  options.batch = uint32_t(batch);
-  const char* validation = std::getenv("LPIR_VK_VALIDATION");
-  options.validation = validation && *validation && std::string(validation) != "0";
-  const SensorProfile sensor = LoadSensorProfile(args.Require("--sensor"), SensorsDir());
-  const std::vector<std::string> files = ListInputs(args.positional());
-  Segmenter segmenter(sensor, options);
-  if (options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
+  const SegmentArgs a = ParseSegmentArgs(args);
+  const SensorProfile sensor = LoadSensorProfile(a.sensor, SensorsDir());
+  const std::vector<std::string> files = ListInputs(a.inputs);
+  Segmenter segmenter(sensor, a.options);
+  if (a.options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
     std::fprintf(stderr, "lpir-gseg segment: note: %s\n", segmenter.backend_note().c_str());
-  fs::create_directories(out_dir);
-  ReadOptions read_options;
-  if (args.Has("--nuscenes")) read_options.bin_layout = BinLayout::kNuScenes5;
-  const bool quiet = args.Has("--quiet");
-  const bool on_gpu = segmenter.backend() == Backend::kVulkan;
-
+  fs::create_directories(a.out_dir);
   std::printf("segmenting %zu file%s with sensor '%s' on %s\n", files.size(),
               files.size() == 1 ? "" : "s", segmenter.sensor().name.c_str(),
-              on_gpu ? segmenter.backend_note().c_str() : "the CPU reference");
-  Progress progress(files.size(), files.size() > 1);
-  Timings timings(on_gpu);
-  size_t failures = 0;
-  auto report = [&](const std::string& file, const std::exception& e) {
-    ++failures;
-    if (dynamic_cast<const IoError*>(&e))  // names the file already
-      std::fprintf(stderr, "lpir-gseg segment: error: %s\n", e.what());
-    else
-      std::fprintf(stderr, "lpir-gseg segment: error: %s: %s\n", file.c_str(), e.what());
-  };
-  // Collects the oldest frame in flight and writes what it gives.
-  std::deque<Job> jobs;
-  auto finish = [&] {
-    const Job job = std::move(jobs.front());
-    jobs.pop_front();
-    try {
-      FrameTimes times;
-      const Frame& frame = segmenter.Collect(&times);
-      size_t ground = 0, invalid = 0;
-      for (uint32_t i = 0; i < frame.n; ++i) {
-        ground += frame.label[i];
-        invalid += frame.why[i] == kWhyInvalid;
-      }
-      if (format == "label") {
-        std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
-        WriteLabelFile((fs::path(out_dir) / (job.stem + ".label")).string(), labels);
-      } else {
-        WriteLabelledCloud((fs::path(out_dir) / (job.stem + "." + format)).string(), job.cloud,
-                           frame.label, format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
-      }
-      if (args.Has("--images")) {
-        std::vector<uint8_t> truth;
-        if (args.Has("--gt")) truth = LoadTruth(args.Get("--gt"), job.stem, job.cloud.size());
-        WriteImages((fs::path(out_dir) / "images").string(), job.stem, job.cloud, frame,
-                    segmenter.params(), truth.empty() ? nullptr : &truth);
-      }
-      if (!quiet) {
-        std::printf("%s: %zu points, %.1f %% ground, %.2f ms", job.stem.c_str(), job.cloud.size(),
-                    job.cloud.size() ? 100.0 * double(ground) / double(job.cloud.size()) : 0.0,
-                    times.total_ms);
-        if (invalid)
-          std::printf(" (%zu invalid points: NaN/Inf, at the origin or out of range; non-ground)",
-                      invalid);
-        std::printf("\n");
-      }
-      if (args.Has("--timings")) timings.Add(job.stem, times);
-    } catch (const std::exception& e) {
-      report(job.file, e);
-    }
-    progress.Step(job.stem);
-  };
-  for (const std::string& file : files) {
-    Job job{file, fs::path(file).stem().string(), {}};
-    try {
-      job.cloud = ReadCloud(file, read_options);
-      while (!segmenter.CanSubmit()) finish();
-      segmenter.Submit(job.cloud);
-      jobs.push_back(std::move(job));
-    } catch (const std::exception& e) {
-      report(file, e);
-      progress.Step(job.stem);
-    }
-  }
-  while (!jobs.empty()) finish();
-  if (args.Has("--timings")) timings.PrintMedians();
-  if (failures) {
+              segmenter.backend() == Backend::kVulkan ? segmenter.backend_note().c_str()
+                                                      : "the CPU reference");
+  SegmentRun run(a, segmenter, files.size());
+  for (const std::string& file : files) run.Submit(file);
+  if (const size_t failures = run.FinishAll()) {
     std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, files.size());
     return 1;
   }
-  std::printf("wrote %zu %s file%s to %s\n", files.size(), format.c_str(),
-              files.size() == 1 ? "" : "s", out_dir.c_str());
+  std::printf("wrote %zu %s file%s to %s\n", files.size(), a.format.c_str(),
+              files.size() == 1 ? "" : "s", a.out_dir.c_str());
   return 0;
 }
 

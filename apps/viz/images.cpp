@@ -339,22 +339,11 @@ std::vector<std::string> WriteImages(const std::string& dir, const std::string& 
   const int rows = static_cast<int>(params.beams);
   const int cols = static_cast<int>(params.width);
   const size_t pixels = static_cast<size_t>(rows) * cols;
-  CheckSize("flags", frame.flags.size(), n);
-  CheckSize("coarse", frame.coarse.size(), n);
-  CheckSize("label", frame.label.size(), n);
-  CheckSize("why", frame.why.size(), n);
-  CheckSize("pixel_filled", frame.pixel_filled.size(), pixels);
-  CheckSize("f_range", frame.f_range.size(), pixels);
-  CheckSize("f_inten", frame.f_inten.size(), pixels);
-  CheckSize("f_height", frame.f_height.size(), pixels);
-  CheckSize("f_slope", frame.f_slope.size(), pixels);
-  CheckSize("f_edge_l", frame.f_edge_l.size(), pixels);
-  CheckSize("f_edge_r", frame.f_edge_r.size(), pixels);
-  CheckSize("f_varz", frame.f_varz.size(), pixels);
-  CheckSize("f_vari", frame.f_vari.size(), pixels);
-  CheckSize("pixel_class", frame.pixel_class.size(), pixels);
-  CheckSize("pixel_fused", frame.pixel_fused.size(), pixels);
-  CheckSize("pixel_label", frame.pixel_label.size(), pixels);
+  ForEachBuffer(
+      [&](const BufferInfo& info, const auto& buffer) {
+        CheckSize(info.name, buffer.size(), ItemsOf(info.per, n, params) * info.stride);
+      },
+      frame);
   if (truth && truth->size() != n) {
     throw std::invalid_argument("WriteImages: the truth has " + std::to_string(truth->size()) +
                                 " labels, the cloud " + std::to_string(n) + " points");

@@ -7,13 +7,19 @@
 
 namespace lpir {
 
+// The profiles' folder: $LPIR_SENSORS_DIR when set and not empty, else the folder this library was
+// built for: sensors/ of the source tree for the build tree's libraries, <prefix>/share/lpir_gseg/
+// sensors for the installed one (the CMAKE_INSTALL_PREFIX it was configured with).
+std::string DefaultSensorsDir();
+
 // `name_or_path` is a profile name (sensors_dir/<name>.txt) or a path to a profile file.
 // std::invalid_argument listing the known names when neither exists; IoError naming the file and
 // line for a malformed profile (unknown key, unknown parameter override, bad number, elevation
 // table not matching `beams` or not descending, ...).
-SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::string& sensors_dir);
+SensorProfile LoadSensorProfile(const std::string& name_or_path,
+                                const std::string& sensors_dir = DefaultSensorsDir());
 // Names of the profiles in sensors_dir (file stems), sorted.
-std::vector<std::string> KnownSensorProfiles(const std::string& sensors_dir);
+std::vector<std::string> KnownSensorProfiles(const std::string& sensors_dir = DefaultSensorsDir());
 // Writes a profile that LoadSensorProfile reads back identically.
 void WriteSensorProfile(const std::string& path, const SensorProfile& profile);
 

@@ -1,21 +1,17 @@
 // Stage 9, back-project, on Vulkan: shaders/back_project.comp behind the generic dispatcher.
-// BackProjectStage is the per-frame piece (bound once to the frame's buffers, recorded every
-// frame); RunBackProject is the one-shot twin of lpir::BackProject for tests and tools.
+// BackProjectStage is bound once to the frame's buffers and recorded every frame.
 // The output is one byte per point, label | why << 1 (Frame::label_why), four points a uint32
 // word (the device is created without the 8-bit storage feature): a frame downloads n bytes
 // rounded up to a word and unpacks label and why on the host.
 #pragma once
 #include <cstdint>
-#include <vector>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -44,29 +40,22 @@ class BackProjectStage {
   static constexpr uint64_t LabelWhyBytes(uint64_t n) { return (n + 3) / 4 * 4; }
 
   static Result<BackProjectStage> Create(const Device& device, const BackProjectBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<BackProjectStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, BackProjectBuffers{&b.params, &b.flags, &b.point_pixel, &b.pixel_point,
+                                             &b.pixel_label, &b.f_range, &b.f_height, &b.r2, &b.zt,
+                                             &b.coarse, &b.label_why});
+  }
 
   // Records the dispatch over n points (no barrier: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const { return Record(cmd, size.n); }
 
  private:
   explicit BackProjectStage(Kernel kernel) : kernel_(std::move(kernel)) {}
 
   Kernel kernel_;
 };
-
-// The GPU's output as it wrote it: LabelWhyBytes(n) bytes, point i's byte at i.
-struct BackProjectWords {
-  std::vector<uint8_t> label_why;
-};
-
-// Stage 9 on the GPU, the twin of lpir::BackProject(p, f): allocates device-local buffers,
-// uploads f.flags, f.point_pixel, f.r2, f.zt, f.coarse (per point, f.n each) and f.pixel_point,
-// f.pixel_label, f.f_range, f.f_height (per pixel), runs, and fills f.label_why (n bytes) and,
-// unpacked from it, f.label and f.why (nothing else of f is touched); `words`, when given, gets
-// the downloaded bytes, the padding of the last word included. An error when an input has the
-// wrong size or a byte is no PackLabelWhy of a label and a why. `gpu_ns`, when
-// given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps). Waits for the GPU.
-Status RunBackProject(const Context& context, const Params& p, Frame& f,
-                      BackProjectWords* words = nullptr, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

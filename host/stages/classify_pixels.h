@@ -1,18 +1,15 @@
 // Stage 6, classify pixels, on Vulkan: shaders/classify_pixels.comp behind the generic
-// dispatcher. ClassifyPixelsStage is the per-frame piece (bound once to the frame's buffers,
-// recorded every frame); RunClassifyPixels is the one-shot twin of lpir::ClassifyPixels for tests
-// and tools.
+// dispatcher. ClassifyPixelsStage is bound once to the frame's buffers and recorded every
+// frame.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -35,22 +32,25 @@ class ClassifyPixelsStage {
 
   static Result<ClassifyPixelsStage> Create(const Device& device,
                                             const ClassifyPixelsBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<ClassifyPixelsStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device,
+                  ClassifyPixelsBuffers{&b.params, &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
+                                        &b.f_slope, &b.f_varz, &b.f_vari, &b.pixel_class});
+  }
 
   // Records the dispatches over `pixels` pixels (no barrier: the caller orders it with the stages
   // around).
   Status Record(CommandBuffer& cmd, uint32_t pixels) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.pixels);
+  }
 
  private:
   explicit ClassifyPixelsStage(Kernel kernel) : kernel_(std::move(kernel)) {}
 
   Kernel kernel_;
 };
-
-// Stage 6 on the GPU, the twin of lpir::ClassifyPixels(p, f): reads f.pixel_filled, f.f_edge_l,
-// f.f_edge_r, f.f_slope, f.f_varz and f.f_vari (width * beams each), allocates device-local
-// buffers, uploads, runs, and fills f.pixel_class (nothing else of f is touched). `gpu_ns`, when
-// given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps on the queue).
-Status RunClassifyPixels(const Context& context, const Params& p, Frame& f,
-                         double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,19 +1,15 @@
 // Stage 4, coarse segment, on Vulkan: shaders/coarse_segment.comp behind the generic dispatcher.
-// CoarseSegmentStage is the per-frame piece (bound once to the frame's buffers, recorded every
-// frame: six passes with a compute -> compute barrier between each two); RunCoarseSegment is the
-// one-shot twin of lpir::CoarseSegment for tests and tools.
+// CoarseSegmentStage is bound once to the frame's buffers and recorded every frame: six passes
+// with a compute -> compute barrier between each two.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/cloud.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -47,10 +43,22 @@ class CoarseSegmentStage {
 
   static Result<CoarseSegmentStage> Create(const Device& device,
                                            const CoarseSegmentBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<CoarseSegmentStage> Create(const Device& device, const FrameBuffers& b) {
+    const TableBuffers& t = *b.tables;
+    return Create(
+        device, CoarseSegmentBuffers{&b.params, &b.points, &b.zt, &b.point_cell, &b.cell_zmin,
+                                     &b.cell_zmax, &b.cell_count, &t.ring_inner, &b.cell_seed_mode,
+                                     &b.cell_plane, &b.coarse, &b.coarse_scratch});
+  }
 
   // Records the six passes over `cells` cells and n points with a compute -> compute barrier
   // between each two (none before or after: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.n, size.cells);
+  }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }
@@ -60,13 +68,5 @@ class CoarseSegmentStage {
 
   Kernel kernel_;
 };
-
-// Stage 4 on the GPU, the twin of lpir::CoarseSegment(cloud, p, t, f): reads cloud.xyzi, f.n,
-// f.zt, f.point_cell, f.cell_zmin, f.cell_zmax, f.cell_count and t.ring_inner, allocates
-// device-local buffers, uploads, runs, and fills f.cell_seed_mode, f.cell_plane and f.coarse
-// (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of the six passes in
-// nanoseconds (-1 without timestamps). Waits for the GPU.
-Status RunCoarseSegment(const Context& context, const Cloud& cloud, const Params& p,
-                        const Tables& t, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

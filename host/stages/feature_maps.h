@@ -1,18 +1,15 @@
 // Stage 5, feature maps, on Vulkan: shaders/feature_maps.comp behind the generic dispatcher.
-// FeatureMapsStage is the per-frame piece (bound once to the frame's buffers, recorded every
-// frame: measure and fill, a barrier, slope, edges and variances); RunFeatureMaps is the one-shot
-// twin of lpir::FeatureMaps for tests and tools.
+// FeatureMapsStage is bound once to the frame's buffers and recorded every frame: measure and
+// fill, a barrier, slope, edges and variances.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -47,6 +44,13 @@ class FeatureMapsStage {
   static VkDeviceSize PackBytes(uint64_t pixels) { return 16 * (pixels == 0 ? 1 : pixels); }
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<FeatureMapsStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, FeatureMapsBuffers{&b.params, &b.pixel_point, &b.r2, &b.zt, &b.inten,
+                                             &b.pixel_filled, &b.f_range, &b.f_inten, &b.f_height,
+                                             &b.f_slope, &b.f_edge_l, &b.f_edge_r, &b.f_varz,
+                                             &b.f_vari, &b.feature_pack});
+  }
 
   // Records the measure-and-fill pass over the width x beams image (pass 1, one invocation per
   // four pixels, when the width is a multiple of 4, else pass 0, one per pixel), a compute ->
@@ -54,6 +58,10 @@ class FeatureMapsStage {
   // kCpuItems or 1, pixels of a row), with no barrier before or after (the caller orders it with
   // the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.width, size.beams);
+  }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }
@@ -63,12 +71,5 @@ class FeatureMapsStage {
 
   Kernel kernel_;
 };
-
-// Stage 5 on the GPU, the twin of lpir::FeatureMaps(p, f): reads f.n, f.r2, f.zt, f.inten and
-// f.pixel_point (width * beams), allocates device-local buffers, uploads, runs, and fills
-// f.pixel_filled, f.f_range, f.f_inten, f.f_height, f.f_slope, f.f_edge_l, f.f_edge_r, f.f_varz
-// and f.f_vari (nothing else of f is touched). `gpu_ns`, when given, gets the GPU time of both
-// passes in nanoseconds (-1 without timestamps on the queue).
-Status RunFeatureMaps(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,17 +1,14 @@
-// Stage 7, fuse, on Vulkan: shaders/fuse.comp behind the generic dispatcher. FuseStage is the
-// per-frame piece (bound once to the frame's buffers, recorded every frame); RunFuse is the
-// one-shot twin of lpir::Fuse for tests and tools.
+// Stage 7, fuse, on Vulkan: shaders/fuse.comp behind the generic dispatcher. FuseStage is bound
+// once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -32,23 +29,25 @@ class FuseStage {
   static constexpr uint32_t kLocalSize = 64;
 
   static Result<FuseStage> Create(const Device& device, const FuseBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<FuseStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, FuseBuffers{&b.params, &b.pixel_class, &b.pixel_point, &b.coarse,
+                                      &b.pixel_filled, &b.f_range, &b.f_height, &b.pixel_fused});
+  }
 
   // Records the dispatch over a width x beams image (the Params uploaded must say the same; four
   // pixels an invocation when the width is a multiple of 4). No barrier: the caller orders it
   // with the stages around.
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.width, size.beams);
+  }
 
  private:
   explicit FuseStage(Kernel kernel) : kernel_(std::move(kernel)) {}
 
   Kernel kernel_;
 };
-
-// Stage 7 on the GPU, the twin of lpir::Fuse(p, f): allocates device-local buffers, uploads
-// f.pixel_class, f.pixel_point, f.coarse, f.pixel_filled, f.f_range and f.f_height, runs, and
-// fills f.pixel_fused (nothing else of f is touched). An error when a per-pixel input does not
-// hold width * beams elements. `gpu_ns`, when given, gets the dispatch's GPU time in nanoseconds
-// (-1 without timestamps on the queue). Waits for the GPU.
-Status RunFuse(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,18 +1,15 @@
 // Stage 3, grid reduce, on Vulkan: shaders/grid_reduce.comp behind the generic dispatcher.
-// GridReduceStage is the per-frame piece (bound once to the frame's buffers, recorded every
-// frame: the cell clear, a barrier, the per-point reduction); RunGridReduce is the one-shot twin
-// of lpir::GridReduce for tests and tools.
+// GridReduceStage is bound once to the frame's buffers and recorded every frame: the cell clear,
+// a barrier, the per-point reduction.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -38,10 +35,21 @@ class GridReduceStage {
   static constexpr uint32_t kCpuItems = 32;
 
   static Result<GridReduceStage> Create(const Device& device, const GridReduceBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<GridReduceStage> Create(const Device& device, const FrameBuffers& b) {
+    const TableBuffers& t = *b.tables;
+    return Create(
+        device, GridReduceBuffers{&b.params, &b.flags, &b.r2, &b.zt, &b.point_pixel, &t.ring_bound2,
+                                  &b.point_cell, &b.cell_zmin, &b.cell_zmax, &b.cell_count});
+  }
 
   // Records the clear of `cells` cells, a compute -> compute barrier and the reduction over n
   // points (no barrier before or after: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n, uint32_t cells) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.n, size.cells);
+  }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }
@@ -51,12 +59,5 @@ class GridReduceStage {
 
   Kernel kernel_;
 };
-
-// Stage 3 on the GPU, the twin of lpir::GridReduce(p, t, f): reads f.n, f.flags, f.r2, f.zt,
-// f.point_pixel and t.ring_bound2, allocates device-local buffers, uploads, runs, and fills
-// f.point_cell, f.cell_zmin, f.cell_zmax and f.cell_count (nothing else of f is touched).
-// `gpu_ns`, when given, gets the GPU time of both passes in nanoseconds (-1 without timestamps).
-Status RunGridReduce(const Context& context, const Params& p, const Tables& t, Frame& f,
-                     double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

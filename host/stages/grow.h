@@ -1,18 +1,15 @@
-// Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is the
-// per-frame piece (bound once to the frame's buffers, recorded every frame: five passes, one
-// pixel an invocation, whatever the data); RunGrow is the one-shot twin of lpir::Grow for tests
-// and tools.
+// Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is bound
+// once to the frame's buffers and recorded every frame: five passes, one pixel an invocation,
+// whatever the data.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -39,23 +36,26 @@ class GrowStage {
   static VkDeviceSize ReachBytes(uint64_t pixels) { return 4 * (VkDeviceSize(pixels) + 1); }
 
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<GrowStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device, GrowBuffers{&b.params, &b.pixel_fused, &b.f_inten, &b.f_height,
+                                      &b.f_range, &b.pixel_grown, &b.pixel_comp, &b.pixel_label,
+                                      &b.grow_reach, &b.grow_sizes});
+  }
 
   // Records the whole stage over a width x beams image (the Params uploaded to buffers.params
   // must say the same), with compute-to-compute barriers between its passes but none before the
   // first or after the last (the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t width, uint32_t beams) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const {
+    return Record(cmd, size.width, size.beams);
+  }
 
  private:
   explicit GrowStage(Kernel kernel) : kernel_(std::move(kernel)) {}
 
   Kernel kernel_;
 };
-
-// Stage 8 on the GPU, the twin of lpir::Grow(p, f): allocates device-local buffers, uploads
-// f.pixel_fused, f.f_inten, f.f_height and f.f_range, runs, and fills f.pixel_grown,
-// f.pixel_comp and f.pixel_label (nothing else of f is touched). An error when a per-pixel input
-// does not hold width * beams elements. `gpu_ns`, when given, gets the stage's GPU time in
-// nanoseconds (-1 without timestamps). Waits for the GPU.
-Status RunGrow(const Context& context, const Params& p, Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,18 +1,14 @@
 // Stage 1, prepare, on Vulkan: shaders/prepare.comp behind the generic dispatcher. PrepareStage
-// is the per-frame piece (bound once to the frame's buffers, recorded every frame); RunPrepare is
-// the one-shot twin of lpir::Prepare for tests and tools.
+// is bound once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/cloud.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -32,22 +28,21 @@ class PrepareStage {
   static constexpr uint32_t kLocalSize = 64;
 
   static Result<PrepareStage> Create(const Device& device, const PrepareBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<PrepareStage> Create(const Device& device, const FrameBuffers& b) {
+    return Create(device,
+                  PrepareBuffers{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten});
+  }
 
   // Records the dispatch over n points (no barrier: the caller orders it with the stages around).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const { return Record(cmd, size.n); }
 
  private:
   explicit PrepareStage(Kernel kernel) : kernel_(std::move(kernel)) {}
 
   Kernel kernel_;
 };
-
-// Stage 1 on the GPU, the twin of lpir::Prepare(cloud, p, f): allocates device-local buffers for
-// this cloud, uploads, runs, and fills f.n, f.flags, f.zt, f.r2 and f.inten (nothing else of f is
-// touched). has_ring is taken from the cloud, as reference_cpu/pipeline.cpp does. `gpu_ns`, when
-// given, gets the dispatch's GPU time in nanoseconds (-1 without timestamps on the queue). Waits
-// for the GPU; a frame pipeline keeps its buffers and records into one command buffer instead.
-Status RunPrepare(const Context& context, const Cloud& cloud, const Params& p, Frame& f,
-                  double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,18 +1,14 @@
 // Stage 2, project, on Vulkan: shaders/project.comp behind the generic dispatcher. ProjectStage
-// is the per-frame piece (bound once to the frame's buffers, recorded every frame); RunProject is
-// the one-shot twin of lpir::Project for tests and tools.
+// is bound once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>
 
+#include "host/stages/frame_buffers.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
-#include "host/vk/context.h"
 #include "host/vk/device.h"
 #include "host/vk/kernel.h"
 #include "host/vk/result.h"
-#include "reference_cpu/cloud.h"
-#include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir::vk {
 
@@ -42,6 +38,14 @@ class ProjectStage {
   static VkDeviceSize ExactListBytes(uint64_t n) { return 4 * (4 + n); }
 
   static Result<ProjectStage> Create(const Device& device, const ProjectBuffers& buffers);
+  // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
+  static Result<ProjectStage> Create(const Device& device, const FrameBuffers& b) {
+    const TableBuffers& t = *b.tables;
+    return Create(device,
+                  ProjectBuffers{&b.params, &b.points, &b.ring, &b.flags, &b.r2, &t.column_dir,
+                                 &t.beam_bound, &t.beam_origin, &b.point_pixel, &b.pixel_key,
+                                 &b.pixel_point, &b.project_exact});
+  }
 
   // Records the clear of pixel_key and pixel_point to kNone and of the exact list's header, the
   // pixel pass 0, the exact pass 1 over the listed points (indirect), and the winner pass 2 over
@@ -49,6 +53,8 @@ class ProjectStage {
   // dispatch: the caller orders them with the stages around (stage 1's writes must be visible
   // to compute and the clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
+  // The same over a frame of `size` (the frame pipeline's call).
+  Status Record(CommandBuffer& cmd, const FrameSize& size) const { return Record(cmd, size.n); }
 
   // The kernel's shape (host/vk/shape.h), read from LPIR_VK_SHAPE or the device at Create.
   Shape shape() const { return kernel_.shape(); }
@@ -66,13 +72,5 @@ class ProjectStage {
   const Buffer* pixel_point_;
   const Buffer* project_exact_;
 };
-
-// Stage 2 on the GPU, the twin of lpir::Project(cloud, p, t, f): reads f.n, f.flags and f.r2
-// (stage 1's outputs, uploaded as they are), allocates device-local buffers, runs, and fills
-// f.point_pixel, f.pixel_key and f.pixel_point (nothing else of f is touched). has_ring is taken
-// from the cloud, as reference_cpu/pipeline.cpp does. `gpu_ns`, when given, gets the GPU time of
-// the clear and both dispatches in nanoseconds (-1 without timestamps on the queue).
-Status RunProject(const Context& context, const Cloud& cloud, const Params& p, const Tables& t,
-                  Frame& f, double* gpu_ns = nullptr);
 
 }  // namespace lpir::vk

@@ -1,5 +1,5 @@
-// Runs recorded GPU work once and waits for it: the one-shot twins of the stages (tests, tools)
-// share this instead of each owning a command buffer, a fence and timestamp queries.
+// Runs recorded GPU work once and waits for it, for one-shot work outside a frame (the tests'
+// stage harness, benchmarks): the caller then owns no command buffer, fence or timestamp queries.
 #pragma once
 #include <functional>
 
