@@ -7,6 +7,7 @@
 Both backends give the labels `lpir-gseg segment` writes, byte for byte. `python3 -m
 lpir_gseg.fleet` labels many files on a Dask cluster (docs/fleet.md).
 """
+import os
 from pathlib import Path
 
 from . import _core
@@ -29,8 +30,10 @@ from ._core import (
 
 __version__ = "0.1.0"
 
-# The profiles ship inside the package (setup.py copies the repository's sensors/ here).
-_core._set_sensors_dir(str(Path(__file__).resolve().parent / "sensors"))
+# The profiles ship inside the package (setup.py copies the repository's sensors/ here);
+# $LPIR_SENSORS_DIR at import replaces them, as it does for the C++ library (DefaultSensorsDir).
+_core._set_sensors_dir(os.environ.get("LPIR_SENSORS_DIR") or
+                       str(Path(__file__).resolve().parent / "sensors"))
 
 __all__ = [
     "Segmenter",

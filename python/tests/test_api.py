@@ -2,6 +2,8 @@
 name the argument or the file, the simulator, the scores, the shipped profiles, the stubs."""
 import ast
 import inspect
+import os
+import subprocess
 import sys
 import threading
 import time
@@ -373,3 +375,13 @@ def test_stubs_cover_the_module():
         for part in name.split("."):
             target = getattr(target, part)
         assert list(inspect.signature(target).parameters) == names(node.args), name
+
+
+def test_lpir_sensors_dir_replaces_the_shipped_profiles(tmp_path):
+    (tmp_path / "mine.txt").write_text(
+        (Path(lpir_gseg.sensors_dir()) / "vlp16.txt").read_text().replace("name vlp16", "name mine"))
+    script = "import lpir_gseg; print(lpir_gseg.sensors(), lpir_gseg.Segmenter('mine').sensor)"
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            env={**os.environ, "LPIR_SENSORS_DIR": str(tmp_path)})
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "['mine'] mine"
