@@ -44,10 +44,10 @@ Run Segment(const std::string& inputs, const std::string& backend, const std::st
             const std::string& extra = "") {
   Run run;
   const std::string env = backend == "vulkan" ? "LPIR_VK_VALIDATION=1 " : "";
-  run.code = test::RunCommand(env + test::CliPath() + " segment " + inputs +
-                                  " --sensor vlp16 --quiet --backend " + backend + " --out " + out +
-                                  " " + extra,
-                              &run.log);
+  run.code =
+      test::RunCommand(env + test::CliPath() + " segment " + inputs + " --sensor vlp16 --backend " +
+                           backend + " --out " + out + " " + extra,
+                       &run.log);
   return run;
 }
 

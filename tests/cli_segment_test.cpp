@@ -44,10 +44,10 @@ TEST(CliSegment, LabelsARealKittiScan) {
   LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
   const std::string out = test::TempDir();
   std::string log;
-  ASSERT_EQ(
-      Segment(test::DataFile("kitti/07/velodyne/000964.bin") + " --sensor hdl64e --out " + out,
-              &log),
-      0)
+  ASSERT_EQ(Segment(test::DataFile("kitti/07/velodyne/000964.bin") +
+                        " --sensor hdl64e --verbose --out " + out,
+                    &log),
+            0)
       << log;
   const std::vector<uint32_t> labels = ReadLabelFile(out + "/000964.label", 120485);
   size_t ground = 0;
@@ -180,6 +180,34 @@ TEST(CliSegment, AFolderWithOneBadFileLabelsTheRestAndFails) {
   EXPECT_FALSE(fs::exists(dir + "/out/b.label"));
   EXPECT_NE(log.find(dir + "/in/b.bin"), std::string::npos) << log;
   EXPECT_NE(log.find("1 of 3 files failed"), std::string::npos) << log;
+}
+
+TEST(CliSegment, QuietPrintsNothingOnSuccessAndTheDefaultOneSummary) {
+  const std::string dir = test::TempDir();
+  fs::create_directories(dir + "/in");
+  for (const char* name : {"a", "b", "c"}) WriteKittiBin(dir + "/in/" + name + ".bin", SmallScan());
+  std::string log;
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --backend cpu --quiet --out " + dir + "/q", &log), 0)
+      << log;
+  EXPECT_EQ(log, "");
+  EXPECT_TRUE(fs::exists(dir + "/q/c.label"));
+  // Piped: the progress as plain lines, then the summary; never a carriage return.
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --backend cpu --out " + dir + "/d", &log), 0) << log;
+  EXPECT_EQ(log.find('\r'), std::string::npos) << log;
+  EXPECT_EQ(log.find(": 800 points"), std::string::npos) << log;  // no per-frame lines
+  EXPECT_NE(log.find("progress: 3/3 100%"), std::string::npos) << log;
+  EXPECT_NE(log.find("segmented 3 of 3 files with sensor 'hdl64e' on the CPU reference in "),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find(", 0 failed; labels in " + dir + "/d\n"), std::string::npos) << log;
+  // --verbose: a line per frame too.
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --backend cpu --verbose --out " + dir + "/v", &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("segmenting 3 files"), std::string::npos) << log;
+  EXPECT_NE(log.find("b: 800 points"), std::string::npos) << log;
+  EXPECT_NE(Segment(dir + "/in --sensor hdl64e --quiet --verbose --out " + dir + "/x", &log), 0);
+  EXPECT_NE(log.find("--quiet and --verbose"), std::string::npos) << log;
 }
 
 TEST(CliSegment, UsageErrorsExitNonZero) {

@@ -1,5 +1,5 @@
-// Tests of the command-line progress bar: plain lines without '\r' off a terminal, a redrawn bar
-// on one, nothing when disabled.
+// Tests of the command-line progress: plain lines without '\r' or escape codes off a terminal, a
+// status line redrawn in place on one with messages printed above it, nothing when disabled.
 #include "apps/cli/progress.h"
 
 #include <gtest/gtest.h>
@@ -11,13 +11,17 @@ namespace lpir {
 namespace {
 
 // Runs `steps` steps of a bar over `total` into a temporary file and returns what was written.
-std::string Capture(size_t total, size_t steps, bool enabled, bool tty,
-                    const std::string& name = "frame") {
+// Each step is a frame of 100 points, 25 of them ground; with `message`, Print writes a line to
+// the same file after every step.
+std::string Capture(size_t total, size_t steps, bool enabled, bool tty, bool message = false) {
   std::FILE* file = std::tmpfile();
   EXPECT_NE(file, nullptr);
   {
     Progress progress(total, enabled, file, tty);
-    for (size_t i = 0; i < steps; ++i) progress.Step(name + std::to_string(i));
+    for (size_t i = 0; i < steps; ++i) {
+      progress.Step(100, 25);
+      if (message) progress.Print(file, "message " + std::to_string(i) + "\n");
+    }
   }
   std::rewind(file);
   std::string text;
@@ -41,7 +45,8 @@ TEST(Progress, OffATerminalPrintsAPlainLineEveryTenth) {
   EXPECT_EQ(text.rfind("progress: ", 0), 0u) << text;
   EXPECT_NE(text.find("10/100  10%"), std::string::npos) << text;
   EXPECT_NE(text.find("100/100 100%"), std::string::npos) << text;
-  EXPECT_NE(text.find("frame99\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("25.0% ground  "), std::string::npos) << text;
+  EXPECT_EQ(text.find('\x1b'), std::string::npos) << text;
 }
 
 TEST(Progress, OffATerminalSaysWhereAnEarlyStopEnded) {
@@ -57,21 +62,35 @@ TEST(Progress, OnATerminalRedrawsOneLine) {
   EXPECT_EQ(CountOf(text, '\n'), 1u) << text;
   EXPECT_EQ(text.back(), '\n') << text;
   EXPECT_NE(text.find("3/3 100%"), std::string::npos) << text;
-  EXPECT_NE(text.find("[##############################]"), std::string::npos) << text;
+  EXPECT_NE(text.find("[####################]"), std::string::npos) << text;
 }
 
 TEST(Progress, OnATerminalTheLineNeverWraps) {
   // A file is no terminal: the bar assumes 80 columns.
-  std::string text = Capture(5, 5, true, true, std::string(300, 'n'));
+  std::string text = Capture(5, 5, true, true);
   size_t start = 0;
-  while ((start = text.find('\r', start)) != std::string::npos) {
+  while ((start = text.find("\r\x1b[K", start)) != std::string::npos) {
     size_t end = text.find_first_of("\r\n", start + 1);
-    std::string line = text.substr(start + 1, end - start - 1);
-    // Trailing blanks only erase a longer previous drawing.
-    EXPECT_LT(line.find_last_not_of(' ') + 1, 80u) << line;
+    EXPECT_LT(end - start - 4, 80u) << text.substr(start + 4, end - start - 4);
     start = end;
   }
-  EXPECT_NE(text.find("..."), std::string::npos) << text;
+  EXPECT_NE(text.find("25.0% ground"), std::string::npos) << text;
+  EXPECT_NE(text.find("frames/s"), std::string::npos) << text;
+}
+
+TEST(Progress, OnATerminalMessagesPrintAboveTheErasedBar) {
+  std::string text = Capture(3, 3, true, true, /*message=*/true);
+  // Every message starts on a line the bar was erased from, and the bar is redrawn after it.
+  for (int i = 0; i < 3; ++i) {
+    std::string m = "\r\x1b[Kmessage " + std::to_string(i) + "\n\r\x1b[K[";
+    EXPECT_NE(text.find(m), std::string::npos) << i << "\n" << text;
+  }
+}
+
+TEST(Progress, OffATerminalMessagesAreLinesOfTheirOwn) {
+  std::string text = Capture(3, 3, true, false, /*message=*/true);
+  EXPECT_EQ(text.find('\r'), std::string::npos) << text;
+  EXPECT_NE(text.find("\nmessage 1\nprogress: "), std::string::npos) << text;
 }
 
 TEST(Progress, DisabledWritesNothing) {
@@ -84,7 +103,7 @@ TEST(Progress, StderrThatIsNoTerminalGetsNoCarriageReturn) {
   testing::internal::CaptureStderr();  // stderr becomes a file, whatever runs the test
   {
     Progress progress(4, true);
-    for (int i = 0; i < 4; ++i) progress.Step("scan" + std::to_string(i));
+    for (int i = 0; i < 4; ++i) progress.Step(10, 1);
   }
   std::string text = testing::internal::GetCapturedStderr();
   EXPECT_EQ(text.find('\r'), std::string::npos) << text;

@@ -2,8 +2,11 @@
 // cloud (files, or folders of them) and writes DIR/<stem>.label, or the cloud with a label field.
 // On Vulkan the next file is read while the device works on the previous ones (frames in
 // flight). A file that cannot be read or segmented is reported and skipped; the exit code is then
-// 1 and the last line counts the failures.
+// 1 and the last line (stderr) counts the failures. Output levels: --quiet prints errors only;
+// the default adds the progress (stderr) and one summary line at the end (stdout); --verbose
+// adds a line first naming the backend and a line per frame.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
@@ -49,7 +52,8 @@ const char kHelp[] =
     "                   relabelling of a folder; default 1)\n"
     "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
     "                   the CPU) and their medians at the end\n"
-    "  --quiet          no per-frame lines\n"
+    "  --quiet          errors only (nothing on success)\n"
+    "  --verbose        also a line first naming the backend, and a line per frame\n"
     "Environment: LPIR_VK_VALIDATION=1 turns the Vulkan validation layer on.\n";
 
 // Input clouds: files as given, folders expanded to their cloud files in name order.
@@ -85,32 +89,43 @@ double Median(std::vector<double> v) {
   return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
-// Per-stage times of every frame, printed as the frames finish and summarised at the end.
+// Per-stage times of every frame, a line each as the frames finish and their medians at the end.
 class Timings {
  public:
   explicit Timings(bool gpu) : gpu_(gpu) {}
-  void Add(const std::string& stem, const FrameTimes& t) {
-    std::printf("%s times (ms):", stem.c_str());
-    if (gpu_) std::printf(" upload %.3f", t.upload_ms);
-    for (int k = 0; k < kStageCount; ++k) std::printf(" %s %.3f", kStageNames[k], t.stage_ms[k]);
-    if (gpu_) std::printf(" download %.3f", t.download_ms);
-    std::printf(" total %.3f\n", t.total_ms);
+  // Records a frame's times; returns its line.
+  std::string Add(const std::string& stem, const FrameTimes& t) {
+    std::string line = stem + " times (ms):";
+    if (gpu_) line += Ms(" upload", t.upload_ms);
+    for (int k = 0; k < kStageCount; ++k)
+      line += Ms(std::string(" ") + kStageNames[k], t.stage_ms[k]);
+    if (gpu_) line += Ms(" download", t.download_ms);
+    line += Ms(" total", t.total_ms) + "\n";
     upload_.push_back(t.upload_ms), download_.push_back(t.download_ms),
         total_.push_back(t.total_ms);
     for (int k = 0; k < kStageCount; ++k) stage_[k].push_back(t.stage_ms[k]);
+    return line;
   }
-  void PrintMedians() const {
-    if (total_.empty()) return;
-    std::printf("median over %zu frame%s (%s, ms):", total_.size(), total_.size() == 1 ? "" : "s",
-                gpu_ ? "GPU timestamps" : "CPU wall time");
-    if (gpu_) std::printf(" upload %.3f", Median(upload_));
+  // The medians' line ("" before any frame).
+  std::string Medians() const {
+    if (total_.empty()) return "";
+    std::string line = "median over " + std::to_string(total_.size()) + " frame" +
+                       (total_.size() == 1 ? "" : "s") + " (" +
+                       (gpu_ ? "GPU timestamps" : "CPU wall time") + ", ms):";
+    if (gpu_) line += Ms(" upload", Median(upload_));
     for (int k = 0; k < kStageCount; ++k)
-      std::printf(" %s %.3f", kStageNames[k], Median(stage_[k]));
-    if (gpu_) std::printf(" download %.3f", Median(download_));
-    std::printf(" total %.3f\n", Median(total_));
+      line += Ms(std::string(" ") + kStageNames[k], Median(stage_[k]));
+    if (gpu_) line += Ms(" download", Median(download_));
+    return line + Ms(" total", Median(total_)) + "\n";
   }
 
  private:
+  static std::string Ms(const std::string& name, double ms) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), " %.3f", ms);
+    return name + buf;
+  }
+
   bool gpu_;
   std::vector<double> upload_, download_, total_, stage_[kStageCount];
 };
@@ -119,7 +134,7 @@ class Timings {
 struct SegmentArgs {
   std::vector<std::string> inputs;
   std::string sensor, out_dir, format, gt;
-  bool images = false, has_gt = false, quiet = false, timings = false;
+  bool images = false, has_gt = false, quiet = false, verbose = false, timings = false;
   SegmenterOptions options;
   ReadOptions read;
 };
@@ -152,6 +167,8 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   a.has_gt = args.Has("--gt");
   a.gt = args.Get("--gt");
   a.quiet = args.Has("--quiet");
+  a.verbose = args.Has("--verbose");
+  if (a.quiet && a.verbose) throw std::invalid_argument("--quiet and --verbose exclude each other");
   a.timings = args.Has("--timings");
   return a;
 }
@@ -164,7 +181,7 @@ class SegmentRun {
   SegmentRun(const SegmentArgs& a, Segmenter& segmenter, size_t files)
       : a_(a),
         segmenter_(segmenter),
-        progress_(files, files > 1),
+        progress_(files, files > 1 && !a.quiet),
         timings_(segmenter.backend() == Backend::kVulkan) {}
 
   // Reads `file` and submits it, first collecting frames until the segmenter takes one more.
@@ -177,24 +194,30 @@ class SegmentRun {
       jobs_.push_back(std::move(job));
     } catch (const std::exception& e) {
       Report(file, e);
-      progress_.Step(job.stem);
+      progress_.Step();
     }
   }
 
   // Collects every frame still in flight; returns the files that failed.
   size_t FinishAll() {
     while (!jobs_.empty()) Finish();
-    if (a_.timings) timings_.PrintMedians();
+    if (a_.timings) progress_.Print(stdout, timings_.Medians());
     return failures_;
   }
+
+  // Prints a line above the progress.
+  void Print(std::FILE* to, const std::string& text) { progress_.Print(to, text); }
+
+  size_t frames() const { return frames_; }
+  size_t invalid() const { return invalid_; }
 
  private:
   void Report(const std::string& file, const std::exception& e) {
     ++failures_;
     if (dynamic_cast<const IoError*>(&e))  // names the file already
-      std::fprintf(stderr, "lpir-gseg segment: error: %s\n", e.what());
+      progress_.Print(stderr, std::string("lpir-gseg segment: error: ") + e.what() + "\n");
     else
-      std::fprintf(stderr, "lpir-gseg segment: error: %s: %s\n", file.c_str(), e.what());
+      progress_.Print(stderr, "lpir-gseg segment: error: " + file + ": " + e.what() + "\n");
   }
 
   // Collects the oldest frame in flight and writes what it gives.
@@ -205,12 +228,22 @@ class SegmentRun {
       FrameTimes times;
       const Frame& frame = segmenter_.Collect(&times);
       Write(job, frame);
-      if (!a_.quiet) PrintFrame(job, frame, times);
-      if (a_.timings) timings_.Add(job.stem, times);
+      size_t ground = 0, invalid = 0;
+      for (uint32_t i = 0; i < frame.n; ++i) {
+        ground += frame.label[i];
+        invalid += frame.why[i] == kWhyInvalid;
+      }
+      ++frames_;
+      invalid_ += invalid;
+      std::string lines;
+      if (a_.verbose) lines += FrameLine(job, ground, invalid, times);
+      if (a_.timings) lines += timings_.Add(job.stem, times);
+      if (!lines.empty()) progress_.Print(stdout, lines);
+      progress_.Step(job.cloud.size(), ground);
     } catch (const std::exception& e) {
       Report(job.file, e);
+      progress_.Step();
     }
-    progress_.Step(job.stem);
   }
 
   // The labels as a .label file or a labelled cloud, and with --images the pictures.
@@ -231,19 +264,15 @@ class SegmentRun {
   }
 
   // "<stem>: N points, G % ground, T ms", and the invalid points when there are any.
-  static void PrintFrame(const Job& job, const Frame& frame, const FrameTimes& times) {
-    size_t ground = 0, invalid = 0;
-    for (uint32_t i = 0; i < frame.n; ++i) {
-      ground += frame.label[i];
-      invalid += frame.why[i] == kWhyInvalid;
-    }
+  static std::string FrameLine(const Job& job, size_t ground, size_t invalid,
+                               const FrameTimes& times) {
     const size_t n = job.cloud.size();
-    std::printf("%s: %zu points, %.1f %% ground, %.2f ms", job.stem.c_str(), n,
-                n ? 100.0 * double(ground) / double(n) : 0.0, times.total_ms);
-    if (invalid)
-      std::printf(" (%zu invalid points: NaN/Inf, at the origin or out of range; non-ground)",
-                  invalid);
-    std::printf("\n");
+    char buf[160];
+    std::snprintf(buf, sizeof(buf), "%s: %zu points, %.1f %% ground, %.2f ms", job.stem.c_str(), n,
+                  n ? 100.0 * double(ground) / double(n) : 0.0, times.total_ms);
+    std::string line = buf;
+    if (invalid) line += " (" + std::to_string(invalid) + " invalid)";
+    return line + "\n";
   }
 
   const SegmentArgs& a_;
@@ -252,12 +281,15 @@ class SegmentRun {
   Timings timings_;
   std::deque<Job> jobs_;
   size_t failures_ = 0;
+  size_t frames_ = 0;   // segmented and written
+  size_t invalid_ = 0;  // points of those frames labelled invalid
 };
 
 }  // namespace
 
 int RunSegment(int argc, char** argv) {
-  const Args args(argc, argv, {"--images", "--nuscenes", "--quiet", "--timings", "--help"},
+  const Args args(argc, argv,
+                  {"--images", "--nuscenes", "--quiet", "--verbose", "--timings", "--help"},
                   {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device",
                    "--batch"});
   if (args.Has("--help")) {
@@ -268,21 +300,46 @@ int RunSegment(int argc, char** argv) {
   const SensorProfile sensor = LoadSensorProfile(a.sensor, SensorsDir());
   const std::vector<std::string> files = ListInputs(a.inputs);
   Segmenter segmenter(sensor, a.options);
-  if (a.options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
+  if (!a.quiet && a.options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
     std::fprintf(stderr, "lpir-gseg segment: note: %s\n", segmenter.backend_note().c_str());
   fs::create_directories(a.out_dir);
-  std::printf("segmenting %zu file%s with sensor '%s' on %s\n", files.size(),
-              files.size() == 1 ? "" : "s", segmenter.sensor().name.c_str(),
-              segmenter.backend() == Backend::kVulkan ? segmenter.backend_note().c_str()
-                                                      : "the CPU reference");
-  SegmentRun run(a, segmenter, files.size());
-  for (const std::string& file : files) run.Submit(file);
-  if (const size_t failures = run.FinishAll()) {
+  const std::string on =
+      segmenter.backend() == Backend::kVulkan ? segmenter.backend_note() : "the CPU reference";
+  const char* plural = files.size() == 1 ? "" : "s";
+  if (a.verbose)
+    std::printf("segmenting %zu file%s with sensor '%s' on %s\n", files.size(), plural,
+                segmenter.sensor().name.c_str(), on.c_str());
+  const auto start = std::chrono::steady_clock::now();
+  size_t failures = 0;
+  std::string summary;
+  {
+    SegmentRun run(a, segmenter, files.size());
+    for (const std::string& file : files) run.Submit(file);
+    failures = run.FinishAll();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!a.quiet) {
+      // "segmented 30 of 30 files on X in 1.2 s (25.0 frames/s), 0 failed, 12 invalid points
+      // (non-ground); labels in OUT"
+      char buf[128];
+      std::snprintf(buf, sizeof(buf), " in %.2f s (%.1f frames/s), %zu failed", seconds,
+                    seconds > 0 ? double(run.frames()) / seconds : 0.0, failures);
+      std::string line = "segmented " + std::to_string(run.frames()) + " of " +
+                         std::to_string(files.size()) + " file" + plural + " with sensor '" +
+                         segmenter.sensor().name + "' on " + on + buf;
+      if (run.invalid())
+        line += ", " + std::to_string(run.invalid()) +
+                " invalid points (NaN/Inf, at the origin or out of range: non-ground)";
+      line += "; " + std::string(a.format == "label" ? "labels" : a.format + " clouds") + " in " +
+              a.out_dir + "\n";
+      summary = line;
+    }
+  }  // the progress line ends here, above the summary
+  std::fputs(summary.c_str(), stdout);
+  if (failures) {
     std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, files.size());
     return 1;
   }
-  std::printf("wrote %zu %s file%s to %s\n", files.size(), a.format.c_str(),
-              files.size() == 1 ? "" : "s", a.out_dir.c_str());
   return 0;
 }
 

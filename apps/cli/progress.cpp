@@ -1,4 +1,4 @@
-// The progress bar of the subcommands (see progress.h).
+// The progress of the subcommands (see progress.h).
 #include "apps/cli/progress.h"
 
 #include <sys/ioctl.h>
@@ -11,8 +11,10 @@
 namespace lpir {
 namespace {
 
-constexpr size_t kBarCells = 30;
+constexpr size_t kBarCells = 20;
 constexpr auto kRedrawInterval = std::chrono::milliseconds(100);
+// Carriage return, then erase to the end of the line (ANSI EL 0).
+constexpr char kEraseLine[] = "\r\x1b[K";
 
 // Columns of the terminal behind `out`; 80 when unknown.
 size_t TerminalColumns(std::FILE* out) {
@@ -61,7 +63,7 @@ Progress::Progress(size_t total, bool enabled, std::FILE* out, bool tty)
 Progress::~Progress() {
   if (!enabled_ || done_ == 0) return;
   if (tty_) {
-    if (shown_done_ != done_) DrawBar();  // the last step fell between redraws
+    if (shown_done_ != done_ || !drawn_) DrawBar();  // the last step fell between redraws
     std::fputc('\n', out_);
     std::fflush(out_);
   } else if (shown_done_ != done_) {
@@ -69,63 +71,76 @@ Progress::~Progress() {
   }
 }
 
-void Progress::Step(const std::string& name) {
+void Progress::Step(size_t points, size_t ground) {
   if (!enabled_) return;
   ++done_;
-  name_ = name;
+  points_ += points;
+  ground_ += ground;
+  auto now = std::chrono::steady_clock::now();
   if (tty_) {
     // Redraw at most every kRedrawInterval, but always the first and the last step.
-    auto now = std::chrono::steady_clock::now();
     bool last = total_ != 0 && done_ == total_;
-    if (drawn_width_ == 0 || last || now - last_draw_ >= kRedrawInterval) DrawBar();
+    if (!drawn_ || last || now - last_draw_ >= kRedrawInterval) DrawBar();
   } else {
-    // A line whenever another tenth of the total is done (every step when the total is unknown
-    // would flood a log, so then only the destructor's last line).
-    if (total_ != 0 && (done_ * 10 / total_ > shown_done_ * 10 / total_ || done_ == total_)) {
-      PrintLine();
-    }
+    // A line whenever another tenth of the total is done, or kLineInterval after the last one.
+    bool tenth =
+        total_ != 0 && (done_ * 10 / total_ > shown_done_ * 10 / total_ || done_ == total_);
+    if (tenth || now - last_draw_ >= kLineInterval) PrintLine();
   }
 }
 
-void Progress::DrawBar() {
-  auto now = std::chrono::steady_clock::now();
-  last_draw_ = now;
-  shown_done_ = done_;
-  double elapsed = std::chrono::duration<double>(now - start_).count();
+void Progress::Print(std::FILE* to, const std::string& text) {
+  if (enabled_ && tty_ && drawn_) {
+    std::fputs(kEraseLine, out_);
+    std::fflush(out_);
+    drawn_ = false;
+  }
+  std::fputs(text.c_str(), to);
+  std::fflush(to);
+  if (enabled_ && tty_ && done_ > 0) DrawBar();
+}
 
+std::string Progress::Status(bool bar) const {
+  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   std::string line;
-  if (total_ != 0) {
+  if (bar && total_ != 0) {
     size_t filled = std::min(kBarCells, done_ * kBarCells / total_);
     line = "[" + std::string(filled, '#') + std::string(kBarCells - filled, '.') + "] ";
   }
-  line += Count(done_, total_) + "  " + FormatDuration(elapsed);
+  line += Count(done_, total_);
+  char buf[96];
+  if (points_ != 0) {
+    std::snprintf(buf, sizeof(buf), "  %.1f%% ground", 100.0 * double(ground_) / double(points_));
+    line += buf;
+  }
+  if (elapsed > 0) {
+    const double rate = double(done_) / elapsed;
+    std::snprintf(buf, sizeof(buf), rate < 100 ? "  %.1f frames/s" : "  %.0f frames/s", rate);
+    line += buf;
+  }
+  line += "  " + FormatDuration(elapsed);
   if (total_ != 0 && done_ < total_) {
-    line += " (" + FormatDuration(elapsed / done_ * (total_ - done_)) + " left)";
+    line += " (" + FormatDuration(elapsed / double(done_) * double(total_ - done_)) + " left)";
   }
-  // The name, shortened from the front so that the line never wraps (a wrapped line cannot be
-  // redrawn with '\r').
-  size_t columns = TerminalColumns(out_);
-  if (!name_.empty() && line.size() + 6 < columns) {
-    size_t room = columns - 1 - line.size() - 2;
-    std::string name = name_.size() <= room ? name_ : "..." + name_.substr(name_.size() - room + 3);
-    line += "  " + name;
-  }
-  if (line.size() >= columns) line.resize(columns - 1);
+  return line;
+}
 
-  std::string text = "\r" + line;
-  if (line.size() < drawn_width_) text += std::string(drawn_width_ - line.size(), ' ');
-  drawn_width_ = line.size();
-  std::fputs(text.c_str(), out_);
+void Progress::DrawBar() {
+  last_draw_ = std::chrono::steady_clock::now();
+  shown_done_ = done_;
+  std::string line = Status(true);
+  // Never wider than the terminal: a wrapped line cannot be redrawn in place.
+  size_t columns = TerminalColumns(out_);
+  if (line.size() >= columns) line.resize(columns - 1);
+  std::fputs((kEraseLine + line).c_str(), out_);
   std::fflush(out_);
+  drawn_ = true;
 }
 
 void Progress::PrintLine() {
+  last_draw_ = std::chrono::steady_clock::now();
   shown_done_ = done_;
-  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  std::string line = "progress: " + Count(done_, total_) + "  " + FormatDuration(elapsed);
-  if (!name_.empty()) line += "  " + name_;
-  line += "\n";
-  std::fputs(line.c_str(), out_);
+  std::fputs(("progress: " + Status(false) + "\n").c_str(), out_);
   std::fflush(out_);
 }
 

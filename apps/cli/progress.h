@@ -1,5 +1,8 @@
-// A progress bar for the subcommands that work through many files: one line redrawn with '\r' on
-// a terminal, a plain line at every 10 % on anything else (CI logs, pipes), nothing when disabled.
+// The progress of the subcommands that work through many files. On a terminal: one status line
+// (bar, count, frames per second, time left, running ground fraction) redrawn in place, with every
+// message printed above it through Print. Anywhere else (CI logs, pipes, files): never a '\r' or
+// an escape code, a plain line whenever another tenth is done or kLineInterval has passed.
+// Nothing when disabled (messages given to Print are still printed).
 #pragma once
 #include <chrono>
 #include <cstddef>
@@ -10,19 +13,26 @@ namespace lpir {
 
 class Progress {
  public:
-  // Draws on stderr, as a bar when stderr is a terminal (isatty).
+  // Off a terminal, a line at least this often while items get done.
+  static constexpr std::chrono::seconds kLineInterval{10};
+
+  // Draws on stderr, as a status line when stderr is a terminal (isatty).
   Progress(size_t total, bool enabled);
-  // Draws on `out` (not owned), as a bar when `tty`. For tests.
+  // Draws on `out` (not owned), as a status line when `tty`. For tests.
   Progress(size_t total, bool enabled, std::FILE* out, bool tty);
-  ~Progress();  // ends the bar's line (the cursor leaves it at the start of a fresh line)
+  ~Progress();  // ends the status line (the cursor leaves it at the start of a fresh line)
 
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  // One item done; `name` (a file, a frame) is shown beside the bar.
-  void Step(const std::string& name);
+  // One item done: `points` of which `ground` are ground (both 0 for an item that failed).
+  void Step(size_t points = 0, size_t ground = 0);
+  // Writes `text` (whole lines) to `to`: on a terminal the status line is erased first and
+  // redrawn below the text, so that the two never share a line.
+  void Print(std::FILE* to, const std::string& text);
 
  private:
+  std::string Status(bool bar) const;
   void DrawBar();
   void PrintLine();
 
@@ -31,9 +41,9 @@ class Progress {
   std::FILE* out_;
   bool tty_;
   size_t done_ = 0;
-  std::string name_;        // of the last item done
-  size_t shown_done_ = 0;   // done_ when the last bar or line was written
-  size_t drawn_width_ = 0;  // characters of the bar's last drawing (0: nothing drawn yet)
+  size_t points_ = 0, ground_ = 0;  // over the items done
+  size_t shown_done_ = 0;           // done_ when the last status was written
+  bool drawn_ = false;              // the status line is on the screen (tty)
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;
 };
