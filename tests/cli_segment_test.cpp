@@ -210,6 +210,15 @@ TEST(CliSegment, QuietPrintsNothingOnSuccessAndTheDefaultOneSummary) {
   EXPECT_NE(log.find("--quiet and --verbose"), std::string::npos) << log;
 }
 
+TEST(CliSegment, VersionNamesTheVersionCommitAndBackends) {
+  std::string log;
+  ASSERT_EQ(test::RunCommand(Cli() + " --version", &log), 0) << log;
+  EXPECT_EQ(log.rfind("lpir-gseg 0.", 0), 0u) << log;
+  EXPECT_NE(log.find(" (commit "), std::string::npos) << log;
+  EXPECT_NE(log.find("backend cpu: available"), std::string::npos) << log;
+  EXPECT_NE(log.find("backend vulkan: "), std::string::npos) << log;
+}
+
 TEST(CliSegment, UsageErrorsExitNonZero) {
   std::string log;
   EXPECT_NE(Segment("--sensor hdl64e --out /tmp", &log), 0);

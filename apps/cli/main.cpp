@@ -3,8 +3,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <string>
 
 #include "apps/cli/commands.h"
+#include "host/vk/device.h"
+#include "host/vk/instance.h"
 
 namespace lpir {
 const char* SensorsDir() {
@@ -25,14 +28,36 @@ const char kUsage[] =
     "  calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
     "  demo [--out DIR] [--backend auto|vulkan|cpu]\n"
     "  devices\n"
-    "  bench [--runs N] [--json]\n";
+    "  bench [--runs N] [--json]\n"
+    "  --version        the version, the git commit built and which backends this machine has\n";
+
+// "lpir-gseg 0.1.0 (commit abc123)", then one line per backend: the CPU reference is always
+// there; Vulkan names the device `segment --backend vulkan` takes, or says why there is none.
+int PrintVersion() {
+  std::string commit = LPIR_GIT_COMMIT;
+  std::printf("lpir-gseg %s (commit %s)\n", LPIR_VERSION,
+              commit.empty() ? "unknown" : commit.c_str());
+  std::printf("backend cpu: available (the reference)\n");
+  std::string vulkan;
+  lpir::vk::Result<lpir::vk::Instance> instance = lpir::vk::Instance::Create({});
+  if (!instance.ok()) {
+    vulkan = "unavailable: " + instance.error().message;
+  } else {
+    lpir::vk::Result<lpir::vk::Device> device = lpir::vk::Device::Create(instance.value());
+    vulkan = device.ok() ? "available: " + device.value().name()
+                         : "unavailable: " + device.error().message;
+  }
+  std::printf("backend vulkan: %s\n", vulkan.c_str());
+  return 0;
 }
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
   }
+  if (!std::strcmp(argv[1], "--version")) return PrintVersion();
   struct Command {
     const char* name;
     int (*run)(int, char**);
