@@ -616,15 +616,9 @@ TEST(CliEvaluateRealScan, GroundTruthAgainstItself) {
   in.read(reinterpret_cast<char*>(labels.data()), std::streamsize(labels.size() * 4));
   std::vector<uint32_t> pred(labels.size());
   for (size_t i = 0; i < labels.size(); ++i) pred[i] = IsGroundClass(labels[i]) ? 1 : 0;
-  std::string dir = test::TempDir();
+  const test::ScopedDir scoped;
+  const std::string& dir = scoped.path;
   WriteU32(dir + "/000964.label", pred);
-  struct Cleanup {
-    std::string path;
-    ~Cleanup() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  } cleanup{dir};
   std::string out;
   ASSERT_EQ(test::RunCommand("'" + test::CliPath() + "' evaluate --pred " + dir + " --gt " +
                                  test::DataFile("kitti/07/labels") + " --protocol all --json",
@@ -642,14 +636,8 @@ TEST(CliEvaluateRealScan, GroundTruthAgainstItself) {
 TEST(CliEvaluateRealScan, RellisOs1SegmentedScoresF1AtLeast94) {
   LPIR_REQUIRE_DATA("rellis3d/os1/000104.bin");
   LPIR_REQUIRE_DATA("rellis3d/os1/000104.label");
-  std::string dir = test::TempDir();
-  struct Cleanup {
-    std::string path;
-    ~Cleanup() {
-      std::error_code ec;
-      fs::remove_all(path, ec);
-    }
-  } cleanup{dir};
+  const test::ScopedDir scoped;
+  const std::string& dir = scoped.path;
   const std::string cli = "'" + test::CliPath() + "'";
   std::string out;
   ASSERT_EQ(test::RunCommand(cli + " segment " + test::DataFile("rellis3d/os1/000104.bin") +

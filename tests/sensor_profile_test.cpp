@@ -18,15 +18,6 @@
 namespace lpir {
 namespace {
 
-// A temporary folder removed at the end of the test.
-struct ScopedDir {
-  std::string path = test::TempDir();
-  ~ScopedDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-};
-
 const char* const kShipped[] = {"hdl32e",   "hdl64e",    "os1-128", "os1-64", "ot128",
                                 "pandar64", "rs-ruby80", "vlp16",   "vlp32c"};
 
@@ -153,7 +144,7 @@ TEST(SensorProfile, VendorTablesMatchTheirSources) {
 }
 
 TEST(SensorProfile, ParsesEveryKey) {
-  ScopedDir scoped;
+  test::ScopedDir scoped;
   const std::string& dir = scoped.path;
   SensorProfile p = LoadSensorProfile(WriteText(dir, "tiny.txt", kValid), dir + "/nowhere");
   EXPECT_EQ(p.name, "tiny");
@@ -175,7 +166,7 @@ TEST(SensorProfile, ParsesEveryKey) {
 }
 
 TEST(SensorProfile, NameLooksInTheSensorsFolderAndPathsWorkToo) {
-  ScopedDir scoped;
+  test::ScopedDir scoped;
   const std::string& dir = scoped.path;
   WriteText(dir, "tiny.txt", kValid);
   EXPECT_EQ(LoadSensorProfile("tiny", dir).name, "tiny");
@@ -184,7 +175,7 @@ TEST(SensorProfile, NameLooksInTheSensorsFolderAndPathsWorkToo) {
 }
 
 TEST(SensorProfile, RoundTripsExactly) {
-  ScopedDir scoped;
+  test::ScopedDir scoped;
   const std::string& dir = scoped.path;
   for (const char* name : kShipped) {
     SCOPED_TRACE(name);
@@ -289,7 +280,7 @@ TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
       {"missing name", Edit(2, ""), 13, "without the required key 'name'"},
       {"missing table", Edit(5, ""), 5, "numbers without a key"},
   };
-  ScopedDir scoped;
+  test::ScopedDir scoped;
   const std::string& dir = scoped.path;
   int index = 0;
   for (const BadCase& c : cases) {
@@ -307,7 +298,7 @@ TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
 }
 
 TEST(SensorProfile, MissingTableReportedAtTheEnd) {
-  ScopedDir scoped;
+  test::ScopedDir scoped;
   const std::string& dir = scoped.path;
   std::string path = WriteText(dir, "p.txt", "name x\nbeams 2\nwidth 64\n");
   try {
@@ -322,7 +313,7 @@ TEST(SensorProfile, MissingTableReportedAtTheEnd) {
 }
 
 TEST(SensorProfile, MissingFileIsUnknownAndUnwritableFolderAnIoError) {
-  ScopedDir scoped;
+  test::ScopedDir scoped;
   const std::string& dir = scoped.path;
   EXPECT_THROW(LoadSensorProfile(dir + "/absent.txt", dir), std::invalid_argument);
   EXPECT_THROW(WriteSensorProfile(dir + "/no/such/folder.txt",

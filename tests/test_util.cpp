@@ -46,6 +46,11 @@ std::string TempDir() {
   return p.string();
 }
 
+ScopedDir::~ScopedDir() {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
 int RunCommand(const std::string& command, std::string* output) {
   std::string cmd = command + " 2>&1";
   FILE* pipe = ::popen(cmd.c_str(), "r");

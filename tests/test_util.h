@@ -17,6 +17,14 @@ std::string SensorsDir();
 std::string CliPath();
 // A fresh empty temporary folder, unique per call.
 std::string TempDir();
+// A TempDir() removed, with everything in it, when the object goes out of scope.
+struct ScopedDir {
+  std::string path = TempDir();
+  ScopedDir() = default;
+  ScopedDir(const ScopedDir&) = delete;
+  ScopedDir& operator=(const ScopedDir&) = delete;
+  ~ScopedDir();
+};
 // Runs a shell command; returns its exit code and fills `output` with stdout+stderr.
 int RunCommand(const std::string& command, std::string* output = nullptr);
 // A file's bytes ("" when it cannot be read).
