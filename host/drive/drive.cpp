@@ -1,0 +1,34 @@
+#include "host/drive/drive.h"
+
+#include <filesystem>
+
+#include "host/drive/db3_reader.h"
+#include "host/drive/mcap_reader.h"
+#include "host/drive/pointcloud2.h"
+#include "host/drive/ros1_bag_reader.h"
+#include "host/io/io_error.h"
+
+namespace lpir {
+
+bool IsDriveFile(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".mcap" || ext == ".db3" || ext == ".bag";
+}
+
+std::unique_ptr<DriveReader> OpenDrive(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".mcap") return OpenMcap(path);
+  if (ext == ".db3") return OpenDb3(path);
+  if (ext == ".bag") return OpenRos1Bag(path);
+  throw IoError(path, "not a recorded drive: the extension must be .mcap, .db3 or .bag");
+}
+
+Cloud DecodeDriveCloud(const std::string& where, const DriveMessage& message) {
+  const PointCloud2 msg =
+      message.encoding == MessageEncoding::kCdr
+          ? ParseCdrPointCloud2(where, message.data.data(), message.data.size())
+          : ParseRos1PointCloud2(where, message.data.data(), message.data.size());
+  return CloudFromPointCloud2(where, msg);
+}
+
+}  // namespace lpir

@@ -1,0 +1,66 @@
+// A recorded drive: a ROS 2 MCAP file (.mcap), a ROS 2 SQLite bag (.db3) or a ROS 1 bag 2.0
+// (.bag), read without ROS. A reader yields the serialized messages of one topic in the order
+// they were logged; DecodeDriveCloud turns a sensor_msgs PointCloud2 message into a Cloud.
+//
+// Damage: Next reports a damaged part (truncated record or chunk, CRC mismatch, unknown
+// compression, a malformed record) as DriveStep::kDamage with a problem naming the file, where
+// (byte offset, chunk, message sequence when known) and what. Reading goes on after it where the
+// format lets the reader find the next intact part (the next chunk of an indexed file), else the
+// next call returns kEnd. Every message before the damage has been yielded by then.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "reference_cpu/cloud.h"
+
+namespace lpir {
+
+// The serialization of a message's bytes.
+enum class MessageEncoding { kCdr, kRos1 };
+
+struct DriveTopic {
+  std::string name;      // "/points"
+  std::string type;      // as the drive names it: "sensor_msgs/msg/PointCloud2" (ROS 2),
+                         // "sensor_msgs/PointCloud2" (ROS 1)
+  std::string encoding;  // as the drive names it: "cdr", "ros1", ...
+  uint64_t messages = 0;
+};
+
+struct DriveMessage {
+  uint64_t sequence = 0;     // 0-based position among the chosen topic's yielded messages
+  uint64_t log_time_ns = 0;  // when the recorder logged it
+  std::string topic;
+  MessageEncoding encoding = MessageEncoding::kCdr;
+  std::vector<uint8_t> data;  // the serialized message (CDR: with its 4-byte encapsulation header)
+};
+
+enum class DriveStep { kMessage, kDamage, kEnd };
+
+class DriveReader {
+ public:
+  virtual ~DriveReader() = default;
+  // Every topic with its type and message count (from the summary or index when the file has
+  // one, else from a scan). IoError naming the file when the file cannot be read at all.
+  virtual std::vector<DriveTopic> Topics() = 0;
+  // Restricts Next to `topic` and starts from the first message. IoError naming the file when
+  // the drive has no such topic (the message lists those it has).
+  virtual void SelectTopic(const std::string& topic) = 0;
+  // The next message of the selected topic (kMessage, *message filled), a damaged part
+  // (kDamage, *problem filled) or the end (kEnd).
+  virtual DriveStep Next(DriveMessage* message, std::string* problem) = 0;
+};
+
+// True for the extensions OpenDrive accepts: .mcap, .db3, .bag.
+bool IsDriveFile(const std::string& path);
+// The reader for `path` by its extension. IoError naming the file when it is missing, of an
+// unknown extension, or has no valid header (magic, version, schema).
+std::unique_ptr<DriveReader> OpenDrive(const std::string& path);
+
+// The sensor_msgs/PointCloud2 in `message` as a Cloud (see pointcloud2.h for the rules).
+// IoError naming `where` (file and message) for a malformed message or one whose fields do not
+// hold x, y and z.
+Cloud DecodeDriveCloud(const std::string& where, const DriveMessage& message);
+
+}  // namespace lpir
