@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Makes the committed recorded-drive fixtures, tests/data/drives/, with writers that share no code
+# with lpir-gseg's readers (tools/drive_fixtures/: @mcap/core, @foxglove/rosmsg2-serialization,
+# Python's sqlite3, Debian's python3-rosbag):
+#   frames/00000{0,1,2}.bin   three simulated VLP-16 scans (`lpir-gseg simulate --sensor vlp16`,
+#                             seeds 1-3, urban scene), every 8th point kept so the files stay small
+#   frames/00000{0,1,2}.ring  each point's ring (uint16 LE), its beam by elevation: VLP-16 beams
+#                             lie 2 degrees apart from -15 (ring 0, the bottom, as the ROS
+#                             Velodyne driver numbers them) to +15 (ring 15)
+#   vlp16_{zstd,lz4,none}.mcap, vlp16.db3, vlp16_{bz2,lz4}.bag
+#                             the three frames as sensor_msgs PointCloud2 on /velodyne_points,
+#                             one message per chunk (tools/drive_fixtures/pointcloud.mjs and
+#                             write_bag.py give the layout)
+# usage: scripts/make_drive_fixtures.sh [OUT_DIR]   (default tests/data/drives)
+# LPIR_CLI names the lpir-gseg binary (default build/lpir-gseg). Runs `npm ci` in
+# tools/drive_fixtures when its node_modules is missing.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="${1:-${root}/tests/data/drives}"
+cli="${LPIR_CLI:-${root}/build/lpir-gseg}"
+tools="${root}/tools/drive_fixtures"
+python=/usr/bin/python3  # Debian's, which sees python3-rosbag
+topic=/velodyne_points
+say() { echo "[make_drive_fixtures] $*"; }
+
+[[ -x "${cli}" ]] || { say "error: no lpir-gseg at ${cli} (build it, or set LPIR_CLI)" >&2; exit 1; }
+if [[ ! -d "${tools}/node_modules" ]]; then
+  say "npm ci in ${tools}"
+  (cd "${tools}" && npm ci --no-audit --no-fund)
+fi
+
+tmp="$(mktemp -d)"
+trap 'rm -rf "${tmp}"' EXIT
+mkdir -p "${out}/frames"
+frames=()
+for i in 0 1 2; do
+  name="$(printf '%06d' "${i}")"
+  "${cli}" simulate --sensor vlp16 --seed "$((i + 1))" --out "${tmp}/${name}.bin" \
+    --labels "${tmp}/${name}.label"
+  "${python}" - "${tmp}/${name}.bin" "${out}/frames/${name}" << 'PY'
+import sys
+import numpy
+points = numpy.fromfile(sys.argv[1], dtype="<f4").reshape(-1, 4)[::8]
+points.tofile(sys.argv[2] + ".bin")
+elevation = numpy.degrees(numpy.arctan2(points[:, 2].astype(numpy.float64),
+                                        numpy.hypot(points[:, 0], points[:, 1])))
+ring = numpy.clip(numpy.rint((elevation + 15.0) / 2.0), 0, 15).astype("<u2")
+ring.tofile(sys.argv[2] + ".ring")
+print(f"  {sys.argv[2]}.bin: {len(points)} points")
+PY
+  frames+=("${out}/frames/${name}.bin")
+done
+
+for compression in zstd lz4 none; do
+  node "${tools}/write_mcap.mjs" --out "${out}/vlp16_${compression}.mcap" \
+    --compression "${compression}" --topic "${topic}" --chunk-size 1 "${frames[@]}"
+done
+node "${tools}/write_cdr.mjs" --out-dir "${tmp}/cdr" "${frames[@]}"
+"${python}" "${tools}/write_db3.py" --cdr-dir "${tmp}/cdr" --out "${out}/vlp16.db3" --topic "${topic}"
+for compression in bz2 lz4; do
+  "${python}" "${tools}/write_bag.py" --out "${out}/vlp16_${compression}.bag" \
+    --compression "${compression}" --topic "${topic}" --chunk-threshold 1 "${frames[@]}"
+done
+say "done: $(du -sh "${out}" | cut -f1) in ${out}"

@@ -1,0 +1,94 @@
+#!/usr/bin/python3
+"""Writes a ROS 1 bag (format 2.0) with Debian's python3-rosbag and python3-sensor-msgs (not
+lpir-gseg's code): one sensor_msgs/PointCloud2 per KITTI .bin frame on one topic, chunked, each
+chunk compressed with bz2 or lz4 (python3-roslz4) or not at all; rosbag writes the connection
+and chunk-info index records when it closes the bag.
+
+Frame i (0-based, in the order given) becomes one message, laid out as pointcloud.mjs lays out
+the ROS 2 ones: header seq i, stamp 1600000000 s + i x 100 ms, frame_id --frame-id; height 1,
+width = the frame's points, little-endian, is_dense false; fields x y z intensity (float32, from
+the .bin), ring (uint16, from FRAME.ring beside FRAME.bin) when that file exists, time (float32,
+point k of n at k / n x 0.1 s). point_step 22 with ring, else 20. The message is recorded at its
+stamp.
+
+usage: write_bag.py --out FILE.bag --compression bz2|lz4|none [--topic /points]
+                    [--frame-id velodyne] [--chunk-threshold BYTES] FRAME.bin...
+A chunk is closed once it holds --chunk-threshold bytes (default rosbag's 768 KiB; 1 gives one
+message per chunk).
+"""
+import argparse
+import os
+import sys
+
+import genpy
+import numpy
+import rosbag
+from sensor_msgs.msg import PointCloud2, PointField
+
+BASE_SEC = 1600000000
+PERIOD_NS = 100000000
+
+
+def cloud_message(bin_path, index, frame_id):
+    with open(bin_path, "rb") as f:
+        raw = f.read()
+    if len(raw) % 16:
+        sys.exit(f"write_bag: {bin_path}: not a KITTI .bin (size {len(raw)})")
+    n = len(raw) // 16
+    ring_path = bin_path[:-len(".bin")] + ".ring"
+    ring = None
+    if os.path.exists(ring_path):
+        with open(ring_path, "rb") as f:
+            ring = f.read()
+        if len(ring) != 2 * n:
+            sys.exit(f"write_bag: {ring_path}: {len(ring)} bytes, expected {2 * n}")
+    fields = [PointField(name, 4 * k, PointField.FLOAT32, 1)
+              for k, name in enumerate(("x", "y", "z", "intensity"))]
+    step = 16
+    if ring is not None:
+        fields.append(PointField("ring", step, PointField.UINT16, 1))
+        step += 2
+    fields.append(PointField("time", step, PointField.FLOAT32, 1))
+    step += 4
+    layout = [("xyzi", "<f4", 4)] + ([("ring", "<u2")] if ring is not None else [])
+    records = numpy.zeros(n, dtype=layout + [("time", "<f4")])  # packed: point_step bytes apart
+    records["xyzi"] = numpy.frombuffer(raw, dtype="<f4").reshape(n, 4)
+    if ring is not None:
+        records["ring"] = numpy.frombuffer(ring, dtype="<u2")
+    records["time"] = numpy.arange(n) / n * 0.1
+    stamp_ns = BASE_SEC * 1000000000 + index * PERIOD_NS
+    msg = PointCloud2()
+    msg.header.seq = index
+    msg.header.stamp = genpy.Time(stamp_ns // 1000000000, stamp_ns % 1000000000)
+    msg.header.frame_id = frame_id
+    msg.height, msg.width = 1, n
+    msg.fields = fields
+    msg.is_bigendian = False
+    msg.point_step, msg.row_step = step, n * step
+    msg.data = records.tobytes()
+    msg.is_dense = False
+    return msg
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--compression", required=True, choices=("bz2", "lz4", "none"))
+    parser.add_argument("--topic", default="/points")
+    parser.add_argument("--frame-id", default="velodyne")
+    parser.add_argument("--chunk-threshold", type=int, default=768 * 1024)
+    parser.add_argument("frames", nargs="+")
+    args = parser.parse_args()
+    compression = {"bz2": rosbag.Compression.BZ2, "lz4": rosbag.Compression.LZ4,
+                   "none": rosbag.Compression.NONE}[args.compression]
+    with rosbag.Bag(args.out, "w", compression=compression,
+                    chunk_threshold=args.chunk_threshold) as bag:
+        for i, path in enumerate(args.frames):
+            msg = cloud_message(path, i, args.frame_id)
+            bag.write(args.topic, msg, t=msg.header.stamp)
+    print(f"write_bag: {len(args.frames)} messages on {args.topic} ({args.compression}) -> "
+          f"{args.out}")
+
+
+if __name__ == "__main__":
+    main()
