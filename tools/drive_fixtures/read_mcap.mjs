@@ -3,13 +3,16 @@
 // validated) to the footer, then the summary through McapIndexedReader, then every message.
 // Prints one line per channel: topic, schema name, message encoding, message count.
 //
-// usage: node read_mcap.mjs FILE.mcap [--expect TOPIC:COUNT]...
+// usage: node read_mcap.mjs FILE.mcap [--expect TOPIC:COUNT]... [--labels DIR]
 // Every CDR sensor_msgs/msg/PointCloud2 message is decoded with @foxglove/rosmsg2-serialization
 // from its channel's schema. For a topic T/ground beside T: its k-th message must carry a uint8
 // `label` field, width x height points, exactly the bytes that point count needs, labels 0 or 1,
 // the same stamp, width and height as T's k-th message and the same x, y, z bytes; and T/ground
-// must have as many messages as T. Exits 1, naming the message and the problem, on any failure.
-import { readFileSync } from "node:fs";
+// must have as many messages as T. With --labels DIR (the .label files of `lpir-gseg segment`,
+// uint32 per point, taken in natural name order), the k-th message's labels must equal the k-th
+// file's values. Exits 1, naming the message and the problem, on any failure.
+import { readFileSync, readdirSync } from "node:fs";
+import { join } from "node:path";
 
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import { parse } from "@foxglove/rosmsg";
@@ -43,14 +46,23 @@ function fieldBytes(msg, name, width) {
 
 async function main() {
   const args = process.argv.slice(2);
-  const path = args.find((a) => !a.startsWith("--") && !a.includes(":"));
+  let path;
+  let labelsDir;
   const expect = [];
-  for (let i = 0; i < args.length; ++i)
+  for (let i = 0; i < args.length; ++i) {
     if (args[i] === "--expect") {
-      const [topic, count] = args[++i].split(/:(?=[0-9]+$)/);
+      const [topic, count] = (args[++i] ?? "").split(/:(?=[0-9]+$)/);
       expect.push({ topic, count: Number(count) });
+    } else if (args[i] === "--labels") {
+      labelsDir = args[++i];
+    } else {
+      path = args[i];
     }
-  if (!path) throw new Error("usage: read_mcap.mjs FILE.mcap [--expect TOPIC:COUNT]...");
+  }
+  if (!path) throw new Error("usage: read_mcap.mjs FILE.mcap [--expect TOPIC:COUNT]... [--labels DIR]");
+  const labelFiles = labelsDir === undefined ? undefined :
+      readdirSync(labelsDir).filter((n) => n.endsWith(".label"))
+          .sort((a, b) => a.localeCompare(b, "en", { numeric: true }));
   await zstd.isLoaded;
   await lz4.isLoaded;
   const bytes = readFileSync(path);
@@ -107,6 +119,8 @@ async function main() {
     }
     if (input.length !== labelled.length)
       fail(`${path}: ${topic}: ${labelled.length} messages, its input has ${input.length}`);
+    if (labelFiles && labelFiles.length !== labelled.length)
+      fail(`${path}: ${topic}: ${labelled.length} messages, ${labelsDir} has ${labelFiles.length} .label files`);
     for (let k = 0; k < labelled.length; ++k) {
       const where = `${path}: ${topic} message ${k}`;
       const msg = labelled[k], src = input[k];
@@ -126,6 +140,19 @@ async function main() {
       if (labels.length !== points) fail(`${where}: ${labels.length} labels for ${points} points`);
       const bad = labels.findIndex((v) => v > 1);
       if (bad >= 0) fail(`${where}: point ${bad} has label ${labels[bad]}, not 0 or 1`);
+      if (labelFiles) {
+        if (k >= labelFiles.length) {
+          fail(`${where}: no .label file for it in ${labelsDir} (${labelFiles.length} there)`);
+        } else {
+          const file = readFileSync(join(labelsDir, labelFiles[k]));
+          const want = new Uint32Array(file.buffer, file.byteOffset, Math.floor(file.length / 4));
+          const differ = want.length !== labels.length ? 0 : want.findIndex((v, j) => v !== labels[j]);
+          if (want.length !== labels.length)
+            fail(`${where}: ${labels.length} labels, ${labelFiles[k]} has ${want.length}`);
+          else if (differ >= 0)
+            fail(`${where}: point ${differ} labelled ${labels[differ]}, ${labelFiles[k]} says ${want[differ]}`);
+        }
+      }
       if (!src) continue;
       if (src.width * src.height !== points)
         fail(`${where}: ${points} points, the input message has ${src.width * src.height}`);
