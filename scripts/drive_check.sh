@@ -30,6 +30,11 @@ die() { say "error: $*" >&2; exit 1; }
 
 [[ "${frames}" =~ ^[1-9][0-9]*$ ]] || die "N must be a positive integer, got '${frames}'"
 [[ -x "${cli}" ]] || die "no lpir-gseg at ${cli} (build it, or set LPIR_CLI)"
+{ command -v node && command -v npm; } > /dev/null ||
+  die "needs Node.js and npm for tools/drive_fixtures (Debian: apt-get install nodejs npm)"
+"${python}" -c 'import rosbag, roslz4, sensor_msgs.msg' 2> /dev/null ||
+  die "needs ${python} with python3-rosbag, python3-roslz4 and python3-sensor-msgs" \
+    "(scripts/install_deps.sh installs them)"
 if [[ ! -d "${tools}/node_modules" ]]; then
   say "npm ci in ${tools}"
   (cd "${tools}" && npm ci --no-audit --no-fund)

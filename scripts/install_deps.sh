@@ -15,6 +15,10 @@ PACKAGES=(
   # The Python package (python/) and its suite: built offline in a venv that sees these
   python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11
   python3-numpy python3-pytest python3-dask python3-distributed
+  # The independent ROS 1 bag writer of scripts/make_drive_fixtures.sh and drive_check.sh
+  # (tools/drive_fixtures/write_bag.py); the suite reads only the committed fixtures. Those
+  # scripts also need Node.js and npm (`nodejs npm`), which they ask for when missing.
+  python3-rosbag python3-roslz4 python3-sensor-msgs
 )
 
 say() { echo "[install_deps] $*"; }
