@@ -3,9 +3,11 @@
     import lpir_gseg
     seg = lpir_gseg.Segmenter("hdl64e")                  # a GPU through Vulkan, else the CPU
     labels = seg.segment(lpir_gseg.read_cloud("scan.bin"))  # (N,) uint8, 1 ground
+    for stamp_ns, points in lpir_gseg.read_drive("drive.mcap", "/points"):  # .mcap .db3 .bag
+        labels = seg.segment(points)
 
 Both backends give the labels `lpir-gseg segment` writes, byte for byte. `python3 -m
-lpir_gseg.fleet` labels many files on a Dask cluster (docs/fleet.md).
+lpir_gseg.fleet` labels many files and drives on a Dask cluster (docs/fleet.md).
 """
 import os
 from pathlib import Path
@@ -27,6 +29,7 @@ from ._core import (
     simulate,
     write_labels,
 )
+from .drive import DriveTopic, drive_topics, is_drive_file, read_drive
 
 __version__ = "0.1.0"
 
@@ -38,6 +41,10 @@ _core._set_sensors_dir(os.environ.get("LPIR_SENSORS_DIR") or
 __all__ = [
     "Segmenter",
     "read_cloud",
+    "read_drive",
+    "drive_topics",
+    "DriveTopic",
+    "is_drive_file",
     "read_labels",
     "write_labels",
     "evaluate",

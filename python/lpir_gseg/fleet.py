@@ -1,14 +1,19 @@
 """Labels many scans on a Dask cluster: the fleet version of `lpir-gseg segment`.
 
-    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--scheduler tcp://HOST:PORT | --workers N]
+    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--topic T]
+                               [--scheduler tcp://HOST:PORT | --workers N]
 
 INPUTs are files or folders (a folder: its cloud files in name order), as `segment` takes them.
-Each file becomes DIR/<stem>.label, byte for byte what `lpir-gseg segment` writes. Without
+Each file becomes DIR/<stem>.label, byte for byte what `lpir-gseg segment` writes. A recorded
+drive (.mcap, .db3, .bag) is one task: its topic's messages (--topic, else its only PointCloud2
+topic) become DIR/<drive stem>/<sequence, 6 digits>_<header stamp in ns>.label, the files
+`lpir-gseg segment DRIVE --out DIR/<drive stem>` writes, with an index.csv beside them. Without
 --scheduler a LocalCluster of N worker processes (one thread each) starts on 127.0.0.1. Every
 worker process keeps one Segmenter for all its tasks. A file that cannot be read or segmented is
 named in the report and every other file is still written; the exit code is then 1 and the last
 line counts the failures (2: bad arguments, or the cluster or the segmenters could not be set
-up). Inputs and DIR must be paths every worker sees (docs/fleet.md).
+up); a damaged drive is a failure naming the damage, its readable messages all written. Inputs
+and DIR must be paths every worker sees (docs/fleet.md).
 """
 import argparse
 import dataclasses
@@ -77,6 +82,7 @@ class FileResult:
     ground: int = 0
     worker: str = ""  # host:pid of the worker process
     segmenters_made: int = 0  # by that process so far
+    messages: int = 0  # a drive's: the messages labelled and written
 
 
 def _error_text(path: str, error: BaseException) -> str:
@@ -141,6 +147,63 @@ def segment_files(jobs: Sequence[Tuple[str, str]], config: SegmenterConfig) -> L
     return results
 
 
+def _write_labels(path: str, labels) -> None:
+    """`labels` as the .label file `path`, never half-written under its own name."""
+    part = f"{path}.part{os.getpid()}"
+    lpir_gseg.write_labels(part, labels)
+    os.replace(part, path)
+
+
+def segment_drive(drive: str, out: str, topic: Optional[str],
+                  config: SegmenterConfig) -> List[FileResult]:
+    """The task for a recorded drive: every message of its topic read, segmented and written in
+    log order as out/<sequence %06>_<header stamp ns>.label, listed in out/index.csv (sequence,
+    stamp_ns, topic, points, ground_fraction, ms, file). Damaged parts and messages that do not
+    decode, and failed writes, are the result's error (each named); every other message is
+    written."""
+    segmenter = _worker_segmenter(config)
+    result = FileResult(path=drive, worker=f"{socket.gethostname()}:{os.getpid()}")
+    problems: List[str] = []
+    try:
+        reader = lpir_gseg._core._Drive(drive)
+        chosen = lpir_gseg.drive.cloud_topic(reader, topic)
+        reader.select(chosen)
+        os.makedirs(out, exist_ok=True)
+    except Exception as error:  # noqa: BLE001 (the drive's failure, reported)
+        result.error = _error_text(drive, error)
+        result.segmenters_made = _segmenters_made
+        return [result]
+    index_part = os.path.join(out, f"index.csv.part{os.getpid()}")
+    with open(index_part, "w") as index:
+        index.write("sequence,stamp_ns,topic,points,ground_fraction,ms,file\n")
+        for kind, *rest in iter(reader.next, ("end",)):
+            if kind != "message":
+                problems.append(rest[0])
+                continue
+            sequence, stamp_ns, points, _ = rest
+            name = f"{sequence:06}_{stamp_ns}.label"
+            try:
+                start = time.perf_counter()
+                labels = segmenter.segment(points)
+                ms = 1000 * (time.perf_counter() - start)
+                _write_labels(os.path.join(out, name), labels)
+            except Exception as error:  # noqa: BLE001
+                problems.append(_error_text(f"{drive}: {chosen} message {sequence}", error))
+                continue
+            ground = int(labels.sum())
+            fraction = ground / len(labels) if len(labels) else 0.0
+            index.write(f"{sequence},{stamp_ns},{chosen},{len(labels)},{fraction:.6f},{ms:.3f},"
+                        f"{name}\n")
+            result.messages += 1
+            result.points += len(labels)
+            result.ground += ground
+    os.replace(index_part, os.path.join(out, "index.csv"))
+    if problems:
+        result.error = _error_text(drive, RuntimeError("; ".join(problems)))
+    result.segmenters_made = _segmenters_made
+    return [result]
+
+
 def list_inputs(inputs: Sequence[str]) -> List[str]:
     """Files as given, folders expanded to their cloud files in name order (as `segment` does);
     ValueError for a folder without any."""
@@ -153,7 +216,7 @@ def list_inputs(inputs: Sequence[str]) -> List[str]:
                 raise ValueError(f"{name}: folder holds no cloud files")
             files.extend(found)
         else:
-            files.append(name)  # a missing file is reported when it is read
+            files.append(name)  # a missing file or drive is reported when it is read
     return files
 
 
@@ -235,11 +298,14 @@ class RunStats:
 def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str] = None,
         workers: int = 1, backend: str = "auto", device: Optional[str] = None,
         max_points: Optional[int] = None, nuscenes: Optional[bool] = None,
-        chunk: Optional[int] = None, progress: bool = True, log=None) -> RunStats:
+        chunk: Optional[int] = None, progress: bool = True, log=None,
+        topic: Optional[str] = None) -> RunStats:
     """Labels every input on the cluster at `scheduler`, or on a LocalCluster of `workers`
-    processes; writes out/<stem>.label. `chunk` files make one task (None: about four tasks a
-    worker, at most 32 files each, so that a task's scheduling costs little beside its frames
-    even at some 15 ms a frame on the CPU). Returns the counts and times; a failed file is in
+    processes; writes out/<stem>.label, and for a drive out/<drive stem>/ (segment_drive; its
+    `topic`, None: its only PointCloud2 topic), one task per drive. `chunk` cloud files make one
+    task (None: about four tasks a worker, at most 32 files each, so that a task's scheduling
+    costs little beside its frames even at some 15 ms a frame on the CPU). Returns the counts
+    and times (a drive counts as one file); a failed file or damaged drive is in
     RunStats.failures (and printed on `log`, stderr by default), never an exception. Raises
     ValueError for bad arguments, RuntimeError when the segmenters cannot be made."""
     log = log or sys.stderr
@@ -249,12 +315,15 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
         raise ValueError("workers must be at least 1")
     files = list_inputs(inputs)
     outputs: Dict[str, str] = {}
+    jobs: List[Tuple[str, str]] = []  # cloud files
+    drive_jobs: List[Tuple[str, str]] = []  # drives and their folders
     for path in files:
-        target = os.path.join(out, Path(path).stem + ".label")
+        drive = lpir_gseg.is_drive_file(path)
+        target = os.path.join(out, Path(path).stem + ("" if drive else ".label"))
         if target in outputs:
             raise ValueError(f"{outputs[target]} and {path} would both write {target}")
         outputs[target] = path
-    jobs = [(path, os.path.join(out, Path(path).stem + ".label")) for path in files]
+        (drive_jobs if drive else jobs).append((path, target))
     profile_text = None
     if os.path.isfile(sensor):
         profile_text = Path(sensor).read_text()
@@ -286,13 +355,16 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
                 if backend == "auto" and not note.startswith("Vulkan on "):
                     print(f"lpir_gseg.fleet: note: {note}", file=log)
             n_workers = len(notes)
-            bar = Progress(len(jobs), progress and len(jobs) > 1)
+            bar = Progress(len(files), progress and len(files) > 1)
             start = time.monotonic()
             bar.start = start
             size = chunk or max(1, min(32, len(jobs) // (4 * max(n_workers, 1))))
             chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
             futures = {client.submit(segment_files, part, config, pure=False): part
                        for part in chunks}
+            for drive, folder in drive_jobs:
+                futures[client.submit(segment_drive, drive, folder, topic, config,
+                                      pure=False)] = [(drive, folder)]
             failures: List[Tuple[str, str]] = []
             segmenters: Dict[str, int] = {}
             written = 0
@@ -335,11 +407,15 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         description="Labels every point of every input cloud on a Dask cluster and writes "
                     "OUT/<stem>.label, as `lpir-gseg segment` does.")
     parser.add_argument("inputs", nargs="+", metavar="INPUT",
-                        help="cloud files (.bin KITTI, .pcd, .ply) or folders of them")
+                        help="cloud files (.bin KITTI, .pcd, .ply) or folders of them, and "
+                             "recorded drives (.mcap, .db3, .bag)")
     parser.add_argument("--sensor", required=True,
                         help="sensor profile name (%s) or a profile file" %
                              ", ".join(lpir_gseg.sensors()))
-    parser.add_argument("--out", required=True, metavar="DIR", help="where DIR/<stem>.label go")
+    parser.add_argument("--out", required=True, metavar="DIR",
+                        help="where DIR/<stem>.label go (a drive's: DIR/<drive stem>/)")
+    parser.add_argument("--topic", help="the drives' PointCloud2 topic (default: each drive's "
+                                        "only one)")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="a running dask scheduler, e.g. tcp://10.0.0.5:8786")
@@ -361,7 +437,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         stats = run(args.inputs, args.sensor, args.out, scheduler=args.scheduler,
                     workers=args.workers or os.cpu_count() or 1, backend=args.backend,
                     device=args.device, max_points=args.max_points, nuscenes=args.nuscenes,
-                    chunk=args.chunk, progress=not args.quiet)
+                    chunk=args.chunk, progress=not args.quiet, topic=args.topic)
     except (ValueError, RuntimeError, OSError) as error:
         print(f"lpir_gseg.fleet: error: {error}", file=sys.stderr)
         return 2

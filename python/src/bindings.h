@@ -15,5 +15,6 @@ void SetSensorsDir(const std::string& dir);
 
 void BindSegmenter(py::module_& m);  // segmenter.cpp: Segmenter
 void BindFunctions(py::module_& m);  // functions.cpp: files, scores, simulator, sensors, devices
+void BindDrive(py::module_& m);      // drive.cpp: recorded drives
 
 }  // namespace lpir::python

@@ -57,4 +57,5 @@ PYBIND11_MODULE(_core, m) {
   m.attr("WHY_NOISE") = int(lpir::kWhyNoise);
   BindSegmenter(m);
   BindFunctions(m);
+  BindDrive(m);
 }

@@ -1,0 +1,110 @@
+// lpir_gseg._core._Drive: a recorded drive (host/drive/drive.h: .mcap, .db3, .bag) read message
+// by message, for lpir_gseg.read_drive and the fleet. Reading and decoding release the GIL.
+#include "host/drive/drive.h"
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "host/drive/pointcloud2.h"
+#include "host/io/io_error.h"
+
+namespace lpir::python {
+namespace {
+
+class PyDrive {
+ public:
+  explicit PyDrive(py::handle path_arg) : path_(PathArg(path_arg)) {
+    py::gil_scoped_release nogil;
+    reader_ = OpenDrive(path_);
+  }
+
+  const std::string& path() const { return path_; }
+
+  // (name, type, encoding, messages) per topic.
+  std::vector<py::tuple> Topics() {
+    std::vector<DriveTopic> topics;
+    {
+      py::gil_scoped_release nogil;
+      topics = reader_->Topics();
+    }
+    std::vector<py::tuple> out;
+    for (const DriveTopic& t : topics)
+      out.push_back(py::make_tuple(t.name, t.type, t.encoding, t.messages));
+    return out;
+  }
+
+  void Select(const std::string& topic) {
+    py::gil_scoped_release nogil;
+    reader_->SelectTopic(topic);
+  }
+
+  // ("message", sequence, header stamp in ns, points, ring or None), ("damage", problem) or
+  // ("end",). points (N, 4) float32 owns the cloud, ring included (CloudArray). A message
+  // that does not decode (pointcloud2.h's rules) is ("damage", the IoError's text naming the
+  // file and the message).
+  py::tuple Next() {
+    DriveMessage message;
+    std::string problem;
+    DriveStep step;
+    Cloud cloud;
+    int64_t stamp_ns = 0;
+    {
+      py::gil_scoped_release nogil;
+      step = reader_->Next(&message, &problem);
+      if (step == DriveStep::kMessage) {
+        const std::string where =
+            path_ + ": " + message.topic + " message " + std::to_string(message.sequence);
+        try {
+          const PointCloud2 msg =
+              message.encoding == MessageEncoding::kCdr
+                  ? ParseCdrPointCloud2(where, message.data.data(), message.data.size())
+                  : ParseRos1PointCloud2(where, message.data.data(), message.data.size());
+          stamp_ns = msg.stamp_ns();
+          cloud = CloudFromPointCloud2(where, msg);
+        } catch (const IoError& e) {
+          step = DriveStep::kDamage;
+          problem = e.what();
+        }
+      }
+    }
+    if (step == DriveStep::kEnd) return py::make_tuple("end");
+    if (step == DriveStep::kDamage) return py::make_tuple("damage", problem);
+    py::object ring = py::none();
+    if (!cloud.ring.empty()) ring = VectorArray(std::vector<int32_t>(cloud.ring));
+    return py::make_tuple("message", message.sequence, stamp_ns, CloudArray(std::move(cloud)),
+                          ring);
+  }
+
+ private:
+  std::string path_;
+  std::unique_ptr<DriveReader> reader_;
+};
+
+}  // namespace
+
+void BindDrive(py::module_& m) {
+  py::class_<PyDrive>(m, "_Drive",
+                      "_Drive(path)\n--\n\nA recorded drive opened by its extension (.mcap, "
+                      ".db3, .bag); lpir_gseg.read_drive is the public way in.")
+      .def(py::init<py::handle>(), py::arg("path"))
+      .def_property_readonly("path", &PyDrive::path)
+      .def("topics", &PyDrive::Topics,
+           "topics()\n--\n\n(name, type, encoding, messages) for every topic of the drive.")
+      .def("select", &PyDrive::Select, py::arg("topic"),
+           "select(topic)\n--\n\nReads `topic` from its first message on (OSError when the "
+           "drive has no such topic).")
+      .def("next", &PyDrive::Next,
+           "next()\n--\n\n('message', sequence, stamp_ns, points, ring), ('damage', problem) "
+           "or ('end',).");
+  m.def(
+      "is_drive_file", [](py::handle path) { return IsDriveFile(PathArg(path)); }, py::arg("path"),
+      "is_drive_file(path)\n--\n\nTrue for the recorded drives' extensions: .mcap, .db3, .bag.");
+}
+
+}  // namespace lpir::python

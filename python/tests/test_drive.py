@@ -1,0 +1,137 @@
+"""lpir_gseg.read_drive, drive_topics and the fleet on the committed drive fixtures
+(tests/data/drives/: three simulated VLP-16 frames written by @mcap/core, sqlite3 and
+python3-rosbag; scripts/make_drive_fixtures.sh): every drive reads back as the frames' .bin
+files, damage is an OSError naming the file after every readable message, and the fleet labels
+every message of two drives as the Segmenter labels the frames."""
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lpir_gseg
+from conftest import REPO
+
+DRIVES = REPO / "tests" / "data" / "drives"
+TOPIC = "/velodyne_points"
+DRIVE_FILES = ["vlp16_zstd.mcap", "vlp16_lz4.mcap", "vlp16_none.mcap", "vlp16.db3",
+               "vlp16_bz2.bag", "vlp16_lz4.bag"]
+FIRST_STAMP_NS = 1_600_000_000 * 10**9  # then 100 ms apart
+
+
+def frame(i):
+    """Frame i as the writers read it: (points (N, 4) float32, ring (N,) int32)."""
+    base = DRIVES / "frames" / f"{i:06}"
+    points = np.fromfile(base.with_suffix(".bin"), dtype="<f4").reshape(-1, 4)
+    ring = np.fromfile(base.with_suffix(".ring"), dtype="<u2").astype(np.int32)
+    return points, ring
+
+
+def same_bits(a, b):
+    return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()
+
+
+@pytest.mark.parametrize("name", DRIVE_FILES)
+def test_read_drive_yields_the_bin_frames_with_their_stamps(name):
+    messages = list(lpir_gseg.read_drive(DRIVES / name, TOPIC))
+    assert [stamp for stamp, _ in messages] == [FIRST_STAMP_NS + i * 10**8 for i in range(3)]
+    for i, (_, points) in enumerate(messages):
+        expected, _ = frame(i)
+        assert points.dtype == np.float32 and points.shape == expected.shape, (name, i)
+        assert same_bits(points, expected), (name, i)
+
+
+@pytest.mark.parametrize("name", DRIVE_FILES)
+def test_drive_topics_and_the_default_topic(name):
+    topics = lpir_gseg.drive_topics(DRIVES / name)
+    assert [(t.name, t.messages) for t in topics] == [(TOPIC, 3)]
+    assert topics[0].type in ("sensor_msgs/msg/PointCloud2", "sensor_msgs/PointCloud2")
+    assert len(list(lpir_gseg.read_drive(str(DRIVES / name)))) == 3  # the only PointCloud2 topic
+
+
+def test_the_ring_comes_with_the_points_and_reaches_the_segmenter():
+    seg = lpir_gseg.Segmenter("vlp16", backend="cpu")
+    messages = list(lpir_gseg.read_drive(DRIVES / "vlp16_lz4.mcap", TOPIC, ring=True))
+    assert len(messages) == 3
+    for i, (_, points, ring) in enumerate(messages):
+        expected, expected_ring = frame(i)
+        assert ring.dtype == np.int32 and np.array_equal(ring, expected_ring), i
+        assert np.array_equal(seg.segment(points), seg.segment(expected, ring=expected_ring)), i
+
+
+def truncated(tmp_path, name, fraction=0.85):
+    """The fixture cut inside its last chunk (the third frame's, of three: 2/3 of the file on)."""
+    data = (DRIVES / name).read_bytes()
+    path = tmp_path / name
+    path.write_bytes(data[: int(len(data) * fraction)])
+    return path
+
+
+@pytest.mark.parametrize("name", ["vlp16_zstd.mcap", "vlp16_none.mcap", "vlp16_bz2.bag"])
+def test_a_truncated_drive_yields_what_precedes_the_cut_then_raises_naming_it(tmp_path, name):
+    path = truncated(tmp_path, name)
+    read = []
+    with pytest.raises(OSError) as error:
+        for stamp, points in lpir_gseg.read_drive(path, TOPIC):
+            read.append(points)
+    assert str(path) in str(error.value)
+    assert "damaged" in str(error.value)
+    assert len(read) == 2
+    for i, points in enumerate(read):
+        assert same_bits(points, frame(i)[0]), i
+
+
+def test_on_damage_warn_ends_the_iteration_with_a_warning(tmp_path):
+    path = truncated(tmp_path, "vlp16_zstd.mcap")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        read = list(lpir_gseg.read_drive(path, TOPIC, on_damage="warn"))
+    assert len(read) == 2
+    assert [w.category for w in caught] == [RuntimeWarning]
+    assert str(path) in str(caught[0].message)
+
+
+def test_bad_calls_raise_at_once_naming_the_file(tmp_path):
+    missing = tmp_path / "absent.mcap"
+    with pytest.raises(OSError, match="absent.mcap"):
+        lpir_gseg.read_drive(missing, TOPIC)
+    with pytest.raises(OSError, match="/no_such_topic"):
+        lpir_gseg.read_drive(DRIVES / "vlp16_zstd.mcap", "/no_such_topic")
+    with pytest.raises(OSError, match="extension"):
+        lpir_gseg.read_drive(DRIVES / "frames" / "000000.bin", TOPIC)
+    with pytest.raises(ValueError, match="on_damage"):
+        lpir_gseg.read_drive(DRIVES / "vlp16_zstd.mcap", TOPIC, on_damage="ignore")
+    assert lpir_gseg.is_drive_file("a.mcap") and lpir_gseg.is_drive_file("b.db3")
+    assert lpir_gseg.is_drive_file("c.bag") and not lpir_gseg.is_drive_file("d.bin")
+
+
+def fleet_labels(folder):
+    return sorted(p.name for p in folder.iterdir() if p.suffix == ".label")
+
+
+def test_the_fleet_labels_every_message_of_two_drives(tmp_path):
+    pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
+    from lpir_gseg import fleet
+
+    damaged = truncated(tmp_path, "vlp16_none.mcap")
+    out = tmp_path / "out"
+    stats = fleet.run([str(DRIVES / "vlp16_zstd.mcap"), str(DRIVES / "vlp16_bz2.bag"),
+                       str(damaged)], "vlp16", str(out), workers=2, backend="cpu",
+                      progress=False, topic=TOPIC)
+    assert stats.files == 3 and stats.written == 2
+    assert [path for path, _ in stats.failures] == [str(damaged)]
+    assert str(damaged) in stats.failures[0][1]
+    seg = lpir_gseg.Segmenter("vlp16", backend="cpu")
+    names = [f"{i:06}_{FIRST_STAMP_NS + i * 10**8}.label" for i in range(3)]
+    for drive, count in (("vlp16_zstd", 3), ("vlp16_bz2", 3), ("vlp16_none", 2)):
+        folder = out / drive
+        assert fleet_labels(folder) == names[:count], drive
+        for i in range(count):
+            points, ring = frame(i)
+            expected = seg.segment(points, ring=ring).astype("<u4").tobytes()
+            assert (folder / names[i]).read_bytes() == expected, (drive, i)
+        index = (folder / "index.csv").read_text().splitlines()
+        assert index[0] == "sequence,stamp_ns,topic,points,ground_fraction,ms,file"
+        assert [line.split(",")[-1] for line in index[1:]] == names[:count], drive
+        assert [int(line.split(",")[3]) for line in index[1:]] == \
+            [len(frame(i)[0]) for i in range(count)], drive
