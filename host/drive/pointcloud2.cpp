@@ -157,61 +157,58 @@ const char* PointFieldTypeName(uint8_t datatype) {
   return "?";
 }
 
-// One value of `datatype` at p, stored big- or little-endian, as a double (exact for every
-// PointField type).
-double LoadValue(const uint8_t* p, uint8_t datatype, bool big_endian) {
-  uint8_t b[8];
-  const size_t n = PointFieldSize(datatype);
-  for (size_t k = 0; k < n; ++k) b[k] = big_endian ? p[n - 1 - k] : p[k];
-  switch (datatype) {
-    case kPfInt8:
-      return int8_t(b[0]);
-    case kPfUint8:
-      return b[0];
-    case kPfInt16: {
-      int16_t v;
-      std::memcpy(&v, b, 2);
-      return v;
-    }
-    case kPfUint16: {
-      uint16_t v;
-      std::memcpy(&v, b, 2);
-      return v;
-    }
-    case kPfInt32: {
-      int32_t v;
-      std::memcpy(&v, b, 4);
-      return v;
-    }
-    case kPfUint32: {
-      uint32_t v;
-      std::memcpy(&v, b, 4);
-      return v;
-    }
-    case kPfFloat32: {
-      float v;
-      std::memcpy(&v, b, 4);
-      return v;
-    }
-    case kPfFloat64: {
-      double v;
-      std::memcpy(&v, b, 8);
-      return v;
-    }
-  }
-  return 0.0;
+// A T stored at p, big- or little-endian.
+template <typename T, bool kBig>
+T Load(const uint8_t* p) {
+  uint8_t b[sizeof(T)];
+  for (size_t k = 0; k < sizeof(T); ++k) b[k] = kBig ? p[sizeof(T) - 1 - k] : p[k];
+  T value;
+  std::memcpy(&value, b, sizeof(T));
+  return value;
+}
+template <typename T, bool kBig>
+double LoadDouble(const uint8_t* p) {
+  return static_cast<double>(Load<T, kBig>(p));  // exact for every PointField type
+}
+template <typename T, bool kBig>
+float LoadFloat(const uint8_t* p) {
+  return static_cast<float>(Load<T, kBig>(p));  // float32: the very bits (NaN payloads kept)
 }
 
-// x, y, z as float; float32 is copied bit for bit (NaN payloads kept).
-float LoadFloat(const uint8_t* p, uint8_t datatype, bool big_endian) {
-  if (datatype == kPfFloat32) {
-    uint8_t b[4];
-    for (size_t k = 0; k < 4; ++k) b[k] = big_endian ? p[3 - k] : p[k];
-    float v;
-    std::memcpy(&v, b, 4);
-    return v;
+// Reader<T, kBig>::get for ReaderFor: the loader of a stored T as double (ring) or float.
+template <typename T, bool kBig>
+struct DoubleReader {
+  static constexpr double (*get)(const uint8_t*) = LoadDouble<T, kBig>;
+};
+template <typename T, bool kBig>
+struct FloatReader {
+  static constexpr float (*get)(const uint8_t*) = LoadFloat<T, kBig>;
+};
+using DoubleFn = double(const uint8_t*);
+using FloatFn = float(const uint8_t*);
+
+// The reader of one field's values, chosen once per message rather than per value (datatype
+// already checked to be 1-8: anything else is float64).
+template <typename R, template <typename, bool> class Reader>
+R* ReaderFor(uint8_t datatype, bool big) {
+  switch (datatype) {
+    case kPfInt8:
+      return big ? Reader<int8_t, true>::get : Reader<int8_t, false>::get;
+    case kPfUint8:
+      return big ? Reader<uint8_t, true>::get : Reader<uint8_t, false>::get;
+    case kPfInt16:
+      return big ? Reader<int16_t, true>::get : Reader<int16_t, false>::get;
+    case kPfUint16:
+      return big ? Reader<uint16_t, true>::get : Reader<uint16_t, false>::get;
+    case kPfInt32:
+      return big ? Reader<int32_t, true>::get : Reader<int32_t, false>::get;
+    case kPfUint32:
+      return big ? Reader<uint32_t, true>::get : Reader<uint32_t, false>::get;
+    case kPfFloat32:
+      return big ? Reader<float, true>::get : Reader<float, false>::get;
+    default:
+      return big ? Reader<double, true>::get : Reader<double, false>::get;
   }
-  return static_cast<float>(LoadValue(p, datatype, big_endian));
 }
 
 // The fields that feed the Cloud; nullptr when absent (intensity, ring).
@@ -365,6 +362,14 @@ Cloud CloudFromPointCloud2(const std::string& where, const PointCloud2& cloud) {
   if (points == 0) return out;
   CheckRecords(where, cloud);  // bounds points by data.size() / point_step
   const bool big = cloud.is_bigendian;
+  FloatFn* const xyz_read[3] = {ReaderFor<FloatFn, FloatReader>(roles.xyz[0]->datatype, big),
+                                ReaderFor<FloatFn, FloatReader>(roles.xyz[1]->datatype, big),
+                                ReaderFor<FloatFn, FloatReader>(roles.xyz[2]->datatype, big)};
+  const uint32_t xyz_at[3] = {roles.xyz[0]->offset, roles.xyz[1]->offset, roles.xyz[2]->offset};
+  FloatFn* const intensity_read =
+      roles.intensity ? ReaderFor<FloatFn, FloatReader>(roles.intensity->datatype, big) : nullptr;
+  DoubleFn* const ring_read =
+      roles.ring ? ReaderFor<DoubleFn, DoubleReader>(roles.ring->datatype, big) : nullptr;
   out.xyzi.resize(points * 4);
   if (roles.ring) out.ring.resize(points);
   size_t i = 0;
@@ -372,15 +377,12 @@ Cloud CloudFromPointCloud2(const std::string& where, const PointCloud2& cloud) {
     const uint8_t* record = cloud.data.data() + uint64_t(row) * cloud.row_step;
     for (uint32_t col = 0; col < cloud.width; ++col, ++i, record += cloud.point_step) {
       float* xyzi = &out.xyzi[4 * i];
-      for (int axis = 0; axis < 3; ++axis) {
-        const PointField& field = *roles.xyz[axis];
-        xyzi[axis] = LoadFloat(record + field.offset, field.datatype, big);
-      }
-      xyzi[3] = roles.intensity ? static_cast<float>(LoadValue(record + roles.intensity->offset,
-                                                               roles.intensity->datatype, big))
-                                : 0.0f;
-      if (roles.ring) {
-        const double value = LoadValue(record + roles.ring->offset, roles.ring->datatype, big);
+      xyzi[0] = xyz_read[0](record + xyz_at[0]);
+      xyzi[1] = xyz_read[1](record + xyz_at[1]);
+      xyzi[2] = xyz_read[2](record + xyz_at[2]);
+      xyzi[3] = intensity_read ? intensity_read(record + roles.intensity->offset) : 0.0f;
+      if (ring_read) {
+        const double value = ring_read(record + roles.ring->offset);
         if (!RingFromValue(value, &out.ring[i])) {
           throw IoError(where, "PointCloud2 point " + std::to_string(i) + " has ring " +
                                    FloatText(value) + ", not a whole number >= 0");
