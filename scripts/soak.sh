@@ -8,7 +8,8 @@
 #    less than 1 %. WARM is a third of the run (3,333 of 10,000): allocators settle over the
 #    first frames (on lavapipe a malloc arena of a driver thread grows in 1 MiB steps for the
 #    first ~2,500 frames, then stays flat; docs/testing.md), so growth before WARM is no leak,
-#    and a leak of a few hundred bytes a frame still shows in the two thirds after it.
+#    and a leak of a few hundred bytes a frame still shows in the two thirds after it (on
+#    lavapipe a run needs about 7,000 frames for WARM to fall past that settling).
 #    VmRSS/VmHWM at frame 100, WARM and every 1,000 frames are printed too. On lavapipe the
 #    device's memory is host memory, so this covers it as well.
 #  - device: every vkAllocateMemory/vkFreeMemory call is counted by a small LD_PRELOAD shim
