@@ -17,6 +17,7 @@
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/exit_codes.h"
 #include "apps/cli/progress.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
@@ -294,7 +295,8 @@ int RunSegment(int argc, char** argv) {
                    "--batch"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   const SegmentArgs a = ParseSegmentArgs(args);
   const SensorProfile sensor = LoadSensorProfile(a.sensor, SensorsDir());
@@ -338,9 +340,9 @@ int RunSegment(int argc, char** argv) {
   std::fputs(summary.c_str(), stdout);
   if (failures) {
     std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, files.size());
-    return 1;
+    return kExitSomeFailed;
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace lpir
