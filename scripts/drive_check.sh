@@ -9,8 +9,9 @@
 #      in natural name order, must equal the .bin folder's, in name order, byte for byte (cmp).
 #   2. `segment --format mcap` on the zstd MCAP, read back by read_mcap.mjs (@mcap/core): the
 #      input topic and TOPIC/ground, N messages each, every label equal to step 1's.
-#   3. Time per frame (the whole command's wall time / N): 3 runs of the .bin folder and of each
-#      drive taken in turns; the medians and each drive's ratio to the .bin folder's (goal <= 1.10).
+#   3. Time per frame (the whole command's time / N), as wall time and as CPU time (user + sys,
+#      which other jobs on the machine disturb less): 3 runs of the .bin folder and of each drive
+#      taken in turns; the medians and each drive's ratio to the .bin folder's (goal <= 1.10).
 # Exits non-zero on any mismatch or failed command (a ratio over 1.10 is printed, not fatal: the
 # machine's load moves it).
 # usage: scripts/drive_check.sh [N]   (default 50). LPIR_CLI names lpir-gseg (default
@@ -80,19 +81,19 @@ drive_path() {  # kind -> file
   esac
 }
 
-# One timed segment run, its wall time in ms appended to times[$1]. $2 the output folder, the
-# rest its inputs.
-declare -A times
+# One timed segment run: its wall and CPU (user + sys) times in ms appended to wall[$1] and
+# cpu[$1]. $2 the output folder, the rest its inputs.
+declare -A wall cpu
 run_segment() {
   local key="$1" out="$2"
   shift 2
   rm -rf "${out}"
-  local start end
-  start="$(date +%s%N)"
-  "${cli}" segment "$@" --sensor "${sensor}" --out "${out}" --backend cpu --quiet \
-    || die "segment $* failed"
-  end="$(date +%s%N)"
-  times[${key}]+=" $(((end - start) / 1000000))"
+  local TIMEFORMAT='%3R %3U %3S' line
+  { time "${cli}" segment "$@" --sensor "${sensor}" --out "${out}" --backend cpu --quiet; } \
+    2> "${work}/time.txt" || { cat "${work}/time.txt" >&2; die "segment $* failed"; }
+  line="$(tail -n 1 "${work}/time.txt")"
+  wall[${key}]+=" $(awk -v r="${line%% *}" 'BEGIN { printf "%d", r * 1000 }')"
+  cpu[${key}]+=" $(echo "${line}" | awk '{ printf "%d", ($2 + $3) * 1000 }')"
 }
 
 median3() { printf '%s\n' "$@" | sort -n | sed -n 2p; }
@@ -142,17 +143,22 @@ else
   mismatch=1
 fi
 
-# shellcheck disable=SC2086  # the lists of times are meant to split
-bin_ms="$(median3 ${times[bin]})"
-say "time per frame (median of 3, --backend cpu, ${frames} frames):"
-awk -v ms="${bin_ms}" -v n="${frames}" -v runs="${times[bin]}" \
-  'BEGIN { printf "[drive_check]   %-10s %8.2f ms/frame               runs:%s ms\n", "bin", ms / n, runs }'
-for kind in "${kinds[@]}"; do
-  # shellcheck disable=SC2086
-  ms="$(median3 ${times[${kind}]})"
-  awk -v kind="${kind}" -v ms="${ms}" -v bin="${bin_ms}" -v n="${frames}" -v runs="${times[${kind}]}" \
-    'BEGIN { r = ms / bin; printf "[drive_check]   %-10s %8.2f ms/frame  ratio %.3f %-9s runs:%s ms\n",
-             kind, ms / n, r, (r <= 1.10 ? "ok" : "OVER 1.10"), runs }'
+say "time per frame (median of 3, --backend cpu, ${frames} frames; load $(cut -d' ' -f1-3 /proc/loadavg)):"
+for clock in wall cpu; do
+  declare -n times="${clock}"
+  # shellcheck disable=SC2086  # the lists of times are meant to split
+  bin_ms="$(median3 ${times[bin]})"
+  for kind in bin "${kinds[@]}"; do
+    # shellcheck disable=SC2086
+    ms="$(median3 ${times[${kind}]})"
+    awk -v clock="${clock}" -v kind="${kind}" -v ms="${ms}" -v bin="${bin_ms}" -v n="${frames}" \
+      -v runs="${times[${kind}]}" 'BEGIN {
+        r = ms / bin
+        verdict = kind == "bin" ? "" : sprintf("ratio %.3f %s", r, r <= 1.10 ? "ok" : "OVER 1.10")
+        printf "[drive_check]   %-4s %-10s %8.2f ms/frame  %-21s runs:%s ms\n", clock, kind,
+               ms / n, verdict, runs }'
+  done
+  unset -n times
 done
 [[ ${mismatch} -eq 0 ]] || die "labels differ (see MISMATCH above)"
 say "every drive's labels equal the .bin folder's"
