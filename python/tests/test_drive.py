@@ -3,6 +3,7 @@
 python3-rosbag; scripts/make_drive_fixtures.sh): every drive reads back as the frames' .bin
 files, damage is an OSError naming the file after every readable message, and the fleet labels
 every message of two drives as the Segmenter labels the frames."""
+import subprocess
 import warnings
 from pathlib import Path
 
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 import lpir_gseg
-from conftest import REPO
+from conftest import REPO, cli  # noqa: F401 (a fixture)
 
 DRIVES = REPO / "tests" / "data" / "drives"
 TOPIC = "/velodyne_points"
@@ -135,3 +136,22 @@ def test_the_fleet_labels_every_message_of_two_drives(tmp_path):
         assert [line.split(",")[-1] for line in index[1:]] == names[:count], drive
         assert [int(line.split(",")[3]) for line in index[1:]] == \
             [len(frame(i)[0]) for i in range(count)], drive
+
+
+def test_the_fleet_writes_what_segment_writes_for_a_drive(cli, tmp_path):
+    pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
+    from lpir_gseg import fleet
+
+    drive = DRIVES / "vlp16_lz4.bag"
+    result = subprocess.run([str(cli), "segment", str(drive), "--topic", TOPIC, "--sensor",
+                             "vlp16", "--backend", "cpu", "--out", str(tmp_path / "cli"),
+                             "--quiet"], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    stats = fleet.run([str(drive)], "vlp16", str(tmp_path / "fleet"), workers=1, backend="cpu",
+                      progress=False)
+    assert stats.written == 1 and not stats.failures
+    names = fleet_labels(tmp_path / "cli")
+    assert len(names) == 3 and fleet_labels(tmp_path / "fleet" / "vlp16_lz4") == names
+    for name in names:
+        assert (tmp_path / "fleet" / "vlp16_lz4" / name).read_bytes() == \
+            (tmp_path / "cli" / name).read_bytes(), name
