@@ -147,7 +147,8 @@ class McapReader : public DriveReader {
 
   void SelectTopic(const std::string& topic) override {
     LoadTopics();
-    selected_.clear();
+    std::set<uint16_t> selected;
+    MessageEncoding encoding = MessageEncoding::kCdr;
     std::string names;
     for (const auto& [id, ch] : channels_) {
       if (ch.topic != topic) {
@@ -155,19 +156,21 @@ class McapReader : public DriveReader {
         continue;
       }
       if (ch.encoding == "cdr") {
-        encoding_ = MessageEncoding::kCdr;
+        encoding = MessageEncoding::kCdr;
       } else if (ch.encoding == "ros1") {
-        encoding_ = MessageEncoding::kRos1;
+        encoding = MessageEncoding::kRos1;
       } else {
         throw IoError(path_, "topic " + topic + " has message encoding '" + ch.encoding +
                                  "'; this reader reads cdr and ros1");
       }
-      selected_.insert(id);
+      selected.insert(id);
     }
-    if (selected_.empty()) {
+    if (selected.empty()) {
       throw IoError(path_, "no topic " + topic + " in the drive; it has: " +
                                (names.empty() ? std::string("none") : names));
     }
+    selected_ = std::move(selected);
+    encoding_ = encoding;
     topic_ = topic;
     pending_.clear();
     damage_.clear();
