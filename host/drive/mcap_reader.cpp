@@ -93,6 +93,10 @@ struct Pending {
   std::vector<uint8_t> data;
 };
 
+// Open: the magic, the header, then the summary when the footer's is usable (ReadSummary). Next
+// walks the chunk indexes in (message_start_time, offset) order when the summary has them, else
+// the records from the header on (ScanStep); each chunk's messages of the chosen topic are
+// queued in log-time order, then its damage, if any.
 class McapReader : public DriveReader {
  public:
   explicit McapReader(const std::string& path) : path_(path), file_(path) {
@@ -110,7 +114,9 @@ class McapReader : public DriveReader {
     if (RecordAt(mcap::kMagicSize, &op, &length) != kWhole || op != mcap::kHeader) {
       throw IoError(path_, "no intact header record after the magic");
     }
-    const std::vector<uint8_t> header = file_.Read(mcap::kMagicSize + mcap::kRecordPrefix, length);
+    // Its two strings; a header past 1 MiB is read no further than that.
+    const std::vector<uint8_t> header = file_.Read(mcap::kMagicSize + mcap::kRecordPrefix,
+                                                   std::min<uint64_t>(length, uint64_t(1) << 20));
     try {
       In in(header.data(), header.size());
       profile_ = in.Str("header profile");
@@ -193,7 +199,8 @@ class McapReader : public DriveReader {
         return DriveStep::kMessage;
       }
       if (!damage_.empty()) {
-        *problem = path_ + ": " + damage_;
+        *problem = path_ + ": " + damage_ + " (after " + std::to_string(sequence_) +
+                   " messages of " + topic_ + ")";
         damage_.clear();
         return DriveStep::kDamage;
       }
