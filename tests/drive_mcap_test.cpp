@@ -350,9 +350,18 @@ TEST_P(DriveMcapCompression, ChunksComeInTheirIndexOrder) {
   expected.insert(expected.end(), times.begin(), times.begin() + 6);
   EXPECT_EQ(got, expected);
 
-  // Without the summary (footer says none): the file order.
+  // A summary CRC of 0 (not set) still lets the summary be used.
   std::string bytes = ReadRaw(w.path);
   const size_t footer = bytes.size() - 8 - 29;
+  bytes.replace(footer + 25, 4, std::string(4, '\0'));
+  auto unchecked = OpenMcap(Make(bytes, "unchecked.mcap"));
+  std::vector<uint64_t> unchecked_times;
+  for (const DriveMessage& m : WalkTopic(unchecked.get(), "/points").messages) {
+    unchecked_times.push_back(m.log_time_ns);
+  }
+  EXPECT_EQ(unchecked_times, expected);
+
+  // Without the summary (footer says none): the file order.
   bytes.replace(footer + 9, 20, std::string(20, '\0'));
   auto scanned = OpenMcap(Make(bytes));
   EXPECT_EQ(TopicMap(scanned.get())["/points"].messages, 14u);
