@@ -1,7 +1,8 @@
 // Writes the seed corpus of every fuzz target: small valid files from the project's own writers
 // and hand-made edge cases (comments, CRLF, skipped and multi-count fields, NaN/Inf, 0 points,
 // other elements, continuation lines, calibration keys; PointCloud2 layouts of every kind; small
-// .db3 bags of each rosbag2 schema), one folder per target.
+// .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand), one folder per
+// target.
 // Usage: make_corpus OUT_DIR  (fuzz/corpus/ holds its output, checked by ctest: fuzz.corpus).
 #include <sqlite3.h>
 
@@ -13,6 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "host/drive/decompress.h"
+#include "host/drive/mcap_records.h"
+#include "host/drive/mcap_writer.h"
 #include "host/drive/pointcloud2.h"
 #include "host/io/file_bytes.h"
 #include "host/io/io_error.h"
@@ -328,6 +332,94 @@ void Db3s(const std::string& dir) {
   Db3(dir + "/dashing.db3", true);
 }
 
+// MCAP from the writer (each compression, two channels, a message larger than the rest) and by
+// hand: no summary, messages in and outside chunks, zstd/lz4/unknown compression, an unknown
+// opcode, a ros1 and a json channel, a CRC left unset.
+void WriteMcapDrive(const std::string& path, McapCompression compression) {
+  McapWriter w(path, compression);
+  const uint16_t pc = w.AddSchema("sensor_msgs/msg/PointCloud2", "ros2msg", "uint8 x\n");
+  const uint16_t points = w.AddChannel("/points", pc, "cdr");
+  const uint16_t imu = w.AddChannel("/imu", 0, "cdr");
+  for (uint32_t i = 0; i < 6; ++i) {
+    std::vector<uint8_t> data(i == 3 ? 300 : 24, uint8_t(i));
+    w.Write(points, i, 100 + 10 * uint64_t(5 - i), 1, data.data(), data.size());
+    w.Write(imu, i, 100 + 10 * uint64_t(i), 1, data.data(), 8);
+  }
+  w.Close();
+}
+
+void Mcap(const std::string& dir) {
+  WriteMcapDrive(dir + "/none.mcap", McapCompression::kNone);
+  WriteMcapDrive(dir + "/zstd.mcap", McapCompression::kZstd);
+  WriteMcapDrive(dir + "/lz4.mcap", McapCompression::kLz4);
+  mcap::Out f;
+  f.Raw(mcap::kMagic, mcap::kMagicSize);
+  auto add = [&f](uint8_t op, const mcap::Out& content) { f.Record(op, content); };
+  mcap::Out header, schema, ros1, json, loose, extension, data_end, footer;
+  header.Str("ros1");
+  header.Str("hand");
+  add(mcap::kHeader, header);
+  schema.U16(1);
+  schema.Str("sensor_msgs/PointCloud2");
+  schema.Str("ros1msg");
+  schema.Str("");
+  add(mcap::kSchema, schema);
+  ros1.U16(1);
+  ros1.U16(1);
+  ros1.Str("/ros1");
+  ros1.Str("ros1");
+  ros1.U32(0);
+  add(mcap::kChannel, ros1);
+  json.U16(2);
+  json.U16(0);
+  json.Str("/json");
+  json.Str("json");
+  json.U32(0);
+  add(mcap::kChannel, json);
+  auto message = [](uint16_t channel, uint64_t time, const char* text) {
+    mcap::Out m;
+    m.U16(channel);
+    m.U32(0);
+    m.U64(time);
+    m.U64(time);
+    m.Raw(text, std::char_traits<char>::length(text));
+    return m;
+  };
+  add(mcap::kMessage, message(1, 5, "loose"));
+  extension.Raw("ext", 3);
+  for (const char* compression : {"", "zstd", "lz4", "br"}) {
+    mcap::Out records;
+    records.Record(0x90, extension);
+    records.Record(mcap::kMessage, message(1, 9, "second"));
+    records.Record(mcap::kMessage, message(1, 7, "first"));
+    records.Record(mcap::kMessage, message(2, 8, "{}"));
+    std::vector<uint8_t> stored = records.bytes;
+    const std::string c = compression;
+    if (c == "zstd") stored = CompressZstd(records.bytes.data(), records.bytes.size());
+    if (c == "lz4") stored = CompressLz4Frame(records.bytes.data(), records.bytes.size());
+    mcap::Out chunk;
+    chunk.U64(7);
+    chunk.U64(9);
+    chunk.U64(records.bytes.size());
+    chunk.U32(c == "zstd" ? 0 : Crc32(records.bytes.data(), records.bytes.size()));
+    chunk.Str(c);
+    chunk.U64(stored.size());
+    chunk.Raw(stored.data(), stored.size());
+    add(mcap::kChunk, chunk);
+  }
+  add(0xA5, extension);
+  data_end.U32(0);
+  add(mcap::kDataEnd, data_end);
+  footer.U64(0);
+  footer.U64(0);
+  footer.U32(0);
+  add(mcap::kFooter, footer);
+  f.Raw(mcap::kMagic, mcap::kMagicSize);
+  WriteFileBytes(dir + "/by_hand.mcap", f.bytes.data(), f.bytes.size());
+  // The same, cut inside its last chunk.
+  WriteFileBytes(dir + "/cut.mcap", f.bytes.data(), f.bytes.size() - 60);
+}
+
 }  // namespace
 }  // namespace lpir
 
@@ -343,6 +435,7 @@ int main(int argc, char** argv) {
   } kTargets[] = {{"db3", lpir::Db3s},
                   {"kitti_bin", lpir::KittiBin},
                   {"label_file", lpir::LabelFile},
+                  {"mcap", lpir::Mcap},
                   {"pcd", lpir::Pcd},
                   {"ply", lpir::Ply},
                   {"pointcloud2", lpir::PointCloud2s},
