@@ -339,6 +339,34 @@ TEST_P(DriveFixture, AFlippedByteInAChunkIsDamageAndMcapReadsOnPastIt) {
   }
 }
 
+// The same flip in a bz2 bag chunk: bzip2's own block CRC catches it (ROS 1 chunks carry none),
+// so the chunk is damage; frame 0 comes out before it, and anything after it is frame 2.
+TEST_P(DriveFixture, AFlippedByteInABz2BagChunkIsDamage) {
+  const Fixture& f = GetParam();
+  if (f.container != Container::kBag || std::string(f.compression) != "bz2")
+    GTEST_SKIP() << "bz2 bags only (lz4 frames need not carry a checksum)";
+  test::ScopedDir dir;
+  const std::string path = DamagedCopy(dir, f, [&](std::string* b) {
+    const std::vector<ChunkSpan> chunks = Chunks(f, *b);
+    ASSERT_EQ(chunks.size(), kFrames);
+    (*b)[chunks[1].data + chunks[1].data_size / 2] ^= 0x10;
+  });
+  const ReadOut out = ReadAll(path, kTopic);
+  ASSERT_EQ(out.error, "");
+  ASSERT_GE(out.steps.size(), 3u);
+  EXPECT_EQ(out.steps[0], DriveStep::kMessage);
+  EXPECT_EQ(out.steps[1], DriveStep::kDamage);
+  EXPECT_EQ(out.steps.back(), DriveStep::kEnd);
+  ASSERT_GE(out.messages.size(), 1u);
+  ASSERT_LE(out.messages.size(), 2u);
+  EXPECT_TRUE(IsFrame(path, out.messages[0], 0));
+  if (out.messages.size() == 2) {
+    EXPECT_TRUE(IsFrame(path, out.messages[1], 2));
+  }
+  ASSERT_EQ(out.problems.size(), 1u);
+  EXPECT_NE(out.problems[0].find(path), std::string::npos) << out.problems[0];
+}
+
 // The second chunk's compression renamed to one no reader knows (same length, so every offset
 // holds): damage naming the compression, or an IoError doing so; frame 0 comes out before it.
 TEST_P(DriveFixture, AnUnknownCompressionIsDamageNamingIt) {
