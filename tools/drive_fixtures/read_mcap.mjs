@@ -1,6 +1,8 @@
 // Reads an MCAP file with @mcap/core (not lpir-gseg's code) and checks it, for the output of
 // `lpir-gseg segment --format mcap`: first a McapStreamReader pass over every record (chunk CRCs
-// validated) to the footer, then the summary through McapIndexedReader, then every message.
+// validated) to the footer, then the summary through McapIndexedReader, then every message. The
+// file must be indexed (chunked, with chunk indexes in its summary), as lpir-gseg's writer and
+// ROS 2's recorder make them: McapIndexedReader reads nothing else.
 // Prints one line per channel: topic, schema name, message encoding, message count.
 //
 // usage: node read_mcap.mjs FILE.mcap [--expect TOPIC:COUNT]... [--labels DIR]
