@@ -3,7 +3,9 @@
 # with lpir-gseg's readers (tools/drive_fixtures/: @mcap/core, @foxglove/rosmsg2-serialization,
 # Python's sqlite3, Debian's python3-rosbag):
 #   frames/00000{0,1,2}.bin   three simulated VLP-16 scans (`lpir-gseg simulate --sensor vlp16`,
-#                             seeds 1-3, urban scene), every 8th point kept so the files stay small
+#                             seeds 1-3, urban scene), the points within 22.5 degrees of straight
+#                             ahead kept (an eighth of the turn, at full density, so that the
+#                             segmenter still finds ground there; every 8th point finds none)
 #   frames/00000{0,1,2}.ring  each point's ring (uint16 LE), its beam by elevation: VLP-16 beams
 #                             lie 2 degrees apart from -15 (ring 0, the bottom, as the ROS
 #                             Velodyne driver numbers them) to +15 (ring 15)
@@ -47,7 +49,9 @@ for i in 0 1 2; do
   "${python}" - "${tmp}/${name}.bin" "${out}/frames/${name}" << 'PY'
 import sys
 import numpy
-points = numpy.fromfile(sys.argv[1], dtype="<f4").reshape(-1, 4)[::8]
+points = numpy.fromfile(sys.argv[1], dtype="<f4").reshape(-1, 4)
+azimuth = numpy.degrees(numpy.arctan2(points[:, 1].astype(numpy.float64), points[:, 0]))
+points = points[numpy.abs(azimuth) <= 22.5]  # in sweep order, as simulated
 points.tofile(sys.argv[2] + ".bin")
 elevation = numpy.degrees(numpy.arctan2(points[:, 2].astype(numpy.float64),
                                         numpy.hypot(points[:, 0], points[:, 1])))
