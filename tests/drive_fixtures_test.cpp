@@ -310,6 +310,24 @@ TEST_P(DriveFixture, TruncatedMidChunkYieldsEveryMessageBeforeTheCutThenDamage) 
   EXPECT_NE(out.problems[0].find(path), std::string::npos) << out.problems[0];
 }
 
+// A .db3 cut inside its last page (the third message's data ends there): the two messages
+// before it come out whole, then the damage naming the file, then the end.
+TEST_P(DriveFixture, ADb3CutInItsLastPageYieldsTheMessagesBeforeIt) {
+  const Fixture& f = GetParam();
+  if (f.container != Container::kDb3) GTEST_SKIP() << ".db3 only";
+  test::ScopedDir dir;
+  const std::string path = DamagedCopy(dir, f, [](std::string* b) { b->resize(b->size() - 2048); });
+  const ReadOut out = ReadAll(path, kTopic);
+  ASSERT_EQ(out.error, "");
+  ASSERT_EQ(out.messages.size(), kFrames - 1);
+  for (size_t i = 0; i < out.messages.size(); ++i) EXPECT_TRUE(IsFrame(path, out.messages[i], i));
+  ASSERT_EQ(out.steps.size(), kFrames + 1);
+  EXPECT_EQ(out.steps[kFrames - 1], DriveStep::kDamage);
+  EXPECT_EQ(out.steps[kFrames], DriveStep::kEnd);
+  ASSERT_EQ(out.problems.size(), 1u);
+  EXPECT_NE(out.problems[0].find(path), std::string::npos) << out.problems[0];
+}
+
 // A byte flipped in the middle of the second chunk's payload. Uncompressed, only the chunk's CRC
 // can tell, so the report names it; compressed, the decompressor or the CRC does. MCAP's chunk
 // index leads the reader on to the third chunk.
