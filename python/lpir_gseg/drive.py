@@ -32,14 +32,18 @@ def cloud_topic(drive: "_core._Drive", topic: Optional[str]) -> str:
     """`topic` when given (OSError naming the drive unless it is a PointCloud2 topic of it), else
     the drive's only PointCloud2 topic (OSError listing them when there are none or several), as
     `lpir-gseg segment` chooses."""
-    topics = [DriveTopic(*t) for t in drive.topics()]
-    clouds = [t.name for t in topics if t.type.endswith("PointCloud2")]
     if topic is not None:
+        try:
+            topics = [DriveTopic(*t) for t in drive.topics()]
+        except OSError:
+            return topic  # counting failed (a damaged drive): select() and the reading report it
         known = {t.name: t.type for t in topics}
-        if topic in known and topic not in clouds:
+        if topic in known and not known[topic].endswith("PointCloud2"):
             raise OSError(f"{drive.path}: topic {topic} holds {known[topic]}, not "
                           "sensor_msgs PointCloud2")
         return topic  # an absent topic: select() raises, listing those there are
+    topics = [DriveTopic(*t) for t in drive.topics()]
+    clouds = [t.name for t in topics if t.type.endswith("PointCloud2")]
     if len(clouds) != 1:
         raise OSError(f"{drive.path}: {len(clouds)} PointCloud2 topics"
                       + (f" ({', '.join(clouds)})" if clouds else "")

@@ -84,6 +84,17 @@ def test_a_truncated_drive_yields_what_precedes_the_cut_then_raises_naming_it(tm
         assert same_bits(points, frame(i)[0]), i
 
 
+def test_a_db3_cut_in_its_last_page_yields_the_messages_before_the_cut(tmp_path):
+    data = (DRIVES / "vlp16.db3").read_bytes()
+    path = tmp_path / "vlp16.db3"
+    path.write_bytes(data[: len(data) - 2048])
+    read = []
+    with pytest.raises(OSError, match="message 2"):
+        for _, points in lpir_gseg.read_drive(path, TOPIC):
+            read.append(points)
+    assert len(read) == 2 and all(same_bits(p, frame(i)[0]) for i, p in enumerate(read))
+
+
 def test_on_damage_warn_ends_the_iteration_with_a_warning(tmp_path):
     path = truncated(tmp_path, "vlp16_zstd.mcap")
     with warnings.catch_warnings(record=True) as caught:
