@@ -537,6 +537,27 @@ TEST_F(Ros1BagTest, BrokenIndexDataFallsBackToTheChunk) {
   const std::vector<Step> steps2 = ReadAll(reader2.get(), "/points");
   EXPECT_EQ(Messages(steps2).size(), 5u);
   EXPECT_EQ(Damages(steps2), 1u);
+
+  // Chunk info 1 claims 3 messages of connection 0, its chunk holds 1: the chunk's messages are
+  // read and the disagreement is one damage.
+  Bag counted = WriteBag(kConns, MixedChunks("bz2"), true);
+  const size_t info1 = counted.bytes.rfind("chunk_pos=" + U64(counted.chunk_pos[1]));
+  const size_t pair = counted.bytes.find(U32(0) + U32(1), info1);
+  ASSERT_NE(pair, std::string::npos);
+  counted.bytes.replace(pair, 8, U32(0) + U32(3));
+  const std::string path3 = Write("counted.bag", counted.bytes);
+  auto reader3 = OpenRos1Bag(path3);
+  EXPECT_EQ(reader3->Topics()[1].messages, 9u);
+  const std::vector<Step> steps3 = ReadAll(reader3.get(), "/points");
+  EXPECT_EQ(Messages(steps3).size(), 7u);
+  ASSERT_EQ(Damages(steps3), 1u);
+  for (const Step& s : steps3) {
+    if (s.kind == DriveStep::kDamage) {
+      EXPECT_NE(s.problem.find("lists 3 messages of connection 0, the chunk holds 1"),
+                std::string::npos)
+          << s.problem;
+    }
+  }
 }
 
 // An index the bag header points at that is not whole (the file ends inside it): the chunks are

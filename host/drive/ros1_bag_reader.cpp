@@ -245,8 +245,24 @@ class Ros1Bag : public DriveReader {
         if (wanted && !ReadChunkIndex(c, conns, &entries_)) {
           std::vector<Entry> all;
           ScanChunk(c, &all, &damages, &damage_known_, false);
-          for (const Entry& e : all)
-            if (conns.count(e.conn)) entries_.push_back(e);
+          std::map<uint32_t, uint64_t> found;
+          for (const Entry& e : all) {
+            if (!conns.count(e.conn)) continue;
+            entries_.push_back(e);
+            ++found[e.conn];
+          }
+          for (uint32_t conn : conns) {
+            const auto info = chunk_counts_[c].find(conn);
+            const uint64_t listed = info == chunk_counts_[c].end() ? 0 : info->second;
+            if (found[conn] != listed && !damage_known_[c]) {
+              damage_known_[c] = true;
+              damages.push_back(Damage{chunks_[c], 0,
+                                       path_ + ": " + ChunkWhere(c) + ": the chunk info lists " +
+                                           std::to_string(listed) + " messages of connection " +
+                                           std::to_string(conn) + ", the chunk holds " +
+                                           std::to_string(found[conn])});
+            }
+          }
         }
       }
     } else {
