@@ -605,17 +605,17 @@ class Ros1Bag : public DriveReader {
       const uint32_t size = f.U32("size");
       if (compression != "none" && compression != "bz2" && compression != "lz4")
         f.Fail("unknown compression '" + compression + "'");
+      if (compression == "none" && r.data_len != size)
+        f.Fail("uncompressed chunk holds " + std::to_string(r.data_len) +
+               " bytes, its size field says " + std::to_string(size));
       const uint64_t left = file_.size() - r.data_pos;
       if (r.data_truncated) {
-        if (compression == "none" && left <= size) out.data = file_.Bytes(r.data_pos, left);
+        if (compression == "none") out.data = file_.Bytes(r.data_pos, left);
         f.Fail("the file ends inside the chunk's data (" + std::to_string(left) + " of " +
                std::to_string(r.data_len) + " bytes there: truncated)");
       }
-      const std::vector<uint8_t> data = file_.Bytes(r.data_pos, r.data_len);
+      std::vector<uint8_t> data = file_.Bytes(r.data_pos, r.data_len);
       if (compression == "none") {
-        if (data.size() != size)
-          f.Fail("uncompressed chunk holds " + std::to_string(data.size()) +
-                 " bytes, its size field says " + std::to_string(size));
         out.data = std::move(data);
       } else if (compression == "bz2") {
         out.data = DecompressBz2(where, data.data(), data.size(), size);
