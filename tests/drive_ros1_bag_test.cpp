@@ -396,7 +396,12 @@ TEST_F(Ros1BagTest, TruncatedAtEveryByte) {
         try {
           steps = ReadAll(reader.get(), "/points");
         } catch (const IoError& e) {
+          // The connection records were lost with the first chunk: the error says why.
           EXPECT_TRUE(want.empty()) << e.what();
+          if (indexed || !at_boundary) {
+            EXPECT_NE(std::string(e.what()).find("its first damage: "), std::string::npos)
+                << e.what();
+          }
           continue;
         }
         ASSERT_EQ(steps.back().kind, DriveStep::kEnd);

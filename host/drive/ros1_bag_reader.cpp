@@ -231,9 +231,15 @@ class Ros1Bag : public DriveReader {
       if (c.topic == topic) conns.insert(id);
       if (seen.insert(c.topic).second) names += (names.empty() ? "" : ", ") + c.topic;
     }
-    if (conns.empty())
+    if (conns.empty()) {
+      // A bag cut inside its first chunk loses the connections with it: say so.
+      const std::string damage =
+          scan_damages_.empty()
+              ? ""
+              : "; its first damage: " + scan_damages_.front().problem.substr(path_.size() + 2);
       throw IoError(path_, "no topic '" + topic + "'; the bag has " +
-                               (names.empty() ? std::string("none") : names));
+                               (names.empty() ? std::string("none") : names) + damage);
+    }
     topic_ = topic;
     entries_.clear();
     std::vector<Damage> damages;
