@@ -288,8 +288,7 @@ class Ros1Bag : public DriveReader {
   DriveStep Next(DriveMessage* message, std::string* problem) override {
     for (;;) {
       if (next_damage_ < damages_.size() && damages_[next_damage_].first <= next_entry_) {
-        *problem = damages_[next_damage_++].second;
-        return DriveStep::kDamage;
+        return Damaged(damages_[next_damage_++].second, problem);
       }
       if (next_entry_ == entries_.size()) return DriveStep::kEnd;
       const Entry& e = entries_[next_entry_];
@@ -299,8 +298,7 @@ class Ros1Bag : public DriveReader {
       }
       if (!cached_.damage.empty() && !damage_known_[e.chunk]) {
         damage_known_[e.chunk] = true;
-        *problem = path_ + ": " + cached_.damage;
-        return DriveStep::kDamage;  // the entry is tried again on the next call
+        return Damaged(path_ + ": " + cached_.damage, problem);  // the entry is tried again next
       }
       ++next_entry_;
       try {
@@ -308,13 +306,18 @@ class Ros1Bag : public DriveReader {
         return DriveStep::kMessage;
       } catch (const Broken& b) {
         if (damage_known_[e.chunk]) continue;  // a part of a chunk already reported damaged
-        *problem = path_ + ": " + b.what();
-        return DriveStep::kDamage;
+        return Damaged(path_ + ": " + b.what(), problem);
       }
     }
   }
 
  private:
+  // kDamage with `what` and how many of the topic's messages came before it.
+  DriveStep Damaged(const std::string& what, std::string* problem) const {
+    *problem = what + " (after " + std::to_string(sequence_) + " messages of " + topic_ + ")";
+    return DriveStep::kDamage;
+  }
+
   void ReadMagic() {
     uint8_t head[kMagicSize] = {};
     const size_t n = size_t(std::min<uint64_t>(kMagicSize, file_.size()));
