@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cstring>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,15 @@ const Fixture kFixtures[] = {
 };
 
 std::string FixturePath(const Fixture& f) { return DrivesDir() + "/" + f.file; }
+
+// gtest's name for a fixture in test names and listings: its file name.
+void PrintTo(const Fixture& f, std::ostream* os) { *os << f.file; }
+std::string FixtureName(const ::testing::TestParamInfo<Fixture>& info) {
+  std::string name = info.param.file;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
 
 // Frame i as the writers read it: the .bin's floats and the .ring's uint16 values.
 Cloud ExpectedFrame(size_t i) {
@@ -312,9 +322,9 @@ TEST_P(DriveFixture, TruncatedMidChunkYieldsEveryMessageBeforeTheCutThenDamage) 
 
 // A .db3 cut inside its last page (the third message's data ends there): the two messages
 // before it come out whole, then the damage naming the file, then the end.
-TEST_P(DriveFixture, ADb3CutInItsLastPageYieldsTheMessagesBeforeIt) {
-  const Fixture& f = GetParam();
-  if (f.container != Container::kDb3) GTEST_SKIP() << ".db3 only";
+TEST(DriveDb3, ACutInItsLastPageYieldsTheMessagesBeforeIt) {
+  const Fixture& f = kFixtures[3];
+  ASSERT_EQ(f.container, Container::kDb3);
   test::ScopedDir dir;
   const std::string path = DamagedCopy(dir, f, [](std::string* b) { b->resize(b->size() - 2048); });
   const ReadOut out = ReadAll(path, kTopic);
@@ -331,9 +341,10 @@ TEST_P(DriveFixture, ADb3CutInItsLastPageYieldsTheMessagesBeforeIt) {
 // A byte flipped in the middle of the second chunk's payload. Uncompressed, only the chunk's CRC
 // can tell, so the report names it; compressed, the decompressor or the CRC does. MCAP's chunk
 // index leads the reader on to the third chunk.
-TEST_P(DriveFixture, AFlippedByteInAChunkIsDamageAndMcapReadsOnPastIt) {
+using McapDrive = DriveFixture;  // the MCAP fixtures: their chunks carry a CRC
+
+TEST_P(McapDrive, AFlippedByteInAChunkIsDamageAndTheReadGoesOnPastIt) {
   const Fixture& f = GetParam();
-  if (f.container != Container::kMcap) GTEST_SKIP() << "only MCAP chunks carry a CRC";
   test::ScopedDir dir;
   const std::string path = DamagedCopy(dir, f, [&](std::string* b) {
     const std::vector<ChunkSpan> chunks = Chunks(f, *b);
@@ -359,10 +370,9 @@ TEST_P(DriveFixture, AFlippedByteInAChunkIsDamageAndMcapReadsOnPastIt) {
 
 // The same flip in a bz2 bag chunk: bzip2's own block CRC catches it (ROS 1 chunks carry none),
 // so the chunk is damage; frame 0 comes out before it, and anything after it is frame 2.
-TEST_P(DriveFixture, AFlippedByteInABz2BagChunkIsDamage) {
-  const Fixture& f = GetParam();
-  if (f.container != Container::kBag || std::string(f.compression) != "bz2")
-    GTEST_SKIP() << "bz2 bags only (lz4 frames need not carry a checksum)";
+TEST(DriveBag, AFlippedByteInABz2ChunkIsDamage) {
+  const Fixture& f = kFixtures[4];
+  ASSERT_EQ(std::string(f.compression), "bz2");
   test::ScopedDir dir;
   const std::string path = DamagedCopy(dir, f, [&](std::string* b) {
     const std::vector<ChunkSpan> chunks = Chunks(f, *b);
@@ -387,9 +397,10 @@ TEST_P(DriveFixture, AFlippedByteInABz2BagChunkIsDamage) {
 
 // The second chunk's compression renamed to one no reader knows (same length, so every offset
 // holds): damage naming the compression, or an IoError doing so; frame 0 comes out before it.
-TEST_P(DriveFixture, AnUnknownCompressionIsDamageNamingIt) {
+using CompressedDrive = DriveFixture;  // the fixtures whose chunks name a compression
+
+TEST_P(CompressedDrive, AnUnknownCompressionIsDamageNamingIt) {
   const Fixture& f = GetParam();
-  if (std::string(f.compression).empty()) GTEST_SKIP() << "no compression name to change";
   test::ScopedDir dir;
   std::string unknown;
   const std::string path = DamagedCopy(dir, f, [&](std::string* b) {
@@ -408,13 +419,12 @@ TEST_P(DriveFixture, AnUnknownCompressionIsDamageNamingIt) {
   EXPECT_FALSE(out.problems.empty() && out.error.empty()) << "the damage went unreported";
 }
 
-INSTANTIATE_TEST_SUITE_P(Fixtures, DriveFixture, ::testing::ValuesIn(kFixtures),
-                         [](const ::testing::TestParamInfo<Fixture>& info) {
-                           std::string name = info.param.file;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Fixtures, DriveFixture, ::testing::ValuesIn(kFixtures), FixtureName);
+INSTANTIATE_TEST_SUITE_P(Fixtures, McapDrive,
+                         ::testing::Values(kFixtures[0], kFixtures[1], kFixtures[2]), FixtureName);
+INSTANTIATE_TEST_SUITE_P(Fixtures, CompressedDrive,
+                         ::testing::Values(kFixtures[0], kFixtures[1], kFixtures[4], kFixtures[5]),
+                         FixtureName);
 
 }  // namespace
 }  // namespace lpir
