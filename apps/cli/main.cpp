@@ -29,6 +29,7 @@ const char kUsage[] =
     "  demo [--out DIR] [--backend auto|vulkan|cpu]\n"
     "  devices\n"
     "  bench [--runs N] [--json]\n"
+    "  topics DRIVE     the topics of a recorded drive (.mcap, .db3, .bag)\n"
     "  --version        the version, the git commit built and which backends this machine has\n";
 
 // "lpir-gseg 0.1.0 (commit abc123)", then one line per backend: the CPU reference is always
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
   const Command commands[] = {{"segment", lpir::RunSegment},   {"evaluate", lpir::RunEvaluate},
                               {"simulate", lpir::RunSimulate}, {"calibrate", lpir::RunCalibrate},
                               {"demo", lpir::RunDemo},         {"devices", lpir::RunDevices},
-                              {"bench", lpir::RunBench}};
+                              {"bench", lpir::RunBench},       {"topics", lpir::RunTopics}};
   for (const Command& c : commands) {
     if (!std::strcmp(argv[1], c.name)) {
       try {
