@@ -289,7 +289,7 @@ class SegmentRun {
       r.error = error;
       report_->Add(r);
     }
-    progress_.Step();
+    if (in.has_message || !in.from_drive) progress_.Step();  // a damaged part is no message
   }
 
   // Collects the oldest frame in flight and writes what it gives.
