@@ -276,5 +276,33 @@ TEST(CliReport, AReportThatCannotBeCreatedIsNamed) {
   EXPECT_NE(log.find(dir.path + "/no/such/dir/r.csv"), std::string::npos) << log;
 }
 
+TEST(CliReport, NamesWithCommasAndQuotesSurviveBothFormats) {
+  test::ScopedDir dir;
+  const std::string name = dir.path + "/we\"ird,name.bin";
+  WriteKittiBin(name, Road(400));
+  std::string log;
+  for (const char* report : {"/r.csv", "/r.json"}) {
+    ASSERT_EQ(test::RunCommand(test::CliPath() + " segment '" + name +
+                                   "' --sensor hdl64e --backend cpu --quiet --out " + dir.path +
+                                   " --report " + dir.path + report,
+                               &log),
+              0)
+        << log;
+  }
+  const std::vector<std::string> lines = Lines(test::ReadFileBytes(dir.path + "/r.csv"));
+  ASSERT_EQ(lines.size(), 2u);
+  const std::vector<std::string> row = CsvFields(lines[1]);
+  ASSERT_EQ(row.size(), 16u) << lines[1];
+  EXPECT_EQ(row[0], name);
+  if (test::RunCommand("python3 -c 'import json'") != 0) return;
+  std::ofstream(dir.path + "/check.py")
+      << "import json,sys\nprint(json.load(open(sys.argv[1]))['frames'][0]['input'])\n";
+  std::string parsed;
+  ASSERT_EQ(test::RunCommand("python3 " + dir.path + "/check.py " + dir.path + "/r.json", &parsed),
+            0)
+      << parsed;
+  EXPECT_EQ(parsed, name + "\n");
+}
+
 }  // namespace
 }  // namespace lpir
