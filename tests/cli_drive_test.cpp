@@ -582,6 +582,19 @@ TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
   EXPECT_NE(log.find("--format mcap is for a recorded drive"), std::string::npos) << log;
 }
 
+TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {
+  test::ScopedDir dir;
+  const std::string drive = dir.path + "/vlp16_zstd.mcap";
+  test::WriteRaw(drive, test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
+  std::string log;
+  EXPECT_NE(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
+                                 " --backend cpu --format mcap --out " + dir.path,
+                             &log),
+            0);
+  EXPECT_NE(log.find("is the drive being read"), std::string::npos) << log;
+  EXPECT_EQ(test::ReadRaw(drive), test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
+}
+
 TEST(CliDriveArgs, AnAbsentTopicIsNamedWithTheTopicsThereAre) {
   test::ScopedDir dir;
   std::string log;

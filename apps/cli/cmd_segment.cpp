@@ -421,9 +421,14 @@ int RunSegment(int argc, char** argv) {
   std::unique_ptr<DriveIndex> index;
   std::unique_ptr<LabelledMcap> mcap;
   if (a.drive) index = std::make_unique<DriveIndex>((out / "index.csv").string());
-  if (a.format == "mcap")
-    mcap = std::make_unique<LabelledMcap>(
-        (out / (fs::path(a.inputs[0]).stem().string() + ".mcap")).string(), topic);
+  if (a.format == "mcap") {
+    const fs::path mcap_path = out / (fs::path(a.inputs[0]).stem().string() + ".mcap");
+    std::error_code ec;
+    if (fs::equivalent(mcap_path, a.inputs[0], ec))
+      throw std::invalid_argument(mcap_path.string() +
+                                  " is the drive being read: give --format mcap another --out");
+    mcap = std::make_unique<LabelledMcap>(mcap_path.string(), topic);
+  }
   const std::string on =
       segmenter.backend() == Backend::kVulkan ? segmenter.backend_note() : "the CPU reference";
   const size_t total = source->count();
