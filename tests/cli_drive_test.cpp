@@ -383,7 +383,8 @@ uint64_t Le(const std::string& b, size_t at, int bytes) {
 }
 
 struct Span {
-  size_t data = 0, size = 0;  // a chunk's (compressed) payload
+  size_t data = 0, size = 0;              // a chunk's (compressed) payload
+  size_t compression = 0, name_size = 0;  // its compression's name
 };
 
 // MCAP: records after the 8-byte magic (opcode u8, length u64, body) up to the footer; a Chunk
@@ -398,7 +399,7 @@ std::vector<Span> McapChunks(const std::string& b) {
     if (op == 0x02 || len > b.size() - body) break;
     if (op == 0x06) {
       const size_t name = body + 32, name_size = Le(b, body + 28, 4);
-      chunks.push_back({name + name_size + 8, size_t(Le(b, name + name_size, 8))});
+      chunks.push_back({name + name_size + 8, size_t(Le(b, name + name_size, 8)), name, name_size});
     }
     at = body + len;
   }
@@ -415,8 +416,12 @@ std::vector<Span> BagChunks(const std::string& b) {
     const size_t data_len_at = at + 4 + header_len;
     const uint64_t data_len = Le(b, data_len_at, 4);
     if (data_len > b.size() - data_len_at - 4) break;
-    if (b.substr(at + 4, header_len).find(std::string("op=\x05", 4)) != std::string::npos)
-      chunks.push_back({data_len_at + 4, size_t(data_len)});
+    const std::string header = b.substr(at + 4, header_len);
+    const size_t name = header.find("compression=");
+    if (header.find(std::string("op=\x05", 4)) != std::string::npos && name >= 4) {
+      const size_t field = size_t(Le(header, name - 4, 4));  // "compression=<name>"
+      chunks.push_back({data_len_at + 4, size_t(data_len), at + 4 + name + 12, field - 12});
+    }
     at = data_len_at + 4 + data_len;
   }
   return chunks;
@@ -452,6 +457,29 @@ TEST_P(CliDamagedDrive, CutMidChunkLabelsEveryMessageBeforeItNamesItAndExits1) {
   EXPECT_EQ(LabelFiles(dir.path + "/out").size(), kFrames - 1) << log;
   EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
   EXPECT_EQ(Lines(test::ReadFileBytes(dir.path + "/out/index.csv")).size(), kFrames) << log;
+}
+
+TEST_P(CliDamagedDrive, AnUnknownCompressionLabelsTheOtherMessagesNamesItAndExits1) {
+  std::string unknown;
+  test::ScopedDir dir;
+  const std::string path =
+      DamagedCopy(dir, GetParam(), [&](std::string* b, const std::vector<Span>& chunks) {
+        ASSERT_EQ(chunks.size(), kFrames);
+        unknown.assign(chunks[1].name_size, 'q');  // same length: every offset holds
+        b->replace(chunks[1].compression, chunks[1].name_size, unknown);
+      });
+  if (unknown.empty()) GTEST_SKIP() << "uncompressed: no name to change";
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + path + " --sensor " + Sensor() +
+                                 " --backend cpu --out " + dir.path + "/out",
+                             &log),
+            1)
+      << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(0, 0)), Ref().Ring(0)) << log;
+  EXPECT_EQ(LabelOfStamp(dir.path + "/out", 1), "") << log;
+  EXPECT_EQ(LabelOfStamp(dir.path + "/out", 2), Ref().Ring(2)) << "read on past it; " << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
+  EXPECT_NE(log.find(unknown), std::string::npos) << log;
 }
 
 // MCAP only: its chunks carry a CRC (a bag's bz2 or lz4 chunk may decompress a flipped byte).
