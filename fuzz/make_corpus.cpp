@@ -1,14 +1,25 @@
 // Writes the seed corpus of every fuzz target: small valid files from the project's own writers
 // and hand-made edge cases (comments, CRLF, skipped and multi-count fields, NaN/Inf, 0 points,
-// other elements, continuation lines, calibration keys), one folder per target.
+// other elements, continuation lines, calibration keys; PointCloud2 layouts of every kind; small
+// .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand), one folder per
+// target.
 // Usage: make_corpus OUT_DIR  (fuzz/corpus/ holds its output, checked by ctest: fuzz.corpus).
+#include <sqlite3.h>
+
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "host/drive/decompress.h"
+#include "host/drive/mcap_records.h"
+#include "host/drive/mcap_writer.h"
+#include "host/drive/pointcloud2.h"
 #include "host/io/file_bytes.h"
+#include "host/io/io_error.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
 #include "host/io/pcd.h"
@@ -145,6 +156,270 @@ void SensorProfiles(const std::string& dir) {
        "param rings_near 4\nparam min_component 0\nparam h_noise -3\n");
 }
 
+// A PointCloud2 of `points` with the given fields (offsets packed in order, `pad` bytes after
+// each row), each field's value from the point by its name (x, y, z, ring, t the point's index,
+// any other the intensity), cast to its type (which must hold it).
+PointCloud2 Message(const Cloud& points, const std::vector<std::pair<std::string, uint8_t>>& specs,
+                    uint32_t height, uint32_t pad, bool big) {
+  PointCloud2 msg;
+  msg.stamp_sec = 1700000000;
+  msg.stamp_nanosec = 5;
+  msg.frame_id = "lidar";
+  msg.height = height;
+  msg.width = uint32_t(points.size()) / height;
+  msg.is_bigendian = big;
+  const auto size = [](uint8_t t) { return t <= 2 ? 1u : t <= 4 ? 2u : t == 8 ? 8u : 4u; };
+  for (const auto& [name, type] : specs) {
+    msg.fields.push_back(PointField{name, msg.point_step, type, 1});
+    msg.point_step += size(type);
+  }
+  msg.row_step = msg.width * msg.point_step + pad;
+  msg.data.assign(size_t(msg.row_step) * height, 0);
+  for (size_t p = 0; p < size_t(msg.width) * height; ++p) {
+    uint8_t* record =
+        msg.data.data() + (p / msg.width) * msg.row_step + (p % msg.width) * msg.point_step;
+    for (size_t f = 0; f < specs.size(); ++f) {
+      const std::string& name = specs[f].first;
+      const double v = name == "x"      ? points.x(p)
+                       : name == "y"    ? points.y(p)
+                       : name == "z"    ? points.z(p)
+                       : name == "ring" ? (points.ring.empty() ? 0.0 : points.ring[p])
+                       : name == "t"    ? double(p)
+                                        : points.intensity(p);  // intensity, reflectivity, i
+      const double value = std::isfinite(v) || specs[f].second >= kPfFloat32 ? v : 0.0;
+      uint8_t b[8] = {};
+      switch (specs[f].second) {
+        case kPfInt8: {
+          const int8_t x = int8_t(value);
+          std::memcpy(b, &x, 1);
+          break;
+        }
+        case kPfUint8: {
+          const uint8_t x = uint8_t(value);
+          std::memcpy(b, &x, 1);
+          break;
+        }
+        case kPfInt16: {
+          const int16_t x = int16_t(value);
+          std::memcpy(b, &x, 2);
+          break;
+        }
+        case kPfUint16: {
+          const uint16_t x = uint16_t(value);
+          std::memcpy(b, &x, 2);
+          break;
+        }
+        case kPfInt32: {
+          const int32_t x = int32_t(value);
+          std::memcpy(b, &x, 4);
+          break;
+        }
+        case kPfUint32: {
+          const uint32_t x = uint32_t(value);
+          std::memcpy(b, &x, 4);
+          break;
+        }
+        case kPfFloat32: {
+          const float x = float(value);
+          std::memcpy(b, &x, 4);
+          break;
+        }
+        default:
+          std::memcpy(b, &value, 8);
+      }
+      const size_t n = size(specs[f].second);
+      for (size_t k = 0; k < n; ++k) record[msg.fields[f].offset + k] = big ? b[n - 1 - k] : b[k];
+    }
+  }
+  return msg;
+}
+
+// Finite points with whole, small rings (every integer type holds them).
+Cloud FinitePoints() {
+  Cloud c;
+  c.Push(5.25f, -1.5f, -1.73f, 25.0f);
+  c.Push(-3.0f, 7.125f, 0.5f, 75.0f);
+  c.Push(10.0f, 1.0f, -1.7f, 0.0f);
+  c.Push(0.0f, 0.0f, 0.0f, 100.0f);
+  c.ring = {0, 5, 15, 1};
+  return c;
+}
+
+void Bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  WriteFileBytes(path, reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+void PointCloud2s(const std::string& dir) {
+  const std::vector<std::pair<std::string, uint8_t>> ouster = {{"x", kPfFloat32},
+                                                               {"y", kPfFloat32},
+                                                               {"z", kPfFloat32},
+                                                               {"intensity", kPfFloat32},
+                                                               {"ring", kPfUint16}};
+  Bytes(dir + "/float32_ring.cdr",
+        SerializeCdrPointCloud2(Message(Points(false), ouster, 1, 0, false)));
+  Bytes(dir + "/float64_big_endian.cdr",
+        SerializeCdrPointCloud2(Message(FinitePoints(),
+                                        {{"x", kPfFloat64},
+                                         {"y", kPfFloat64},
+                                         {"z", kPfFloat64},
+                                         {"reflectivity", kPfUint16},
+                                         {"ring", kPfUint8}},
+                                        1, 0, true)));
+  Bytes(dir + "/organised_padded.cdr", SerializeCdrPointCloud2(Message(FinitePoints(),
+                                                                       {{"z", kPfFloat32},
+                                                                        {"t", kPfUint32},
+                                                                        {"x", kPfFloat32},
+                                                                        {"y", kPfFloat32},
+                                                                        {"i", kPfInt8},
+                                                                        {"ring", kPfFloat32}},
+                                                                       2, 3, false)));
+  const PointCloud2 plain = Message(FinitePoints(), ouster, 1, 0, false);
+  Bytes(dir + "/labelled.cdr",
+        SerializeCdrPointCloud2(AddLabelField(dir, plain, Labels{1, 0, 1, 0})));
+  PointCloud2 empty = plain;
+  empty.width = 0;
+  empty.row_step = 0;
+  empty.data.clear();
+  Bytes(dir + "/empty.cdr", SerializeCdrPointCloud2(empty));
+}
+
+// A small bag (512-byte pages) in rosbag2's sqlite3 schema: `dashing` without
+// offered_qos_profiles, else Humble's; a cdr PointCloud2 topic and a topic of another format.
+void Db3(const std::string& path, bool dashing) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open(path.c_str(), &db) != SQLITE_OK) throw IoError(path, "cannot create");
+  const auto exec = [&](const std::string& sql) {
+    if (sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
+      const std::string error = sqlite3_errmsg(db);
+      sqlite3_close(db);
+      throw IoError(path, error);
+    }
+  };
+  exec("PRAGMA page_size = 512");
+  exec(std::string("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT "
+                   "NULL, serialization_format TEXT NOT NULL") +
+       (dashing ? ")" : ", offered_qos_profiles TEXT NOT NULL)"));
+  exec(
+      "CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp "
+      "INTEGER NOT NULL, data BLOB NOT NULL)");
+  exec("CREATE INDEX timestamp_idx ON messages (timestamp ASC)");
+  const std::string qos = dashing ? "" : ", ''";
+  exec("INSERT INTO topics VALUES (1, '/points', 'sensor_msgs/msg/PointCloud2', 'cdr'" + qos + ")");
+  exec("INSERT INTO topics VALUES (2, '/other', 'std_msgs/msg/String', 'json'" + qos + ")");
+  const std::vector<std::pair<std::string, uint8_t>> fields = {
+      {"x", kPfFloat32}, {"y", kPfFloat32}, {"z", kPfFloat32}, {"intensity", kPfUint8}};
+  for (int i = 0; i < 3; ++i) {
+    const std::vector<uint8_t> bytes =
+        SerializeCdrPointCloud2(Message(FinitePoints(), fields, 1, 0, false));
+    sqlite3_stmt* stmt = nullptr;
+    sqlite3_prepare_v2(db, "INSERT INTO messages (topic_id, timestamp, data) VALUES (?1, ?2, ?3)",
+                       -1, &stmt, nullptr);
+    sqlite3_bind_int(stmt, 1, i == 1 ? 2 : 1);
+    sqlite3_bind_int64(stmt, 2, 1700000000000000000 + (2 - i) * 100000000);
+    sqlite3_bind_blob(stmt, 3, bytes.data(), int(bytes.size()), SQLITE_TRANSIENT);
+    const int rc = sqlite3_step(stmt);
+    sqlite3_finalize(stmt);
+    if (rc != SQLITE_DONE) {
+      sqlite3_close(db);
+      throw IoError(path, "cannot insert a message");
+    }
+  }
+  sqlite3_close(db);
+}
+
+void Db3s(const std::string& dir) {
+  Db3(dir + "/humble.db3", false);
+  Db3(dir + "/dashing.db3", true);
+}
+
+// MCAP from the writer (each compression, two channels, a message larger than the rest) and by
+// hand: no summary, messages in and outside chunks, zstd/lz4/unknown compression, an unknown
+// opcode, a ros1 and a json channel, a CRC left unset.
+void WriteMcapDrive(const std::string& path, McapCompression compression) {
+  McapWriter w(path, compression);
+  const uint16_t pc = w.AddSchema("sensor_msgs/msg/PointCloud2", "ros2msg", "uint8 x\n");
+  const uint16_t points = w.AddChannel("/points", pc, "cdr");
+  const uint16_t imu = w.AddChannel("/imu", 0, "cdr");
+  for (uint32_t i = 0; i < 6; ++i) {
+    std::vector<uint8_t> data(i == 3 ? 300 : 24, uint8_t(i));
+    w.Write(points, i, 100 + 10 * uint64_t(5 - i), 1, data.data(), data.size());
+    w.Write(imu, i, 100 + 10 * uint64_t(i), 1, data.data(), 8);
+  }
+  w.Close();
+}
+
+void Mcap(const std::string& dir) {
+  WriteMcapDrive(dir + "/none.mcap", McapCompression::kNone);
+  WriteMcapDrive(dir + "/zstd.mcap", McapCompression::kZstd);
+  WriteMcapDrive(dir + "/lz4.mcap", McapCompression::kLz4);
+  mcap::Out f;
+  f.Raw(mcap::kMagic, mcap::kMagicSize);
+  auto add = [&f](uint8_t op, const mcap::Out& content) { f.Record(op, content); };
+  mcap::Out header, schema, ros1, json, loose, extension, data_end, footer;
+  header.Str("ros1");
+  header.Str("hand");
+  add(mcap::kHeader, header);
+  schema.U16(1);
+  schema.Str("sensor_msgs/PointCloud2");
+  schema.Str("ros1msg");
+  schema.Str("");
+  add(mcap::kSchema, schema);
+  ros1.U16(1);
+  ros1.U16(1);
+  ros1.Str("/ros1");
+  ros1.Str("ros1");
+  ros1.U32(0);
+  add(mcap::kChannel, ros1);
+  json.U16(2);
+  json.U16(0);
+  json.Str("/json");
+  json.Str("json");
+  json.U32(0);
+  add(mcap::kChannel, json);
+  auto message = [](uint16_t channel, uint64_t time, const char* text) {
+    mcap::Out m;
+    m.U16(channel);
+    m.U32(0);
+    m.U64(time);
+    m.U64(time);
+    m.Raw(text, std::char_traits<char>::length(text));
+    return m;
+  };
+  add(mcap::kMessage, message(1, 5, "loose"));
+  extension.Raw("ext", 3);
+  for (const char* compression : {"", "zstd", "lz4", "br"}) {
+    mcap::Out records;
+    records.Record(0x90, extension);
+    records.Record(mcap::kMessage, message(1, 9, "second"));
+    records.Record(mcap::kMessage, message(1, 7, "first"));
+    records.Record(mcap::kMessage, message(2, 8, "{}"));
+    std::vector<uint8_t> stored = records.bytes;
+    const std::string c = compression;
+    if (c == "zstd") stored = CompressZstd(records.bytes.data(), records.bytes.size());
+    if (c == "lz4") stored = CompressLz4Frame(records.bytes.data(), records.bytes.size());
+    mcap::Out chunk;
+    chunk.U64(7);
+    chunk.U64(9);
+    chunk.U64(records.bytes.size());
+    chunk.U32(c == "zstd" ? 0 : Crc32(records.bytes.data(), records.bytes.size()));
+    chunk.Str(c);
+    chunk.U64(stored.size());
+    chunk.Raw(stored.data(), stored.size());
+    add(mcap::kChunk, chunk);
+  }
+  add(0xA5, extension);
+  data_end.U32(0);
+  add(mcap::kDataEnd, data_end);
+  footer.U64(0);
+  footer.U64(0);
+  footer.U32(0);
+  add(mcap::kFooter, footer);
+  f.Raw(mcap::kMagic, mcap::kMagicSize);
+  WriteFileBytes(dir + "/by_hand.mcap", f.bytes.data(), f.bytes.size());
+  // The same, cut inside its last chunk.
+  WriteFileBytes(dir + "/cut.mcap", f.bytes.data(), f.bytes.size() - 60);
+}
+
 }  // namespace
 }  // namespace lpir
 
@@ -157,10 +432,13 @@ int main(int argc, char** argv) {
   const struct {
     const char* target;
     void (*write)(const std::string&);
-  } kTargets[] = {{"kitti_bin", lpir::KittiBin},
+  } kTargets[] = {{"db3", lpir::Db3s},
+                  {"kitti_bin", lpir::KittiBin},
                   {"label_file", lpir::LabelFile},
+                  {"mcap", lpir::Mcap},
                   {"pcd", lpir::Pcd},
                   {"ply", lpir::Ply},
+                  {"pointcloud2", lpir::PointCloud2s},
                   {"sensor_profile", lpir::SensorProfiles}};
   try {
     for (const auto& t : kTargets) {

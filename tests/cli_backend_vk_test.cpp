@@ -140,7 +140,7 @@ TEST(CliBackend, NoVulkanDriverFallsBackToTheReference) {
       test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " segment " +
                            scan + " --sensor hdl64e --backend vulkan --out " + out + "/vulkan",
                        &log),
-      1);
+      4);  // cannot run
   EXPECT_NE(log.find("the Vulkan backend could not be set up"), std::string::npos) << log;
   EXPECT_NE(log.find("VK_ICD_FILENAMES=/nonexistent.json"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(out + "/vulkan/000964.label"));
@@ -202,13 +202,13 @@ TEST(CliBackend, BadBackendOrDeviceIsAnError) {
   EXPECT_EQ(test::RunCommand(test::CliPath() + " segment x.bin --sensor hdl64e --backend cuda " +
                                  "--out " + test::TempDir(),
                              &log),
-            1);
+            2);  // usage
   EXPECT_NE(log.find("unknown backend 'cuda' (auto, cpu or vulkan)"), std::string::npos) << log;
   LPIR_REQUIRE_VULKAN();  // without a device, --device fails before any device is named
   EXPECT_EQ(test::RunCommand(test::CliPath() + " segment x.bin --sensor hdl64e --device nosuch " +
                                  "--out " + test::TempDir(),
                              &log),
-            1);
+            4);  // cannot run: no such device
   EXPECT_NE(log.find("nosuch"), std::string::npos) << log;
 }
 
@@ -222,7 +222,7 @@ TEST(CliBackend, DevicesListsLavapipe) {
   EXPECT_NE(log.find("segment --backend vulkan without --device: "), std::string::npos) << log;
   EXPECT_EQ(
       test::RunCommand("VK_ICD_FILENAMES=/nonexistent.json " + test::CliPath() + " devices", &log),
-      1);
+      4);  // cannot run
   EXPECT_NE(log.find("no Vulkan device"), std::string::npos) << log;
 }
 

@@ -598,15 +598,15 @@ TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles)
 TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
   test::ScopedDir dir;
   std::string log;
-  EXPECT_NE(test::RunCommand(Cli() + " segment " + DrivesDir() + "/vlp16.db3 " + FrameBase(0) +
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() + "/vlp16.db3 " + FrameBase(0) +
                                  ".bin --sensor vlp16 --out " + dir.path,
                              &log),
-            0);
+            2);
   EXPECT_NE(log.find("on its own"), std::string::npos) << log;
-  EXPECT_NE(test::RunCommand(Cli() + " segment " + FrameBase(0) +
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + FrameBase(0) +
                                  ".bin --format mcap --sensor vlp16 --out " + dir.path,
                              &log),
-            0);
+            2);
   EXPECT_NE(log.find("--format mcap is for a recorded drive"), std::string::npos) << log;
 }
 
@@ -615,10 +615,10 @@ TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {
   const std::string drive = dir.path + "/vlp16_zstd.mcap";
   test::WriteRaw(drive, test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
   std::string log;
-  EXPECT_NE(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
                                  " --backend cpu --format mcap --out " + dir.path,
                              &log),
-            0);
+            2);
   EXPECT_NE(log.find("is the drive being read"), std::string::npos) << log;
   EXPECT_EQ(test::ReadRaw(drive), test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
 }
@@ -626,19 +626,19 @@ TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {
 TEST(CliDriveArgs, AnAbsentTopicIsNamedWithTheTopicsThereAre) {
   test::ScopedDir dir;
   std::string log;
-  EXPECT_NE(test::RunCommand(Cli() + " segment " + DrivesDir() +
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() +
                                  "/vlp16.db3 --topic /nope --sensor vlp16 --out " + dir.path,
                              &log),
-            0);
+            2);
   EXPECT_NE(log.find("/nope"), std::string::npos) << log;
   EXPECT_NE(log.find(kTopic), std::string::npos) << log;
 }
 
 TEST(CliDriveArgs, TopicsOfAMissingDriveIsAnErrorNamingIt) {
   std::string log;
-  EXPECT_EQ(test::RunCommand(Cli() + " topics /nonexistent/drive.mcap", &log), 1);
+  EXPECT_EQ(test::RunCommand(Cli() + " topics /nonexistent/drive.mcap", &log), 4);  // cannot run
   EXPECT_NE(log.find("/nonexistent/drive.mcap"), std::string::npos) << log;
-  EXPECT_NE(test::RunCommand(Cli() + " topics", &log), 0);
+  EXPECT_EQ(test::RunCommand(Cli() + " topics", &log), 2);
   EXPECT_NE(log.find("usage: lpir-gseg topics DRIVE"), std::string::npos) << log;
 }
 

@@ -256,11 +256,11 @@ TEST(CliReport, ANameOtherThanCsvOrJsonIsRefused) {
   test::ScopedDir dir;
   WriteKittiBin(dir.path + "/a.bin", Road(400));
   std::string log;
-  EXPECT_NE(test::RunCommand(test::CliPath() + " segment " + dir.path +
+  EXPECT_EQ(test::RunCommand(test::CliPath() + " segment " + dir.path +
                                  "/a.bin --sensor hdl64e --backend cpu --out " + dir.path +
                                  " --report " + dir.path + "/r.txt",
                              &log),
-            0);
+            2);
   EXPECT_NE(log.find("--report must name a .csv or .json file"), std::string::npos) << log;
 }
 
@@ -268,11 +268,11 @@ TEST(CliReport, AReportThatCannotBeCreatedIsNamed) {
   test::ScopedDir dir;
   WriteKittiBin(dir.path + "/a.bin", Road(400));
   std::string log;
-  EXPECT_NE(test::RunCommand(test::CliPath() + " segment " + dir.path +
+  EXPECT_EQ(test::RunCommand(test::CliPath() + " segment " + dir.path +
                                  "/a.bin --sensor hdl64e --backend cpu --out " + dir.path +
                                  " --report " + dir.path + "/no/such/dir/r.csv",
                              &log),
-            0);
+            4);
   EXPECT_NE(log.find(dir.path + "/no/such/dir/r.csv"), std::string::npos) << log;
 }
 

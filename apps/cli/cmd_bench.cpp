@@ -9,7 +9,8 @@
 // The counted GPU cost: for each shape (LPIR_VK_SHAPE=gpu and cpu, set before its pipeline is
 // made) every scan once through a FramePipeline of its own, the commands of each frame counted
 // as they are recorded (host/vk/command_buffer.h, RecordCounts), and its labels compared with
-// the reference's: exit code 1, after the report, when they differ.
+// the reference's: exit code kExitRefused (apps/cli/exit_codes.h), after the report, when they
+// differ.
 // The CPU and the device are timed in turns, a round of the scans each, so drifts of the
 // machine's speed fall on both alike.
 #include <algorithm>
@@ -25,6 +26,7 @@
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/exit_codes.h"
 #include "apps/sim/scene.h"
 #include "host/frame_pipeline.h"
 #include "host/io/kitti_bin.h"
@@ -46,7 +48,8 @@ const char kHelp[] =
     "  --runs N           timed frames per scan and backend (default 20)\n"
     "  --scaling-runs N   timed frames per sensor in the scaling table (default 15)\n"
     "  --frames N         frames per throughput measurement (default 24)\n"
-    "  --device D         Vulkan device (index or name part); without a device, CPU rows only\n"
+    "  --device D         Vulkan device (index or name part; none such: exit code 4); without\n"
+    "                     --device and without a usable device, CPU rows only\n"
     "  --json             one JSON object instead of the table\n";
 
 using Clock = std::chrono::steady_clock;
@@ -76,14 +79,14 @@ struct Timed {
   std::vector<double> wall, stage[kStageCount], upload, download, gpu_total;
 };
 
-// Labels of every cloud on `s` equal to the reference's, or std::runtime_error.
+// Labels of every cloud on `s` equal to the reference's, or RefusedError.
 void CheckAgainstReference(Segmenter& s, Segmenter& reference, const std::vector<Cloud>& clouds,
                            const std::vector<std::string>& names) {
   for (size_t k = 0; k < clouds.size(); ++k) {
     const Labels got = s.Segment(clouds[k]).label;
     if (got != reference.Segment(clouds[k]).label)
-      throw std::runtime_error(names[k] + ": the labels of " + s.backend_note() +
-                               " differ from the CPU reference's; nothing timed");
+      throw RefusedError(names[k] + ": the labels of " + s.backend_note() +
+                         " differ from the CPU reference's; nothing timed");
   }
 }
 
@@ -419,6 +422,8 @@ BenchReport Measure(const BenchArgs& a) {
   Segmenter reference(hdl64e, cpu_options);
   std::unique_ptr<Segmenter> gpu = VulkanOrNone(hdl64e, vk_options, r.device);
   r.has_gpu = gpu != nullptr;
+  if (!r.has_gpu && !a.device.empty())  // asked for by name: no CPU-only report instead
+    throw std::runtime_error("--device " + a.device + ": " + r.device);
   r.cpu_name = CpuName() + ", 1 thread";
 
   say("checking the labels of both backends against the reference");
@@ -624,7 +629,8 @@ int RunBench(int argc, char** argv) {
                   {"--data", "--runs", "--scaling-runs", "--frames", "--device"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   const BenchArgs a = ParseBenchArgs(args);
   const BenchReport r = Measure(a);
@@ -632,7 +638,11 @@ int RunBench(int argc, char** argv) {
     std::printf("%s\n", ReportJson(r).c_str());
   else
     PrintReport(r);
-  return AllEqual(r.costs) ? 0 : 1;
+  if (AllEqual(r.costs)) return kExitOk;
+  std::fprintf(stderr,
+               "lpir-gseg bench: refused: a shape's labels differ from the CPU reference's, or "
+               "its pipeline failed (see the counted GPU cost)\n");
+  return kExitRefused;
 }
 
 }  // namespace lpir

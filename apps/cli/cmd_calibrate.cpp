@@ -1,8 +1,8 @@
 // lpir-gseg calibrate SCAN... --sensor NAME [--write-profile FILE] [--json] [options]: the mount
 // tilt (paper III-B.3, eqs. 2-3) from scans of flat ground, by host/calib/calibrate.h, and
-// optionally the sensor profile with it, for `segment --sensor FILE`. Exit codes: 0 accepted,
-// 3 refused (the reason on stderr: what was measured and what to do; no profile written),
-// 1 errors (unreadable scan, bad profile), 2 usage.
+// optionally the sensor profile with it, for `segment --sensor FILE`. Exit codes
+// (apps/cli/exit_codes.h): 0 accepted, 3 refused (the reason on stderr: what was measured and
+// what to do; no profile written), 4 errors (unreadable scan, bad profile file), 2 usage.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,14 +12,13 @@
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/exit_codes.h"
 #include "host/calib/calibrate.h"
 #include "host/io/cloud_file.h"
 #include "host/io/sensor_profile.h"
 
 namespace lpir {
 namespace {
-
-constexpr int kExitRefused = 3;
 
 const char kHelp[] =
     "usage: lpir-gseg calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
@@ -121,7 +120,8 @@ int RunCalibrate(int argc, char** argv) {
       {"--sensor", "--write-profile", "--max-b-diff", "--min-inlier-fraction", "--max-distance"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   if (args.positional().empty())
     throw std::invalid_argument("no scan given: calibrate SCAN... --sensor NAME\n" +
@@ -175,7 +175,7 @@ int RunCalibrate(int argc, char** argv) {
     if (!written.empty()) std::printf(" -> %s", written.c_str());
     std::printf("\n");
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace lpir

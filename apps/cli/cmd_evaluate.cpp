@@ -14,6 +14,7 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/evaluate_output.h"
+#include "apps/cli/exit_codes.h"
 #include "host/eval/metrics.h"
 #include "host/eval/ontology.h"
 #include "host/io/io_error.h"
@@ -191,7 +192,9 @@ std::vector<std::string> ScanCandidates(const GtFile& gt, const std::string& sca
 }
 
 // The scan of a ground truth, checked to hold `points` points; `needs` says what wants it
-// ("protocol pw needs each point's z"), for the error when none is found.
+// ("protocol pw needs each point's z"), for the error when none is found. Files that are
+// missing or do not match throw std::runtime_error (exit code kExitCannotRun), not
+// std::invalid_argument, which is kept for the command line (apps/cli/exit_codes.h).
 Cloud LoadScan(const GtFile& gt, const std::string& scans_dir, size_t points,
                const std::string& needs) {
   const std::vector<std::string> candidates = ScanCandidates(gt, scans_dir);
@@ -205,26 +208,26 @@ Cloud LoadScan(const GtFile& gt, const std::string& scans_dir, size_t points,
     looked += (looked.empty() ? "" : ", ") + c;
   }
   if (scan.empty())
-    throw std::invalid_argument(needs + ", but no scan was found for " + gt.path + " (looked for " +
-                                looked + "): pass --scans DIR holding " + gt.stem + ".bin");
+    throw std::runtime_error(needs + ", but no scan was found for " + gt.path + " (looked for " +
+                             looked + "): pass --scans DIR holding " + gt.stem + ".bin");
   Cloud cloud = ReadKittiBin(scan);
   if (cloud.size() != points)
-    throw std::invalid_argument("scan " + scan + " has " + std::to_string(cloud.size()) +
-                                " points but ground truth " + gt.path + " has " +
-                                std::to_string(points) + " labels");
+    throw std::runtime_error("scan " + scan + " has " + std::to_string(cloud.size()) +
+                             " points but ground truth " + gt.path + " has " +
+                             std::to_string(points) + " labels");
   return cloud;
 }
 
 Labels LoadPrediction(const std::string& path, const GtFile& gt, size_t points) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
-    throw std::invalid_argument("no prediction for ground truth " + gt.path + ": " + path +
-                                " does not exist");
+    throw std::runtime_error("no prediction for ground truth " + gt.path + ": " + path +
+                             " does not exist");
   std::vector<uint32_t> raw = ReadLabelFile(path);
   if (raw.size() != points)
-    throw std::invalid_argument("prediction " + path + " has " + std::to_string(raw.size()) +
-                                " labels but ground truth " + gt.path + " has " +
-                                std::to_string(points));
+    throw std::runtime_error("prediction " + path + " has " + std::to_string(raw.size()) +
+                             " labels but ground truth " + gt.path + " has " +
+                             std::to_string(points));
   Labels pred(points);
   for (size_t i = 0; i < points; ++i) {
     if (raw[i] > 1)
@@ -279,14 +282,15 @@ int RunEvaluate(int argc, char** argv) {
   const Options o = ParseOptions(argc, argv);
   if (o.help) {
     std::fputs(kHelp, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   std::error_code ec;
   if (!fs::is_directory(o.pred_dir, ec)) throw IoError(o.pred_dir, "no such prediction folder");
   const EvaluateResults r = Evaluate(o, ListGroundTruth(o.gt));
   const std::string out = o.json ? FormatJson(r) : FormatTables(r);
   std::fputs(out.c_str(), stdout);
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace lpir

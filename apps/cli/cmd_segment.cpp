@@ -22,6 +22,7 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/drive_output.h"
+#include "apps/cli/exit_codes.h"
 #include "apps/cli/frame_report.h"
 #include "apps/cli/frame_source.h"
 #include "apps/cli/invalid_reasons.h"
@@ -404,7 +405,8 @@ int RunSegment(int argc, char** argv) {
                    "--batch", "--topic", "--report"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   const SegmentArgs a = ParseSegmentArgs(args);
   const SensorProfile sensor = LoadSensorProfile(a.sensor, SensorsDir());
@@ -472,9 +474,9 @@ int RunSegment(int argc, char** argv) {
   if (failures) {
     std::fprintf(stderr, "lpir-gseg segment: %zu of %zu %s failed\n", failures, total,
                  a.drive ? "messages or damaged parts" : "files");
-    return 1;  // some inputs failed
+    return kExitSomeFailed;
   }
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace lpir

@@ -8,6 +8,7 @@
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/exit_codes.h"
 #include "apps/sim/scene.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
@@ -55,7 +56,8 @@ int RunSimulate(int argc, char** argv) {
       {"--sensor", "--seed", "--pitch", "--roll", "--scene", "--range-noise", "--out", "--labels"});
   if (args.Has("--help")) {
     std::fputs(kSimulateUsage, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   if (!args.positional().empty())
     throw std::invalid_argument("unexpected argument '" + args.positional()[0] + "'\n" +
@@ -85,7 +87,7 @@ int RunSimulate(int argc, char** argv) {
               sensor.name.c_str(), options.seed, scan.cloud.size(), ground,
               scan.cloud.size() ? 100.0 * ground / scan.cloud.size() : 0.0, out_path.c_str(),
               label_path.c_str());
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace lpir

@@ -1,6 +1,6 @@
 // lpir-gseg topics DRIVE: the topics of a recorded drive (.mcap, .db3, .bag) as a table, one line
 // each in the drive's order: topic, message type, message encoding, message count. A drive that
-// cannot be read is an error naming it (exit 1).
+// cannot be read is an error naming it (exit kExitCannotRun, as main turns an IoError).
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -9,6 +9,7 @@
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/exit_codes.h"
 #include "host/drive/drive.h"
 
 namespace lpir {
@@ -26,7 +27,8 @@ int RunTopics(int argc, char** argv) {
   const Args args(argc, argv, {"--help"}, {});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
-    return 0;
+    std::fputs(kExitCodesLine, stdout);
+    return kExitOk;
   }
   if (args.positional().size() != 1)
     throw std::invalid_argument("give one DRIVE\n" + std::string(kHelp));
@@ -45,7 +47,7 @@ int RunTopics(int argc, char** argv) {
     std::printf("%-*s  %-*s  %-*s  %llu\n", int(w[0]), t.name.c_str(), int(w[1]), t.type.c_str(),
                 int(w[2]), t.encoding.c_str(), static_cast<unsigned long long>(t.messages));
   if (topics.empty()) std::printf("(no topics)\n");
-  return 0;
+  return kExitOk;
 }
 
 }  // namespace lpir

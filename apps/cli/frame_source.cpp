@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <stdexcept>
 #include <utility>
 
 #include "host/io/io_error.h"
@@ -124,20 +125,22 @@ std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTo
     for (const DriveTopic& t : topics) {
       if (t.name != topic) continue;
       if (!IsPointCloud2(t))
-        throw IoError(drive,
-                      "topic " + topic + " holds " + t.type + ", not sensor_msgs/PointCloud2");
+        throw std::invalid_argument(drive + ": topic " + topic + " holds " + t.type +
+                                    ", not sensor_msgs/PointCloud2");
       return topic;
     }
-    throw IoError(drive, "no topic " + topic + "; the drive has " + ListTopics(topics));
+    throw std::invalid_argument(drive + ": no topic " + topic + "; the drive has " +
+                                ListTopics(topics));
   }
   std::vector<DriveTopic> clouds;
   for (const DriveTopic& t : topics)
     if (IsPointCloud2(t)) clouds.push_back(t);
   if (clouds.size() == 1) return clouds[0].name;
-  throw IoError(drive, clouds.empty()
-                           ? "no sensor_msgs/PointCloud2 topic; the drive has " + ListTopics(topics)
-                           : "--topic is needed: the drive has " + std::to_string(clouds.size()) +
-                                 " PointCloud2 topics: " + ListTopics(clouds));
+  if (clouds.empty())
+    throw IoError(drive, "no sensor_msgs/PointCloud2 topic; the drive has " + ListTopics(topics));
+  throw std::invalid_argument(drive + ": --topic is needed: the drive has " +
+                              std::to_string(clouds.size()) +
+                              " PointCloud2 topics: " + ListTopics(clouds));
 }
 
 std::unique_ptr<FrameSource> OpenDriveSource(const std::string& drive,

@@ -46,9 +46,10 @@ class FrameSource {
 // Cloud files (ReadCloud under `read`), in the order given.
 std::unique_ptr<FrameSource> OpenFileSource(std::vector<std::string> files, ReadOptions read);
 
-// The topic to segment in a drive with `topics`: `topic` when given (IoError naming `drive`
-// unless it is there and a PointCloud2), else the drive's only PointCloud2 topic (IoError listing
-// them when there are none or several).
+// The topic to segment in a drive with `topics`: `topic` when given (std::invalid_argument naming
+// `drive` unless it is there and a PointCloud2: the command line asks for what is not there),
+// else the drive's only PointCloud2 topic (std::invalid_argument listing them when there are
+// several; IoError naming `drive` when there is none: no option would help).
 std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTopic>& topics,
                              const std::string& topic);
 

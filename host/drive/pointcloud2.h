@@ -44,29 +44,37 @@ struct PointCloud2 {
   int64_t stamp_ns() const { return int64_t(stamp_sec) * 1000000000 + stamp_nanosec; }
 };
 
-// Parses a CDR-serialized message (4-byte encapsulation header: CDR_BE or CDR_LE, alignment
-// relative to the byte after it). IoError naming `where` for a bad header, a truncated message or
-// a length that overruns it.
+// Parses a CDR-serialized message (4-byte encapsulation header: CDR_BE {0,0} or CDR_LE {0,1},
+// the two option bytes ignored; primitives aligned to their size relative to the byte after the
+// header; a string's uint32 length counts its NUL, 0 reads as empty). Up to 7 bytes after
+// is_dense are accepted as padding. IoError naming `where` for another encapsulation, a
+// truncated message, a length or count that overruns the bytes left (checked before anything is
+// allocated), a string without its NUL, a bool other than 0 or 1, or more trailing bytes.
 PointCloud2 ParseCdrPointCloud2(const std::string& where, const uint8_t* bytes, size_t size);
-// CDR_LE with the encapsulation header; ParseCdrPointCloud2 reads it back equal.
 std::vector<uint8_t> SerializeCdrPointCloud2(const PointCloud2& cloud);
 // The ROS 1 serialization (little-endian, no alignment, header seq stamp frame_id).
 PointCloud2 ParseRos1PointCloud2(const std::string& where, const uint8_t* bytes, size_t size);
 std::vector<uint8_t> SerializeRos1PointCloud2(const PointCloud2& cloud);
 
-// The points as a Cloud, row by row, point_step bytes apart: x, y, z (float32 or float64, read
-// as float), the first of intensity / reflectivity / i present (any numeric type, converted to
-// float; 0 when none), and ring when present (any integer type, or a float holding a whole
-// number >= 0). is_bigendian is honoured. IoError naming `where` when x, y or z is missing or is
-// not a float type, a field overruns point_step, width x height overflows or data holds fewer
-// than row_step x height bytes, row_step < width x point_step, or a ring value is not a whole
-// number >= 0. Every point is kept (NaN included: the segmenter marks it invalid).
+// The points as a Cloud, row by row (point (r, c) at r x row_step + c x point_step): x, y, z
+// (float32 or float64, count 1, read as float), the first of intensity / reflectivity / i
+// present (any type, count 1, converted to float; 0 when none), and ring when present (count 1,
+// any integer type, or a float holding a whole number; every value must be in [0, INT32_MAX]).
+// is_bigendian is honoured. Every point is kept (NaN included: the segmenter marks it invalid).
+// IoError naming `where` when a field's datatype is not 1-8, a used field appears twice or has
+// count != 1, x, y or z is missing or not a float type, or a ring value is not a whole number
+// >= 0; and, when width x height > 0, when point_step is 0, a field's offset + size x count
+// overruns point_step, row_step < width x point_step, or data does not hold exactly
+// row_step x height bytes (extra bytes would mean the declared layout is not the data's). With
+// no points only the fields are checked. Sizes are multiplied in 64 bits from 32-bit factors.
 Cloud CloudFromPointCloud2(const std::string& where, const PointCloud2& cloud);
 
-// `cloud` with a uint8 `label` field (1 ground, 0 non-ground) appended to every point record:
-// point_step grows by one byte, the records are re-packed densely (row_step = width x
-// point_step), everything else is kept. IoError naming `where` unless labels has one entry per
-// point.
+// `cloud` with a uint8 `label` field (1 ground, 0 non-ground) appended to every point record, at
+// offset point_step: point_step grows by one byte, the records are re-packed densely row by row
+// (row_step = width x point_step, row padding dropped), everything else is kept. IoError naming
+// `where` unless labels has one entry per point, for a cloud that already has a `label` field,
+// for the layout errors CloudFromPointCloud2 reports when there are points, or when the new
+// row_step does not fit in 32 bits.
 PointCloud2 AddLabelField(const std::string& where, const PointCloud2& cloud, const Labels& labels);
 
 }  // namespace lpir
