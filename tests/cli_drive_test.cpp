@@ -72,26 +72,11 @@ Cloud FrameWithRing(size_t i) {
   return cloud;
 }
 
-// The fixtures keep every 8th point of a VLP-16 scan: the vlp16 profile at 1/7 of its width
-// (256 columns, sectors dividing it) finds ground in them, so the labels compared are not all 0.
-std::string DecimatedProfile(const std::string& dir) {
-  std::string text = test::ReadFileBytes(test::SensorsDir() + "/vlp16.txt");
-  const size_t name = text.find("name vlp16\n"), width = text.find("width 1792");
-  EXPECT_NE(name, std::string::npos);
-  EXPECT_NE(width, std::string::npos);
-  if (name == std::string::npos || width == std::string::npos) return "vlp16";
-  text.replace(width, 10, "width 256");
-  text.replace(name, 11, "name vlp16-decimated\n");
-  const std::string path = dir + "/vlp16-decimated.txt";
-  test::WriteRaw(path, text);
-  return path;
-}
-
 // `segment` of the fixture frames given as files, once per run: with their rings (PCD files
 // written here, as the drives carry them) and as the committed .bin files (no ring).
 struct Reference {
   test::ScopedDir dir;
-  std::string sensor = DecimatedProfile(dir.path);
+  std::string sensor = "vlp16";
   Reference() {
     std::string args;
     for (size_t i = 0; i < kFrames; ++i) {
@@ -480,6 +465,27 @@ TEST_P(CliDamagedDrive, AnUnknownCompressionLabelsTheOtherMessagesNamesItAndExit
   EXPECT_EQ(LabelOfStamp(dir.path + "/out", 2), Ref().Ring(2)) << "read on past it; " << log;
   EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
   EXPECT_NE(log.find(unknown), std::string::npos) << log;
+}
+
+// A .db3 cut inside its last page: its message counts cannot be taken, so the topic must be
+// named; the two messages before the cut are labelled, the damage named, exit 1.
+TEST(CliDamagedDb3, CutInItsLastPageLabelsTheMessagesBeforeItWhenTheTopicIsNamed) {
+  test::ScopedDir dir;
+  const std::string path = dir.path + "/vlp16.db3";
+  const std::string bytes = test::ReadRaw(DrivesDir() + "/vlp16.db3");
+  ASSERT_GT(bytes.size(), 2048u);
+  test::WriteRaw(path, bytes.substr(0, bytes.size() - 2048));
+  const std::string segment =
+      Cli() + " segment " + path + " --sensor " + Sensor() + " --backend cpu --out " + dir.path;
+  std::string log;
+  EXPECT_EQ(test::RunCommand(segment + "/a", &log), 4) << log;
+  EXPECT_NE(log.find("--topic T reads T's messages up to the damage"), std::string::npos) << log;
+  EXPECT_EQ(test::RunCommand(segment + "/b --topic " + kTopic, &log), 1) << log;
+  for (size_t i = 0; i + 1 < kFrames; ++i)
+    EXPECT_EQ(test::ReadFileBytes(dir.path + "/b/" + LabelName(i, i)), Ref().Ring(i)) << log;
+  EXPECT_EQ(LabelFiles(dir.path + "/b").size(), kFrames - 1) << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
+  EXPECT_NE(log.find("segmented 2 messages of /velodyne_points"), std::string::npos) << log;
 }
 
 // MCAP only: its chunks carry a CRC (a bag's bz2 or lz4 chunk may decompress a flipped byte).

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -34,23 +33,10 @@ std::vector<std::string> Labels(const std::string& dir) {
   return names;
 }
 
-// The vlp16 profile at 256 columns, for the fixtures' every-8th-point frames (there the full
-// width finds no ground); its path in `dir`.
-std::string DecimatedProfile(const std::string& dir) {
-  std::string text = test::ReadFileBytes(test::SensorsDir() + "/vlp16.txt");
-  const size_t width = text.find("width 1792");
-  if (width == std::string::npos) return "vlp16";
-  text.replace(width, 10, "width 256");
-  const std::string path = dir + "/vlp16-decimated.txt";
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(CliDriveVulkan, LabelsEqualTheReferenceInFlightAndInBatches) {
   LPIR_REQUIRE_VULKAN();
   test::ScopedDir dir;
-  const std::string segment = test::CliPath() + " segment " + Drive() + " --sensor " +
-                              DecimatedProfile(dir.path) + " --out ";
+  const std::string segment = test::CliPath() + " segment " + Drive() + " --sensor vlp16 --out ";
   std::string log;
   ASSERT_EQ(test::RunCommand(segment + dir.path + "/cpu --backend cpu --quiet", &log), 0) << log;
   const std::vector<std::string> names = Labels(dir.path + "/cpu");
