@@ -227,7 +227,7 @@ class SegmentRun {
         report_(report),
         index_(index),
         mcap_(mcap),
-        progress_(source.count(), source.count() > 1 && !a.quiet),
+        progress_(source.count(), source.count() != 1 && !a.quiet),  // 0: unknown
         timings_(segmenter.backend() == Backend::kVulkan) {}
 
   // Reads, submits and collects every frame of the source; returns the frames that failed.
@@ -388,12 +388,29 @@ class SegmentRun {
 
 // The frames the inputs name: the cloud files (folders expanded), or the drive's topic (chosen
 // by ChooseCloudTopic; *topic set to it).
+// A drive whose topics cannot be listed (damage where a .db3 keeps its counts) is still read
+// up to the damage when --topic names the topic: a warning then, and no count for the progress.
 std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic) {
   if (!a.drive) return OpenFileSource(ListInputs(a.inputs), a.read);
   const std::string& drive = a.inputs[0];
   std::unique_ptr<DriveReader> reader = OpenDrive(drive);
-  *topic = ChooseCloudTopic(drive, reader->Topics(), a.topic);
-  return OpenDriveSource(drive, std::move(reader), *topic, a.format == "mcap");
+  std::vector<DriveTopic> topics;
+  try {
+    topics = reader->Topics();
+    *topic = ChooseCloudTopic(drive, topics, a.topic);
+  } catch (const IoError& e) {
+    if (a.topic.empty())
+      throw IoError(drive, std::string("its topics cannot be listed (") + e.what() +
+                               "); --topic T reads T's messages up to the damage");
+    if (!a.quiet)
+      std::fprintf(stderr, "lpir-gseg segment: warning: %s; reading %s up to the damage\n",
+                   e.what(), a.topic.c_str());
+    *topic = a.topic;
+  }
+  size_t count = 0;
+  for (const DriveTopic& t : topics)
+    if (t.name == *topic) count = size_t(t.messages);
+  return OpenDriveSource(drive, std::move(reader), *topic, count, a.format == "mcap");
 }
 
 }  // namespace
@@ -457,9 +474,10 @@ int RunSegment(int argc, char** argv) {
       char buf[128];
       std::snprintf(buf, sizeof(buf), " in %.2f s (%.1f frames/s), %zu failed", seconds,
                     seconds > 0 ? double(run.frames()) / seconds : 0.0, failures);
-      std::string line = "segmented " + std::to_string(run.frames()) + " of " +
-                         std::to_string(total) + " " + what + " with sensor '" +
-                         segmenter.sensor().name + "' on " + on + buf;
+      // a drive whose count is unknown (0): "segmented 2 messages of /points in D ..."
+      const std::string of = total || !a.drive ? " of " + std::to_string(total) : "";
+      std::string line = "segmented " + std::to_string(run.frames()) + of + " " + what +
+                         " with sensor '" + segmenter.sensor().name + "' on " + on + buf;
       if (run.invalid())
         line += ", " + std::to_string(run.invalid()) +
                 " invalid points (NaN/Inf, at the origin or out of range: non-ground)";
@@ -472,7 +490,8 @@ int RunSegment(int argc, char** argv) {
   }  // the progress line ends here, above the summary
   std::fputs(summary.c_str(), stdout);
   if (failures) {
-    std::fprintf(stderr, "lpir-gseg segment: %zu of %zu %s failed\n", failures, total,
+    const std::string of = total || !a.drive ? " of " + std::to_string(total) : "";
+    std::fprintf(stderr, "lpir-gseg segment: %zu%s %s failed\n", failures, of.c_str(),
                  a.drive ? "messages or damaged parts" : "files");
     return kExitSomeFailed;
   }

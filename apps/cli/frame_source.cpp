@@ -145,10 +145,8 @@ std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTo
 
 std::unique_ptr<FrameSource> OpenDriveSource(const std::string& drive,
                                              std::unique_ptr<DriveReader> reader,
-                                             const std::string& topic, bool keep_messages) {
-  size_t count = 0;
-  for (const DriveTopic& t : reader->Topics())
-    if (t.name == topic) count = size_t(t.messages);
+                                             const std::string& topic, size_t count,
+                                             bool keep_messages) {
   return std::make_unique<DriveSource>(drive, std::move(reader), topic, count, keep_messages);
 }
 

@@ -53,11 +53,13 @@ std::unique_ptr<FrameSource> OpenFileSource(std::vector<std::string> files, Read
 std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTopic>& topics,
                              const std::string& topic);
 
-// The PointCloud2 messages of `topic` in `drive`, opened by `reader` (OpenDrive). A damaged part
-// of the drive and a message that does not decode (DecodeDriveCloud's rules) are failures.
-// keep_messages: FrameInput::message and cloud2 are filled (for writing the messages back).
+// The PointCloud2 messages of `topic` in `drive`, opened by `reader` (OpenDrive); `count`, the
+// topic's messages (DriveReader::Topics; 0 when unknown), is count(). A damaged part of the drive
+// and a message that does not decode (DecodeDriveCloud's rules) are failures. keep_messages:
+// FrameInput::message and cloud2 are filled (for writing the messages back).
 std::unique_ptr<FrameSource> OpenDriveSource(const std::string& drive,
                                              std::unique_ptr<DriveReader> reader,
-                                             const std::string& topic, bool keep_messages);
+                                             const std::string& topic, size_t count,
+                                             bool keep_messages);
 
 }  // namespace lpir
