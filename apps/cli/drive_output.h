@@ -12,7 +12,8 @@
 namespace lpir {
 
 // index.csv: the header "sequence,stamp_ns,topic,points,ground_fraction,ms,file", then a line per
-// message in the order labelled (file: the output's name inside DIR).
+// message in the order labelled (file: the output's name inside DIR; empty with --format mcap,
+// whose messages all go into one file).
 class DriveIndex {
  public:
   // IoError naming `path` when it cannot be created.
