@@ -1,9 +1,10 @@
 // Writes the seed corpus of every fuzz target: small valid files from the project's own writers
 // and hand-made edge cases (comments, CRLF, skipped and multi-count fields, NaN/Inf, 0 points,
 // other elements, continuation lines, calibration keys; PointCloud2 layouts of every kind; small
-// .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand), one folder per
-// target.
+// .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand; ROS 1 bags indexed
+// or not, of each chunk compression, truncated), one folder per target.
 // Usage: make_corpus OUT_DIR  (fuzz/corpus/ holds its output, checked by ctest: fuzz.corpus).
+#include <bzlib.h>
 #include <sqlite3.h>
 
 #include <cmath>
@@ -11,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -420,6 +423,150 @@ void Mcap(const std::string& dir) {
   WriteFileBytes(dir + "/cut.mcap", f.bytes.data(), f.bytes.size() - 60);
 }
 
+// --- ROS 1 bags (bag format 2.0), written record by record ---
+
+std::string BagU32(uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
+std::string BagU64(uint64_t v) { return std::string(reinterpret_cast<const char*>(&v), 8); }
+std::string BagField(const std::string& name, const std::string& value) {
+  return BagU32(uint32_t(name.size() + 1 + value.size())) + name + "=" + value;
+}
+std::string BagRecord(const std::string& header, const std::string& data) {
+  return BagU32(uint32_t(header.size())) + header + BagU32(uint32_t(data.size())) + data;
+}
+std::string BagOp(uint8_t op) { return BagField("op", std::string(1, char(op))); }
+
+std::string Bz2(const std::string& in) {
+  std::vector<char> out(in.size() + in.size() / 100 + 600);
+  unsigned n = unsigned(out.size());
+  if (BZ2_bzBuffToBuffCompress(out.data(), &n, const_cast<char*>(in.data()), unsigned(in.size()), 9,
+                               0, 30) != BZ_OK)
+    throw std::runtime_error("bz2 compression failed");
+  return std::string(out.data(), n);
+}
+
+// A PointCloud2 of two points (x, y, z float32, intensity uint8, ring uint16).
+std::string Ros1Cloud(uint32_t seq) {
+  PointCloud2 c;
+  c.seq = seq;
+  c.stamp_sec = int32_t(1700000000 + seq);
+  c.stamp_nanosec = 5000;
+  c.frame_id = "velodyne";
+  c.width = 2;
+  c.fields = {{"x", 0, kPfFloat32, 1},
+              {"y", 4, kPfFloat32, 1},
+              {"z", 8, kPfFloat32, 1},
+              {"intensity", 12, kPfUint8, 1},
+              {"ring", 13, kPfUint16, 1}};
+  c.point_step = 15;
+  c.row_step = 30;
+  const float xyz[] = {5.25f, -1.5f, -1.73f, -3.0f, 7.125f, 0.5f};
+  for (int p = 0; p < 2; ++p) {
+    const auto* b = reinterpret_cast<const uint8_t*>(&xyz[3 * p]);
+    c.data.insert(c.data.end(), b, b + 12);
+    c.data.push_back(uint8_t(40 * p + seq));
+    c.data.push_back(uint8_t(p + 1));
+    c.data.push_back(0);
+  }
+  c.is_dense = true;
+  const auto bytes = SerializeRos1PointCloud2(c);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+// Two chunks of /points (connections 0 and 3) and /imu (connection 1), each chunk followed by its
+// index data; `indexed`: the connections and chunk infos at the end, the bag header pointing at
+// them (else index_pos 0, as a recorder that died leaves it); `padded`: the bag header padded to
+// 4096 bytes as rosbag writes it.
+std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
+  const std::map<uint32_t, std::string> topics = {{0, "/points"}, {1, "/imu"}, {3, "/points"}};
+  auto connection = [&](uint32_t id) {
+    const std::string& topic = topics.at(id);
+    const std::string type = topic == "/imu" ? "sensor_msgs/Imu" : "sensor_msgs/PointCloud2";
+    return BagRecord(BagOp(7) + BagField("conn", BagU32(id)) + BagField("topic", topic),
+                     BagField("topic", topic) + BagField("type", type) +
+                         BagField("md5sum", "1158d486dd51d683ce2f1be655c3c181") +
+                         BagField("message_definition", "Header header") +
+                         BagField("callerid", "/velodyne") + BagField("latching", "0"));
+  };
+  struct Msg {
+    uint32_t conn, sec, nsec;
+    std::string data;
+  };
+  const std::vector<std::vector<Msg>> chunks = {
+      {{0, 10, 0, Ros1Cloud(0)}, {1, 10, 5, "imu"}, {3, 9, 7, Ros1Cloud(1)}},
+      {{0, 11, 0, Ros1Cloud(2)}, {3, 11, 0, Ros1Cloud(3)}}};
+  std::string body, infos;
+  std::map<uint32_t, bool> written;
+  const std::string magic = "#ROSBAG V2.0\n";
+  auto header = [&](uint64_t index_pos) {
+    const std::string h = BagOp(3) + BagField("index_pos", BagU64(index_pos)) +
+                          BagField("conn_count", BagU32(indexed ? 3 : 0)) +
+                          BagField("chunk_count", BagU32(indexed ? 2 : 0));
+    return BagRecord(h, padded ? std::string(4096 - 8 - h.size(), ' ') : "");
+  };
+  const size_t header_size = header(0).size();
+  for (const auto& chunk : chunks) {
+    std::string inner;
+    std::map<uint32_t, std::string> index;
+    std::map<uint32_t, uint32_t> counts;
+    for (const Msg& m : chunk) {
+      if (!written[m.conn]) inner += connection(m.conn);
+      written[m.conn] = true;
+      index[m.conn] += BagU32(m.sec) + BagU32(m.nsec) + BagU32(uint32_t(inner.size()));
+      ++counts[m.conn];
+      inner += BagRecord(BagOp(2) + BagField("conn", BagU32(m.conn)) +
+                             BagField("time", BagU32(m.sec) + BagU32(m.nsec)),
+                         m.data);
+    }
+    const std::string data = compression == "bz2"   ? Bz2(inner)
+                             : compression == "lz4" ? [&] {
+                                 const auto v = CompressLz4Frame(
+                                     reinterpret_cast<const uint8_t*>(inner.data()), inner.size());
+                                 return std::string(v.begin(), v.end());
+                               }()
+                                                    : inner;
+    const uint64_t chunk_pos = magic.size() + header_size + body.size();
+    body += BagRecord(BagOp(5) + BagField("compression", compression) +
+                          BagField("size", BagU32(uint32_t(inner.size()))),
+                      data);
+    std::string info;
+    for (const auto& [conn, entries] : index) {
+      body += BagRecord(BagOp(4) + BagField("ver", BagU32(1)) + BagField("conn", BagU32(conn)) +
+                            BagField("count", BagU32(counts[conn])),
+                        entries);
+      info += BagU32(conn) + BagU32(counts[conn]);
+    }
+    infos +=
+        BagRecord(BagOp(6) + BagField("ver", BagU32(1)) + BagField("chunk_pos", BagU64(chunk_pos)) +
+                      BagField("start_time", BagU32(chunk.front().sec) + BagU32(0)) +
+                      BagField("end_time", BagU32(chunk.back().sec) + BagU32(0)) +
+                      BagField("count", BagU32(uint32_t(counts.size()))),
+                  info);
+  }
+  const uint64_t index_pos = magic.size() + header_size + body.size();
+  std::string bag = magic + header(indexed ? index_pos : 0) + body;
+  if (indexed) bag += connection(0) + connection(1) + connection(3) + infos;
+  return bag;
+}
+
+void Ros1Bags(const std::string& dir) {
+  for (const char* compression : {"none", "bz2", "lz4"})
+    Text(dir + "/indexed_" + compression + ".bag", Ros1Bag(compression, true, true));
+  Text(dir + "/unindexed_bz2.bag", Ros1Bag("bz2", false, true));
+  Text(dir + "/unpadded_lz4.bag", Ros1Bag("lz4", true, false));
+  Text(dir + "/unpadded_unindexed.bag", Ros1Bag("none", false, false));
+  const std::string whole = Ros1Bag("none", true, false);
+  // Cut inside the second chunk's data, and between the chunks and the index.
+  Text(dir + "/truncated_mid_chunk.bag",
+       whole.substr(0, whole.find("compression=", whole.find("compression=") + 1) + 120));
+  uint64_t index_pos = 0;
+  whole.copy(reinterpret_cast<char*>(&index_pos), 8, whole.find("index_pos=") + 10);
+  Text(dir + "/truncated_before_index.bag", whole.substr(0, size_t(index_pos)));
+  std::string unknown = Ros1Bag("lz4", true, false);
+  unknown.replace(unknown.find("compression=lz4"), 15, "compression=zst");
+  Text(dir + "/unknown_compression.bag", unknown);
+  Text(dir + "/version_1_2.bag", "#ROSBAG V1.2\n");
+}
+
 }  // namespace
 }  // namespace lpir
 
@@ -439,6 +586,7 @@ int main(int argc, char** argv) {
                   {"pcd", lpir::Pcd},
                   {"ply", lpir::Ply},
                   {"pointcloud2", lpir::PointCloud2s},
+                  {"ros1_bag", lpir::Ros1Bags},
                   {"sensor_profile", lpir::SensorProfiles}};
   try {
     for (const auto& t : kTargets) {

@@ -1,0 +1,769 @@
+// ROS 1 bag format 2.0 reader. The file is "#ROSBAG V2.0\n" then records, each
+//   uint32 header_len, header (fields: uint32 field_len, "name=value"), uint32 data_len, data
+// with the header's `op` naming the record: 0x03 bag header (index_pos, conn_count, chunk_count),
+// 0x05 chunk (compression none|bz2|lz4, size = the uncompressed size; data = message data 0x02
+// and connection 0x07 records), 0x04 index data after each chunk (ver 1, conn, count; data =
+// count x {time, uint32 offset into the uncompressed chunk}), and at index_pos the connection
+// records then 0x06 chunk infos (ver 1, chunk_pos, start_time, end_time, count; data = count x
+// {conn, message count}). Integers are little-endian; a time is uint32 sec, uint32 nsec.
+//
+// Reading, in order:
+//   1. Open: the magic, then the bag header record (IoError when either is bad).
+//   2. On the first Topics or SelectTopic: the index at index_pos when it is whole and agrees
+//      with itself (conn_count connections, chunk_count chunk infos at distinct positions before
+//      index_pos, every connection they name defined); else a scan of every record from the
+//      start, decompressing each chunk once, which finds the connections and messages and
+//      records each damaged part where it lies in the file.
+//   3. SelectTopic lists the messages of the topic's connections (from the index data records
+//      after each chunk, or from a scan of that chunk when they are missing or disagree with the
+//      chunk info) and sorts them by receipt time, ties in file order.
+//   4. Next reads each message from its chunk, decompressed a chunk at a time (the last one kept).
+// Damage: a damaged part found by a scan is reported once every message that lies before it in
+// the file has been yielded; a chunk found damaged only when Next loads it (the indexed case) is
+// reported when the first of its messages is due. After damage the reader goes on at the next
+// chunk whose position is known: from the chunk infos, or the end of the damaged record when its
+// lengths lie inside the file; a scan that meets a record running past the end of the file stops
+// there. The complete message records of a truncated uncompressed chunk are still yielded; a
+// truncated compressed chunk yields none. The file is never read whole: a record's bytes are read
+// only once its lengths are checked against the bytes left in the file.
+#include "host/drive/ros1_bag_reader.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "host/drive/decompress.h"
+#include "host/io/io_error.h"
+
+namespace lpir {
+namespace {
+
+constexpr char kMagic[] = "#ROSBAG V2.0\n";
+constexpr size_t kMagicSize = sizeof(kMagic) - 1;
+
+enum Op : uint8_t {
+  kOpMessage = 0x02,
+  kOpBagHeader = 0x03,
+  kOpIndexData = 0x04,
+  kOpChunk = 0x05,
+  kOpChunkInfo = 0x06,
+  kOpConnection = 0x07,
+};
+
+// A damaged or malformed part; what() says where (without the file name) and what.
+class Broken : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+uint32_t LeU32(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+uint64_t LeU64(const uint8_t* p) { return uint64_t(LeU32(p)) | uint64_t(LeU32(p + 4)) << 32; }
+// A ROS time (uint32 sec, uint32 nsec) in nanoseconds.
+uint64_t TimeNs(const uint8_t* p) { return uint64_t(LeU32(p)) * 1000000000u + LeU32(p + 4); }
+
+// The fields of a record header (or of a connection header): name=value, each name once.
+class Fields {
+ public:
+  // Throws Broken(`at` + problem) for a field running past `size`, one without '=' or a name
+  // given twice.
+  Fields(const std::string& at, const uint8_t* p, size_t size) : at_(at) {
+    size_t pos = 0;
+    while (pos < size) {
+      if (size - pos < 4) Fail("header ends inside a field length");
+      const uint32_t len = LeU32(p + pos);
+      pos += 4;
+      if (len > size - pos)
+        Fail("header field of " + std::to_string(len) + " bytes runs past the header's end");
+      const std::string field(reinterpret_cast<const char*>(p + pos), len);
+      pos += len;
+      const size_t eq = field.find('=');
+      if (eq == std::string::npos) Fail("header field without '='");
+      std::string name = field.substr(0, eq);
+      for (const auto& f : fields_)
+        if (f.first == name) Fail("header field '" + name + "' given twice");
+      fields_.emplace_back(std::move(name), field.substr(eq + 1));
+    }
+  }
+
+  bool Has(const std::string& name) const { return Find(name) != nullptr; }
+  const std::string& String(const std::string& name) const {
+    const std::string* v = Find(name);
+    if (!v) Fail("header has no '" + name + "' field");
+    return *v;
+  }
+  uint8_t Op() const { return Sized(String("op"), "op", 1)[0]; }
+  uint32_t U32(const std::string& name) const { return LeU32(Sized(String(name), name, 4)); }
+  uint64_t U64(const std::string& name) const { return LeU64(Sized(String(name), name, 8)); }
+  uint64_t Time(const std::string& name) const { return TimeNs(Sized(String(name), name, 8)); }
+
+  [[noreturn]] void Fail(const std::string& what) const { throw Broken(at_ + ": " + what); }
+
+ private:
+  const std::string* Find(const std::string& name) const {
+    for (const auto& f : fields_)
+      if (f.first == name) return &f.second;
+    return nullptr;
+  }
+  const uint8_t* Sized(const std::string& value, const std::string& name, size_t size) const {
+    if (value.size() != size)
+      Fail("header field '" + name + "' has " + std::to_string(value.size()) + " bytes, not " +
+           std::to_string(size));
+    return reinterpret_cast<const uint8_t*>(value.data());
+  }
+
+  std::string at_;
+  std::vector<std::pair<std::string, std::string>> fields_;
+};
+
+// The file, read by position; it never holds more than the bytes asked for.
+class BagFile {
+ public:
+  explicit BagFile(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
+    if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
+    file_.reset(std::fopen(path.c_str(), "rb"));
+    if (!file_) throw IoError(path, "cannot open");
+    if (fseeko(file_.get(), 0, SEEK_END) != 0) throw IoError(path, "cannot seek");
+    const off_t end = ftello(file_.get());
+    if (end < 0) throw IoError(path, "cannot tell its size");
+    size_ = uint64_t(end);
+  }
+  uint64_t size() const { return size_; }
+  // `n` bytes at `pos`, which the caller has checked lie inside the file.
+  void Read(uint64_t pos, size_t n, uint8_t* out) {
+    if (n == 0) return;
+    if (fseeko(file_.get(), off_t(pos), SEEK_SET) != 0 || std::fread(out, 1, n, file_.get()) != n)
+      throw Broken("byte " + std::to_string(pos) + ": read of " + std::to_string(n) +
+                   " bytes failed");
+  }
+  std::vector<uint8_t> Bytes(uint64_t pos, size_t n) {
+    std::vector<uint8_t> out(n);
+    Read(pos, n, out.data());
+    return out;
+  }
+
+ private:
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_{nullptr, std::fclose};
+  uint64_t size_ = 0;
+};
+
+// A record's place in the file and its header.
+struct Record {
+  uint64_t pos = 0;       // of header_len
+  uint64_t data_pos = 0;  // of the data, after data_len
+  uint32_t data_len = 0;
+  bool data_truncated = false;  // the data runs past the end of the file
+  uint64_t end() const { return data_pos + data_len; }
+};
+
+struct Connection {
+  std::string topic, type;
+};
+
+// One message: when it was received and where its record lies (file order = (chunk, offset)).
+struct Entry {
+  uint64_t time_ns;
+  uint32_t chunk;   // index into chunks_ (sorted by position)
+  uint32_t offset;  // of the message data record in the uncompressed chunk
+  uint32_t conn;
+};
+
+// A damaged part found before reading, at file position (pos, offset): `pos` the byte of the
+// record, `offset` the byte inside its uncompressed chunk data.
+struct Damage {
+  uint64_t pos;
+  uint64_t offset;
+  std::string problem;
+};
+
+struct LoadedChunk {
+  std::vector<uint8_t> data;  // uncompressed (of a truncated uncompressed chunk: what is there)
+  std::string damage;         // empty when whole
+};
+
+class Ros1Bag : public DriveReader {
+ public:
+  explicit Ros1Bag(const std::string& path) : path_(path), file_(path) {
+    ReadMagic();
+    try {
+      const Record r = ReadRecordAt(kMagicSize);
+      const Fields f = ReadFields(r, "byte " + std::to_string(r.pos));
+      if (f.Op() != kOpBagHeader) f.Fail("op is " + std::to_string(f.Op()) + ", not bag header 3");
+      if (r.data_truncated) f.Fail("the bag header's padding runs past the end of the file");
+      index_pos_ = f.U64("index_pos");
+      conn_count_ = f.U32("conn_count");
+      chunk_count_ = f.U32("chunk_count");
+      first_record_ = r.end();
+    } catch (const Broken& e) {
+      throw IoError(path_, std::string("no valid bag header: ") + e.what());
+    }
+  }
+
+  std::vector<DriveTopic> Topics() override {
+    EnsureCatalogue();
+    std::map<std::string, DriveTopic> topics;
+    for (const auto& [id, c] : connections_) {
+      DriveTopic& t = topics[c.topic];
+      if (t.name.empty()) t = DriveTopic{c.topic, c.type, "ros1", 0};
+    }
+    for (const auto& [id, n] : message_counts_) topics[connections_.at(id).topic].messages += n;
+    std::vector<DriveTopic> out;
+    for (auto& [name, t] : topics) out.push_back(std::move(t));
+    return out;
+  }
+
+  void SelectTopic(const std::string& topic) override {
+    EnsureCatalogue();
+    std::set<uint32_t> conns;
+    std::string names;
+    std::set<std::string> seen;
+    for (const auto& [id, c] : connections_) {
+      if (c.topic == topic) conns.insert(id);
+      if (seen.insert(c.topic).second) names += (names.empty() ? "" : ", ") + c.topic;
+    }
+    if (conns.empty()) {
+      // A bag cut inside its first chunk loses the connections with it: say so.
+      const std::string damage =
+          scan_damages_.empty()
+              ? ""
+              : "; its first damage: " + scan_damages_.front().problem.substr(path_.size() + 2);
+      throw IoError(path_, "no topic '" + topic + "'; the bag has " +
+                               (names.empty() ? std::string("none") : names) + damage);
+    }
+    topic_ = topic;
+    entries_.clear();
+    std::vector<Damage> damages;
+    if (indexed_) {
+      damage_known_.assign(chunks_.size(), false);
+      for (uint32_t c = 0; c < chunks_.size(); ++c) {
+        bool wanted = false;
+        for (const auto& [conn, n] : chunk_counts_[c]) wanted |= n > 0 && conns.count(conn) > 0;
+        if (wanted && !ReadChunkIndex(c, conns, &entries_)) {
+          std::vector<Entry> all;
+          ScanChunk(c, &all, &damages, &damage_known_, false);
+          std::map<uint32_t, uint64_t> found;
+          for (const Entry& e : all) {
+            if (!conns.count(e.conn)) continue;
+            entries_.push_back(e);
+            ++found[e.conn];
+          }
+          for (uint32_t conn : conns) {
+            const auto info = chunk_counts_[c].find(conn);
+            const uint64_t listed = info == chunk_counts_[c].end() ? 0 : info->second;
+            if (found[conn] != listed && !damage_known_[c]) {
+              damage_known_[c] = true;
+              damages.push_back(Damage{chunks_[c], 0,
+                                       path_ + ": " + ChunkWhere(c) + ": the chunk info lists " +
+                                           std::to_string(listed) + " messages of connection " +
+                                           std::to_string(conn) + ", the chunk holds " +
+                                           std::to_string(found[conn])});
+            }
+          }
+        }
+      }
+    } else {
+      damage_known_ = scan_damage_known_;
+      damages = scan_damages_;
+      for (const Entry& e : scan_entries_)
+        if (conns.count(e.conn)) entries_.push_back(e);
+    }
+    std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+      return std::tie(a.time_ns, a.chunk, a.offset) < std::tie(b.time_ns, b.chunk, b.offset);
+    });
+    PlaceDamages(damages);
+    next_entry_ = next_damage_ = 0;
+    sequence_ = 0;
+  }
+
+  DriveStep Next(DriveMessage* message, std::string* problem) override {
+    for (;;) {
+      if (next_damage_ < damages_.size() && damages_[next_damage_].first <= next_entry_) {
+        return Damaged(damages_[next_damage_++].second, problem);
+      }
+      if (next_entry_ == entries_.size()) return DriveStep::kEnd;
+      const Entry& e = entries_[next_entry_];
+      if (cached_chunk_ != e.chunk) {
+        cached_ = LoadChunk(e.chunk);
+        cached_chunk_ = e.chunk;
+      }
+      if (!cached_.damage.empty() && !damage_known_[e.chunk]) {
+        damage_known_[e.chunk] = true;
+        return Damaged(path_ + ": " + cached_.damage, problem);  // the entry is tried again next
+      }
+      ++next_entry_;
+      try {
+        ReadMessage(e, message);
+        return DriveStep::kMessage;
+      } catch (const Broken& b) {
+        if (damage_known_[e.chunk]) continue;  // a part of a chunk already reported damaged
+        return Damaged(path_ + ": " + b.what(), problem);
+      }
+    }
+  }
+
+ private:
+  // kDamage with `what` and how many of the topic's messages came before it.
+  DriveStep Damaged(const std::string& what, std::string* problem) const {
+    *problem = what + " (after " + std::to_string(sequence_) + " messages of " + topic_ + ")";
+    return DriveStep::kDamage;
+  }
+
+  void ReadMagic() {
+    uint8_t head[kMagicSize] = {};
+    const size_t n = size_t(std::min<uint64_t>(kMagicSize, file_.size()));
+    try {
+      file_.Read(0, n, head);
+    } catch (const Broken& e) {
+      throw IoError(path_, e.what());
+    }
+    const std::string got(reinterpret_cast<const char*>(head), n);
+    if (got == kMagic) return;
+    const std::string prefix = "#ROSBAG V";
+    if (got.compare(0, prefix.size(), prefix) == 0) {
+      const std::string version = got.substr(prefix.size(), got.find('\n') - prefix.size());
+      throw IoError(path_, "ROS bag version '" + version + "' is not supported (only 2.0)");
+    }
+    throw IoError(path_, "not a ROS bag: it does not start with #ROSBAG V2.0");
+  }
+
+  std::string ChunkWhere(uint32_t c) const {
+    return "chunk " + std::to_string(c) + " at byte " + std::to_string(chunks_[c]);
+  }
+
+  // The record at `pos`: its lengths checked against the file. Broken when the file ends inside
+  // header_len, the header or data_len; a data_len past the end sets data_truncated.
+  Record ReadRecordAt(uint64_t pos) {
+    const uint64_t size = file_.size();
+    const std::string at = "byte " + std::to_string(pos);
+    uint8_t len[4];
+    if (pos > size || size - pos < 4) throw Broken(at + ": the file ends inside a record");
+    file_.Read(pos, 4, len);
+    const uint32_t header_len = LeU32(len);
+    if (header_len > size - pos - 4 || size - pos - 4 - header_len < 4)
+      throw Broken(at + ": the file ends inside a record header (" + std::to_string(header_len) +
+                   " bytes claimed, " + std::to_string(size - pos - 4) + " left)");
+    Record r;
+    r.pos = pos;
+    file_.Read(pos + 4 + header_len, 4, len);
+    r.data_pos = pos + 8 + header_len;
+    r.data_len = LeU32(len);
+    r.data_truncated = r.data_len > size - r.data_pos;
+    return r;
+  }
+  Fields ReadFields(const Record& r, const std::string& at) {
+    const uint32_t header_len = uint32_t(r.data_pos - r.pos - 8);
+    const std::vector<uint8_t> header = file_.Bytes(r.pos + 4, header_len);
+    return Fields(at, header.data(), header.size());
+  }
+  std::vector<uint8_t> ReadData(const Record& r) {
+    if (r.data_truncated)
+      throw Broken("byte " + std::to_string(r.pos) + ": the file ends inside the record's data (" +
+                   std::to_string(r.data_len) + " bytes claimed, " +
+                   std::to_string(file_.size() - r.data_pos) + " left)");
+    return file_.Bytes(r.data_pos, r.data_len);
+  }
+
+  // A connection record's header and data (the connection header: topic, type, md5sum, ...).
+  std::pair<uint32_t, Connection> ParseConnection(const Fields& f, const std::string& at,
+                                                  const uint8_t* data, size_t size) {
+    const uint32_t id = f.U32("conn");
+    Connection c;
+    c.topic = f.String("topic");
+    const Fields header(at + ", connection header", data, size);
+    c.type = header.String("type");
+    return {id, c};
+  }
+
+  // Step 2: the index when it is usable, else the scan. A bag header that points at an index
+  // which is not usable is damage (reported after the scan's messages) unless the scan already
+  // met the end of the file inside a record.
+  void EnsureCatalogue() {
+    if (catalogued_) return;
+    catalogued_ = true;
+    std::string why;
+    if (ReadIndex(&why)) {
+      indexed_ = true;
+      return;
+    }
+    connections_.clear();
+    chunks_.clear();
+    chunk_counts_.clear();
+    message_counts_.clear();
+    const bool whole = ScanFile();
+    if (index_pos_ != 0 && whole)
+      scan_damages_.push_back(Damage{file_.size(), 0,
+                                     path_ + ": the index at byte " + std::to_string(index_pos_) +
+                                         " is not usable (" + why + "); the chunks were scanned"});
+  }
+
+  // The connections and chunk infos at index_pos; false with `why` when they are absent, damaged
+  // or disagree with the bag header.
+  bool ReadIndex(std::string* why) {
+    const uint64_t size = file_.size();
+    if (index_pos_ == 0) return false;
+    if (index_pos_ < first_record_ || index_pos_ > size) {
+      *why = index_pos_ > size ? "the file ends at byte " + std::to_string(size) + ", before it"
+                               : "it would lie inside the bag header";
+      return false;
+    }
+    std::vector<std::pair<uint64_t, std::map<uint32_t, uint32_t>>> infos;
+    try {
+      for (uint64_t pos = index_pos_; pos < size;) {
+        const Record r = ReadRecordAt(pos);
+        const std::string at = "byte " + std::to_string(pos);
+        const Fields f = ReadFields(r, at);
+        const std::vector<uint8_t> data = ReadData(r);
+        if (f.Op() == kOpConnection) {
+          auto [id, c] = ParseConnection(f, at, data.data(), data.size());
+          if (!connections_.emplace(id, c).second) {
+            *why = "connection " + std::to_string(id) + " defined twice";
+            return false;
+          }
+        } else if (f.Op() == kOpChunkInfo) {
+          const uint64_t chunk_pos = f.U64("chunk_pos");
+          const uint32_t count = f.U32("count");
+          f.Time("start_time");
+          f.Time("end_time");
+          if (f.U32("ver") != 1 || chunk_pos < first_record_ || chunk_pos >= index_pos_ ||
+              data.size() != uint64_t(count) * 8) {
+            *why = at + ": a chunk info of another version, size or chunk position";
+            return false;
+          }
+          std::map<uint32_t, uint32_t> counts;
+          for (uint32_t k = 0; k < count; ++k) {
+            if (!counts.emplace(LeU32(&data[8 * k]), LeU32(&data[8 * k + 4])).second) {
+              *why = at + ": a chunk info names a connection twice";
+              return false;
+            }
+          }
+          infos.emplace_back(chunk_pos, std::move(counts));
+        } else {
+          *why = at + ": a record of op " + std::to_string(f.Op()) + " in the index";
+          return false;
+        }
+        pos = r.end();
+      }
+    } catch (const Broken& e) {
+      *why = e.what();
+      return false;
+    }
+    if (connections_.size() != conn_count_ || infos.size() != chunk_count_) {
+      *why = std::to_string(connections_.size()) + " connections and " +
+             std::to_string(infos.size()) + " chunk infos, the bag header says " +
+             std::to_string(conn_count_) + " and " + std::to_string(chunk_count_);
+      return false;
+    }
+    std::sort(infos.begin(), infos.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t c = 0; c < infos.size(); ++c) {
+      if (c > 0 && infos[c].first == infos[c - 1].first) {
+        *why = "two chunk infos for the chunk at byte " + std::to_string(infos[c].first);
+        return false;
+      }
+      for (const auto& [conn, n] : infos[c].second) {
+        if (!connections_.count(conn)) {
+          *why = "a chunk info names connection " + std::to_string(conn) + ", never defined";
+          return false;
+        }
+        message_counts_[conn] += n;
+      }
+      chunks_.push_back(infos[c].first);
+      chunk_counts_.push_back(std::move(infos[c].second));
+    }
+    return true;
+  }
+
+  // The index data records after chunk `c` for the connections in `conns`, appended to
+  // `entries`; false (nothing appended) when they are damaged or disagree with the chunk info.
+  bool ReadChunkIndex(uint32_t c, const std::set<uint32_t>& conns, std::vector<Entry>* entries) {
+    std::vector<Entry> found;
+    try {
+      const Record chunk = ReadRecordAt(chunks_[c]);
+      const Fields cf = ReadFields(chunk, ChunkWhere(c));
+      if (cf.Op() != kOpChunk || chunk.data_truncated) return false;
+      const uint32_t chunk_size = cf.U32("size");
+      std::set<uint32_t> seen;
+      uint64_t pos = chunk.end();
+      for (size_t k = 0; k < chunk_counts_[c].size(); ++k) {
+        const Record r = ReadRecordAt(pos);
+        const Fields f = ReadFields(r, "byte " + std::to_string(pos));
+        pos = r.end();
+        if (f.Op() != kOpIndexData || f.U32("ver") != 1 || r.data_truncated) return false;
+        const uint32_t conn = f.U32("conn"), count = f.U32("count");
+        const auto info = chunk_counts_[c].find(conn);
+        if (info == chunk_counts_[c].end() || info->second != count || !seen.insert(conn).second ||
+            r.data_len != uint64_t(count) * 12)
+          return false;
+        if (!conns.count(conn)) continue;
+        const std::vector<uint8_t> data = ReadData(r);
+        for (uint32_t m = 0; m < count; ++m) {
+          const uint32_t offset = LeU32(&data[12 * m + 8]);
+          if (offset >= chunk_size) return false;
+          found.push_back(Entry{TimeNs(&data[12 * m]), c, offset, conn});
+        }
+      }
+    } catch (const Broken&) {
+      return false;
+    }
+    entries->insert(entries->end(), found.begin(), found.end());
+    return true;
+  }
+
+  // Every record from the start: the connections, the chunks and their messages, the damage.
+  // True when the records end exactly at the end of the file.
+  bool ScanFile() {
+    const uint64_t size = file_.size();
+    uint64_t pos = first_record_;
+    bool whole = true;  // the records end exactly at the end of the file
+    while (pos < size) {
+      Record r;
+      try {
+        r = ReadRecordAt(pos);
+      } catch (const Broken& e) {
+        scan_damages_.push_back(Damage{pos, 0, path_ + ": " + e.what()});
+        whole = false;
+        break;
+      }
+      try {
+        ScanTopRecord(r);
+      } catch (const Broken& e) {
+        scan_damages_.push_back(Damage{pos, 0, path_ + ": " + e.what()});
+      }
+      if (r.data_truncated) {
+        whole = false;
+        break;
+      }
+      pos = r.end();
+    }
+    for (const auto& [id, c] : connections_) message_counts_[id];
+    std::vector<Entry> kept;
+    std::map<uint32_t, std::pair<uint64_t, Entry>> orphans;  // conn -> (count, first)
+    for (const Entry& e : scan_entries_) {
+      if (connections_.count(e.conn)) {
+        kept.push_back(e);
+        ++message_counts_[e.conn];
+      } else {
+        ++orphans.emplace(e.conn, std::make_pair(uint64_t(0), e)).first->second.first;
+      }
+    }
+    for (const auto& [conn, first] : orphans)
+      scan_damages_.push_back(Damage{chunks_[first.second.chunk], first.second.offset,
+                                     path_ + ": " + ChunkWhere(first.second.chunk) + ", offset " +
+                                         std::to_string(first.second.offset) + ": " +
+                                         std::to_string(first.first) + " messages of connection " +
+                                         std::to_string(conn) +
+                                         ", which no connection record defines"});
+    scan_entries_ = std::move(kept);
+    return whole;
+  }
+
+  // One record of the scan outside the chunks. Broken for a malformed one, or one whose data runs
+  // past the end of the file (a chunk reports that as its damage).
+  void ScanTopRecord(const Record& r) {
+    const std::string at = "byte " + std::to_string(r.pos);
+    const Fields f = ReadFields(r, at);
+    const uint8_t op = f.Op();
+    if (op == kOpChunk) {
+      chunks_.push_back(r.pos);
+      scan_damage_known_.push_back(false);
+      ScanChunk(uint32_t(chunks_.size() - 1), &scan_entries_, &scan_damages_, &scan_damage_known_,
+                true);
+    } else if (op == kOpConnection) {
+      const std::vector<uint8_t> data = ReadData(r);
+      AddConnection(ParseConnection(f, at, data.data(), data.size()), r.pos, 0);
+    } else if (op == kOpIndexData || op == kOpChunkInfo) {
+      if (r.data_truncated) ReadData(r);  // throws: the file ends inside it
+    } else {
+      f.Fail("a record of op " + std::to_string(op) +
+             (op == kOpMessage     ? " (message data) outside a chunk"
+              : op == kOpBagHeader ? " (bag header) after the first"
+                                   : ", which bag 2.0 does not define"));
+    }
+  }
+
+  void AddConnection(const std::pair<uint32_t, Connection>& c, uint64_t pos, uint64_t offset) {
+    auto [it, added] = connections_.emplace(c.first, c.second);
+    if (!added && (it->second.topic != c.second.topic || it->second.type != c.second.type))
+      scan_damages_.push_back(Damage{pos, offset,
+                                     path_ + ": byte " + std::to_string(pos) + ": connection " +
+                                         std::to_string(c.first) + " redefined as " +
+                                         c.second.topic + " (" + c.second.type + "), was " +
+                                         it->second.topic + " (" + it->second.type + ")"});
+  }
+
+  // Chunk `c` decompressed (step 4, and the scans of steps 2 and 3).
+  LoadedChunk LoadChunk(uint32_t c) {
+    LoadedChunk out;
+    const std::string where = ChunkWhere(c);
+    try {
+      const Record r = ReadRecordAt(chunks_[c]);
+      const Fields f = ReadFields(r, where);
+      if (f.Op() != kOpChunk)
+        f.Fail("op is " + std::to_string(f.Op()) + ", not chunk 5 (the index points elsewhere)");
+      const std::string& compression = f.String("compression");
+      const uint32_t size = f.U32("size");
+      if (compression != "none" && compression != "bz2" && compression != "lz4")
+        f.Fail("unknown compression '" + compression + "'");
+      if (compression == "none" && r.data_len != size)
+        f.Fail("uncompressed chunk holds " + std::to_string(r.data_len) +
+               " bytes, its size field says " + std::to_string(size));
+      const uint64_t left = file_.size() - r.data_pos;
+      if (r.data_truncated) {
+        if (compression == "none") out.data = file_.Bytes(r.data_pos, left);
+        f.Fail("the file ends inside the chunk's data (" + std::to_string(left) + " of " +
+               std::to_string(r.data_len) + " bytes there: truncated)");
+      }
+      std::vector<uint8_t> data = file_.Bytes(r.data_pos, r.data_len);
+      if (compression == "none") {
+        out.data = std::move(data);
+      } else if (compression == "bz2") {
+        out.data = DecompressBz2(where, data.data(), data.size(), size);
+      } else {
+        out.data = DecompressLz4Frame(where, data.data(), data.size(), size);
+      }
+    } catch (const Broken& e) {
+      out.damage = e.what();
+    } catch (const IoError& e) {  // the decompressors name `where`
+      out.damage = e.what();
+    }
+    return out;
+  }
+
+  // The records of chunk `c` (step 2's scan, or step 3 when its index data is unusable): its
+  // messages to `entries`, its connections registered when `add_connections`, its damage to
+  // `damages` and marked in `known`. The first malformed record ends the chunk; in a chunk whose
+  // data is damaged the records that break off are part of that one damage.
+  void ScanChunk(uint32_t c, std::vector<Entry>* entries, std::vector<Damage>* damages,
+                 std::vector<bool>* known, bool add_connections) {
+    const LoadedChunk chunk = LoadChunk(c);
+    const std::vector<uint8_t>& d = chunk.data;
+    size_t pos = 0;
+    try {
+      while (pos < d.size()) {
+        const std::string at = ChunkWhere(c) + ", offset " + std::to_string(pos);
+        if (d.size() - pos < 4) throw Broken(at + ": the chunk ends inside a record");
+        const uint32_t header_len = LeU32(&d[pos]);
+        if (header_len > d.size() - pos - 4 || d.size() - pos - 4 - header_len < 4)
+          throw Broken(at + ": the chunk ends inside a record header");
+        const Fields f(at, &d[pos + 4], header_len);
+        const size_t data_pos = pos + 8 + header_len;
+        const uint32_t data_len = LeU32(&d[data_pos - 4]);
+        if (data_len > d.size() - data_pos)
+          throw Broken(at + ": the chunk ends inside a record's data");
+        const uint8_t op = f.Op();
+        if (op == kOpMessage) {
+          entries->push_back(Entry{f.Time("time"), c, uint32_t(pos), f.U32("conn")});
+        } else if (op == kOpConnection) {
+          const auto conn = ParseConnection(f, at, &d[data_pos], data_len);
+          if (add_connections) AddConnection(conn, chunks_[c], pos);
+        } else {
+          f.Fail("a record of op " + std::to_string(op) + " inside a chunk");
+        }
+        pos = data_pos + data_len;
+      }
+    } catch (const Broken& e) {
+      if (chunk.damage.empty())
+        damages->push_back(Damage{chunks_[c], pos, path_ + ": " + e.what()});
+      (*known)[c] = true;
+    }
+    if (!chunk.damage.empty()) {
+      damages->push_back(Damage{chunks_[c], pos, path_ + ": " + chunk.damage});
+      (*known)[c] = true;
+    }
+  }
+
+  // The message record of `e` from the cached chunk. Broken when it is not there or not a
+  // message of e.conn.
+  void ReadMessage(const Entry& e, DriveMessage* message) {
+    const std::vector<uint8_t>& d = cached_.data;
+    const std::string at = ChunkWhere(e.chunk) + ", offset " + std::to_string(e.offset);
+    size_t pos = e.offset;
+    if (pos > d.size() || d.size() - pos < 4) throw Broken(at + ": no message record there");
+    const uint32_t header_len = LeU32(&d[pos]);
+    if (header_len > d.size() - pos - 4 || d.size() - pos - 4 - header_len < 4)
+      throw Broken(at + ": the chunk ends inside the message's header");
+    const Fields f(at, &d[pos + 4], header_len);
+    const size_t data_pos = pos + 8 + header_len;
+    const uint32_t data_len = LeU32(&d[data_pos - 4]);
+    if (data_len > d.size() - data_pos) throw Broken(at + ": the chunk ends inside the message");
+    if (f.Op() != kOpMessage || f.U32("conn") != e.conn)
+      f.Fail("the index names a message of connection " + std::to_string(e.conn) +
+             ", the record there is not one");
+    message->sequence = sequence_++;
+    message->log_time_ns = e.time_ns;
+    message->topic = topic_;
+    message->encoding = MessageEncoding::kRos1;
+    message->data.assign(d.begin() + data_pos, d.begin() + data_pos + data_len);
+  }
+
+  // damages_: each damage with the number of sorted entries to yield before it, so that every
+  // message lying before it in the file has been yielded by then.
+  void PlaceDamages(const std::vector<Damage>& damages) {
+    damages_.clear();
+    // The entries in file order, each with its place in the yield order.
+    std::vector<std::pair<std::pair<uint64_t, uint64_t>, size_t>> by_file(entries_.size());
+    for (size_t i = 0; i < entries_.size(); ++i)
+      by_file[i] = {{chunks_[entries_[i].chunk], entries_[i].offset}, i};
+    std::sort(by_file.begin(), by_file.end());
+    std::vector<size_t> last(by_file.size());  // last[k]: the latest place among by_file[0..k]
+    for (size_t k = 0; k < by_file.size(); ++k)
+      last[k] = std::max(by_file[k].second, k ? last[k - 1] : 0);
+    std::vector<std::tuple<size_t, uint64_t, uint64_t, std::string>> placed;
+    for (const Damage& d : damages) {
+      const auto key = std::make_pair(d.pos, d.offset);
+      const size_t before =
+          std::lower_bound(by_file.begin(), by_file.end(), key,
+                           [](const auto& a, const auto& k) { return a.first < k; }) -
+          by_file.begin();
+      placed.emplace_back(before == 0 ? 0 : last[before - 1] + 1, d.pos, d.offset, d.problem);
+    }
+    std::stable_sort(placed.begin(), placed.end(), [](const auto& a, const auto& b) {
+      return std::tie(std::get<0>(a), std::get<1>(a), std::get<2>(a)) <
+             std::tie(std::get<0>(b), std::get<1>(b), std::get<2>(b));
+    });
+    for (auto& p : placed) damages_.emplace_back(std::get<0>(p), std::move(std::get<3>(p)));
+  }
+
+  std::string path_;
+  BagFile file_;
+  uint64_t index_pos_ = 0, first_record_ = 0;
+  uint32_t conn_count_ = 0, chunk_count_ = 0;
+
+  bool catalogued_ = false, indexed_ = false;
+  std::map<uint32_t, Connection> connections_;
+  std::vector<uint64_t> chunks_;                            // chunk record positions, ascending
+  std::vector<std::map<uint32_t, uint32_t>> chunk_counts_;  // indexed: conn -> messages per chunk
+  std::map<uint32_t, uint64_t> message_counts_;             // conn -> messages
+  // The scan's findings (unindexed), for every topic.
+  std::vector<Entry> scan_entries_;
+  std::vector<Damage> scan_damages_;
+  std::vector<bool> scan_damage_known_;
+
+  // The selected topic.
+  std::string topic_;
+  std::vector<Entry> entries_;                           // in yield order
+  std::vector<std::pair<size_t, std::string>> damages_;  // (entries yielded before, problem)
+  std::vector<bool> damage_known_;                       // per chunk: its damage is reported
+  size_t next_entry_ = 0, next_damage_ = 0;
+  uint64_t sequence_ = 0;
+  uint32_t cached_chunk_ = UINT32_MAX;
+  LoadedChunk cached_;
+};
+
+}  // namespace
+
+std::unique_ptr<DriveReader> OpenRos1Bag(const std::string& path) {
+  return std::make_unique<Ros1Bag>(path);
+}
+
+}  // namespace lpir
