@@ -304,5 +304,28 @@ TEST(CliReport, NamesWithCommasAndQuotesSurviveBothFormats) {
   EXPECT_EQ(parsed, name + "\n");
 }
 
+TEST(CliReport, JsonOfANameThatIsNotUtf8StillParses) {
+  if (test::RunCommand("python3 -c 'import json'") != 0) GTEST_SKIP() << "python3 not found";
+  test::ScopedDir dir;
+  const std::string name = dir.path + "/caf\xc3\xa9 \xff\xc3.bin";  // UTF-8, then two bad bytes
+  WriteKittiBin(name, Road(400));
+  std::string log;
+  ASSERT_EQ(test::RunCommand(test::CliPath() + " segment '" + name +
+                                 "' --sensor hdl64e --backend cpu --quiet --out " + dir.path +
+                                 " --report " + dir.path + "/r.json",
+                             &log),
+            0)
+      << log;
+  std::ofstream(dir.path + "/check.py")
+      << "import json,os,sys\n"
+         "f=json.load(open(sys.argv[1],encoding='utf-8'))['frames'][0]\n"
+         "print(os.path.basename(f['input'])=='caf\\u00e9 \\ufffd\\ufffd.bin',f['points'])\n";
+  std::string parsed;
+  ASSERT_EQ(test::RunCommand("python3 " + dir.path + "/check.py " + dir.path + "/r.json", &parsed),
+            0)
+      << parsed << test::ReadFileBytes(dir.path + "/r.json");
+  EXPECT_EQ(parsed, "True 800\n");
+}
+
 }  // namespace
 }  // namespace lpir

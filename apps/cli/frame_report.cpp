@@ -23,10 +23,28 @@ std::string CsvField(const std::string& s) {
   return q + "\"";
 }
 
-// A JSON string literal: " and \ escaped, control characters as \u00XX.
+// The length of the UTF-8 sequence starting at s[i] (2 to 4), or 0 when it is not a valid one
+// (a stray continuation byte, a truncated or overlong sequence, a surrogate, beyond U+10FFFF).
+size_t Utf8Length(const std::string& s, size_t i) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i);
+  const size_t n = c >= 0xF0 && c <= 0xF4 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 && c < 0xE0 ? 2 : 0;
+  if (n == 0 || c >= 0xF5 || i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+  const unsigned char d = byte(i + 1);
+  if ((c == 0xE0 && d < 0xA0) || (c == 0xED && d >= 0xA0) || (c == 0xF0 && d < 0x90) ||
+      (c == 0xF4 && d >= 0x90))
+    return 0;
+  return n;
+}
+
+// A JSON string literal: " and \ escaped, control characters as \u00XX, UTF-8 kept and any byte
+// that is not part of valid UTF-8 (a file name is bytes) as U+FFFD, so that the file parses.
 std::string JsonString(const std::string& s) {
   std::string q = "\"";
-  for (unsigned char c : s) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
     if (c == '"' || c == '\\') {
       q += '\\';
       q += char(c);
@@ -34,8 +52,13 @@ std::string JsonString(const std::string& s) {
       char buf[8];
       std::snprintf(buf, sizeof(buf), "\\u%04x", c);
       q += buf;
-    } else {
+    } else if (c < 0x80) {
       q += char(c);
+    } else if (const size_t n = Utf8Length(s, i)) {
+      q.append(s, i, n);
+      i += n - 1;
+    } else {
+      q += "\\ufffd";
     }
   }
   return q + "\"";
