@@ -11,7 +11,7 @@
 //   error           why the frame failed ("" / null when it was segmented; its figures are 0)
 // CSV: a header line, then a line per frame; a field holding a comma, quote or line break is
 // quoted ("" for a quote). JSON: {"frames": [...], "summary": {"frames", "failed", "seconds",
-// "backend", "device"}}.
+// "backend", "device"}}, its strings UTF-8 (a name's bytes that are not UTF-8 as U+FFFD).
 #pragma once
 #include <cstdint>
 #include <cstdio>
