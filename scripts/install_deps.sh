@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libopencv-core-dev libopencv-imgproc-dev libpng-dev
   libgtest-dev libbenchmark-dev
-  libzstd-dev liblz4-dev libbz2-dev libsqlite3-dev  # recorded drives (host/drive/)
+  libzstd-dev liblz4-dev libbz2-dev zlib1g-dev libsqlite3-dev  # recorded drives (host/drive/)
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
   clang libclang-rt-14-dev  # the fuzz build (fuzz/): clang with libFuzzer and its sanitizers
   clang-format  # scripts/test.sh checks every C++ source against .clang-format

@@ -90,7 +90,7 @@ TEST_F(CliExitCodes, HelpCommandPrintsTheCommandsOwnHelp) {
   EXPECT_TRUE(Has(r.out, "4  cannot run")) << r.out;
   EXPECT_TRUE(Has(overview.out, r.out)) << "the overview holds the table";
   for (const char* command :
-       {"segment", "evaluate", "simulate", "calibrate", "demo", "devices", "bench"}) {
+       {"segment", "evaluate", "simulate", "calibrate", "demo", "devices", "bench", "topics"}) {
     SCOPED_TRACE(command);
     const Ran own = Cli(std::string(command) + " --help");
     const Ran help = Cli(std::string("help ") + command);

@@ -1,26 +1,35 @@
 // lpir-gseg segment INPUT... --sensor NAME --out DIR [options]: labels every point of every input
-// cloud (files, or folders of them) and writes DIR/<stem>.label, or the cloud with a label field.
-// On Vulkan the next file is read while the device works on the previous ones (frames in
-// flight). A file that cannot be read or segmented is reported and skipped; the exit code is then
-// 1 and the last line (stderr) counts the failures. Output levels: --quiet prints errors only;
-// the default adds the progress (stderr) and one summary line at the end (stdout); --verbose
-// adds a line first naming the backend and a line per frame.
+// cloud (files, or folders of them, or every PointCloud2 message of one topic of one recorded
+// drive) and writes DIR/<stem>.label, or the cloud with a label field (a drive: also
+// DIR/index.csv, and with --format mcap one MCAP holding the labels). On Vulkan the next frame is
+// read while the device works on the previous ones (frames in flight). A frame that cannot be
+// read or segmented (a bad file, a damaged part of a drive, a message that does not decode) is
+// reported and skipped; the exit code is then 1 and the last line (stderr) counts the failures.
+// Output levels: --quiet prints errors only; the default adds the progress (stderr) and one
+// summary line at the end (stdout); --verbose adds a line first naming the backend and a line
+// per frame. --report writes every frame's figures to a CSV or JSON file (frame_report.h).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
+#include "apps/cli/drive_output.h"
 #include "apps/cli/exit_codes.h"
+#include "apps/cli/frame_report.h"
+#include "apps/cli/frame_source.h"
+#include "apps/cli/invalid_reasons.h"
 #include "apps/cli/progress.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
+#include "host/drive/drive.h"
 #include "host/io/cloud_file.h"
 #include "host/io/io_error.h"
 #include "host/io/label_file.h"
@@ -34,10 +43,21 @@ namespace {
 
 const char kHelp[] =
     "usage: lpir-gseg segment INPUT... --sensor NAME --out DIR [options]\n"
+    "       lpir-gseg segment DRIVE [--topic T] --sensor NAME --out DIR [options]\n"
     "  INPUT            cloud files (.bin KITTI, .pcd, .ply) or folders of them\n"
+    "  DRIVE            one recorded drive (.mcap or .db3 ROS 2, .bag ROS 1), on its own: every\n"
+    "                   sensor_msgs/PointCloud2 message of the topic is labelled as\n"
+    "                   DIR/<sequence, 6 digits>_<header stamp in ns>.label and listed in\n"
+    "                   DIR/index.csv (sequence,stamp_ns,topic,points,ground_fraction,ms,file)\n"
+    "  --topic T        the drive's topic (needless when it has one PointCloud2 topic;\n"
+    "                   `lpir-gseg topics DRIVE` lists them)\n"
     "  --sensor NAME    sensor profile (hdl64e, hdl32e, vlp32c, os1-64, ...) or a profile file\n"
     "  --out DIR        where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go\n"
-    "  --format F       label (default), pcd or ply: the cloud with a label field instead\n"
+    "  --format F       label (default), pcd or ply: the cloud with a label field instead;\n"
+    "                   mcap (a drive only): DIR/<drive stem>.mcap holding the topic and, on\n"
+    "                   <topic>/ground, its clouds with a uint8 label field\n"
+    "  --report FILE    a .csv or .json file: per frame its input, points, ground fraction,\n"
+    "                   invalid points by reason, ms, backend and device, or its error\n"
     "  --nuscenes       .bin files hold 5 floats per point (x y z intensity ring); files named\n"
     "                   *.pcd.bin are read that way without it, other .bin files as KITTI\n"
     "  --images         also write pictures of every stage to DIR/images/\n"
@@ -54,7 +74,8 @@ const char kHelp[] =
     "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
     "                   the CPU) and their medians at the end\n"
     "  --quiet          errors only (nothing on success)\n"
-    "  --verbose        also a line first naming the backend, and a line per frame\n"
+    "  --verbose        also a line first naming the backend, and a line per frame (the figures\n"
+    "                   of --report)\n"
     "Environment: LPIR_VK_VALIDATION=1 turns the Vulkan validation layer on.\n";
 
 // Input clouds: files as given, folders expanded to their cloud files in name order.
@@ -76,12 +97,6 @@ std::vector<std::string> ListInputs(const std::vector<std::string>& inputs) {
   }
   return files;
 }
-
-// One file between its reading and its writing.
-struct Job {
-  std::string file, stem;
-  Cloud cloud;
-};
 
 double Median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -134,8 +149,9 @@ class Timings {
 // What the command line asks for.
 struct SegmentArgs {
   std::vector<std::string> inputs;
-  std::string sensor, out_dir, format, gt;
+  std::string sensor, out_dir, format, gt, topic, report;
   bool images = false, has_gt = false, quiet = false, verbose = false, timings = false;
+  bool drive = false;  // inputs is one recorded drive
   SegmenterOptions options;
   ReadOptions read;
 };
@@ -145,9 +161,21 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   SegmentArgs a;
   a.inputs = args.positional();
   if (a.inputs.empty()) throw std::invalid_argument("no INPUT given\n" + std::string(kHelp));
+  for (const std::string& in : a.inputs) a.drive = a.drive || IsDriveFile(in);
+  if (a.drive && a.inputs.size() != 1)
+    throw std::invalid_argument(
+        "a recorded drive is segmented on its own: give one drive, or cloud files and folders");
+  if (!a.drive && args.Has("--topic"))
+    throw std::invalid_argument("--topic is for a recorded drive (.mcap, .db3, .bag)");
+  a.topic = args.Get("--topic");
   a.format = args.Get("--format", "label");
-  if (a.format != "label" && a.format != "pcd" && a.format != "ply")
-    throw std::invalid_argument("--format must be label, pcd or ply, not '" + a.format + "'");
+  if (a.format != "label" && a.format != "pcd" && a.format != "ply" && a.format != "mcap")
+    throw std::invalid_argument("--format must be label, pcd, ply or mcap, not '" + a.format + "'");
+  if (a.format == "mcap" && !a.drive)
+    throw std::invalid_argument("--format mcap is for a recorded drive (.mcap, .db3, .bag)");
+  a.report = args.Get("--report");
+  if (args.Has("--report") && !FrameReport::IsReportName(a.report))
+    throw std::invalid_argument("--report must name a .csv or .json file, not '" + a.report + "'");
   const double max_points = args.GetNumber("--max-points", 0);  // 0: from the sensor profile
   if (args.Has("--max-points") && (!(max_points >= 1) || max_points > 1e8))
     throw std::invalid_argument("--max-points must be between 1 and 1e8");
@@ -174,33 +202,57 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   return a;
 }
 
-// The files through one segmenter, frames in flight: each read while the device works on the
-// ones before, collected oldest first, its labels (and pictures) written, a failure reported
-// and counted.
+// "cpu" or "vulkan", and the device: the Vulkan device's name or "CPU reference".
+std::string BackendName(const Segmenter& s) {
+  return s.backend() == Backend::kVulkan ? "vulkan" : "cpu";
+}
+std::string DeviceName(const Segmenter& s) {
+  const std::string prefix = "Vulkan on ";
+  const std::string& note = s.backend_note();
+  if (s.backend() != Backend::kVulkan) return "CPU reference";
+  return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
+}
+
+// The frames of a source through one segmenter, frames in flight: each read while the device
+// works on the ones before, collected oldest first, its labels (and pictures, index line, report
+// row, labelled message) written, a failure reported and counted. A failure first collects the
+// frames before it, so that every output and message keeps the input's order.
 class SegmentRun {
  public:
-  SegmentRun(const SegmentArgs& a, Segmenter& segmenter, size_t files)
+  SegmentRun(const SegmentArgs& a, Segmenter& segmenter, FrameSource& source, FrameReport* report,
+             DriveIndex* index, LabelledMcap* mcap)
       : a_(a),
         segmenter_(segmenter),
-        progress_(files, files > 1 && !a.quiet),
+        source_(source),
+        report_(report),
+        index_(index),
+        mcap_(mcap),
+        progress_(source.count(), source.count() != 1 && !a.quiet),  // 0: unknown
         timings_(segmenter.backend() == Backend::kVulkan) {}
 
-  // Reads `file` and submits it, first collecting frames until the segmenter takes one more.
-  void Submit(const std::string& file) {
-    Job job{file, fs::path(file).stem().string(), {}};
-    try {
-      job.cloud = ReadCloud(file, a_.read);
-      while (!segmenter_.CanSubmit()) Finish();
-      segmenter_.Submit(job.cloud);
-      jobs_.push_back(std::move(job));
-    } catch (const std::exception& e) {
-      Report(file, e);
-      progress_.Step();
+  // Reads, submits and collects every frame of the source; returns the frames that failed.
+  size_t Run() {
+    FrameInput in;
+    std::string error;
+    for (;;) {
+      const SourceStep step = source_.Next(&in, &error);
+      if (step == SourceStep::kEnd) break;
+      if (step == SourceStep::kFailed) {
+        while (!jobs_.empty()) Finish();
+        if (mcap_) mcap_->Copy(in, false);
+        Fail(in, error);
+        continue;
+      }
+      try {
+        while (!segmenter_.CanSubmit()) Finish();
+        segmenter_.Submit(in.cloud);
+        jobs_.push_back(std::move(in));
+      } catch (const std::exception& e) {
+        while (!jobs_.empty()) Finish();
+        if (mcap_) mcap_->Copy(in, true);
+        Fail(in, Where(in) + ": " + e.what());
+      }
     }
-  }
-
-  // Collects every frame still in flight; returns the files that failed.
-  size_t FinishAll() {
     while (!jobs_.empty()) Finish();
     if (a_.timings) progress_.Print(stdout, timings_.Medians());
     return failures_;
@@ -213,78 +265,153 @@ class SegmentRun {
   size_t invalid() const { return invalid_; }
 
  private:
-  void Report(const std::string& file, const std::exception& e) {
+  // The frame as messages name it: the file, or "<drive>: <topic> message <sequence>".
+  static std::string Where(const FrameInput& in) {
+    if (!in.from_drive) return in.input;
+    return in.input + ": " + in.topic + " message " + std::to_string(in.sequence);
+  }
+
+  static FrameRecord Record(const FrameInput& in) {
+    FrameRecord r;
+    r.input = in.input;
+    r.from_drive = in.has_message;
+    r.sequence = in.sequence;
+    r.stamp_ns = in.stamp_ns;
+    r.topic = in.topic;
+    return r;
+  }
+
+  // `error` (naming the frame) above the progress and in the report.
+  void Fail(const FrameInput& in, const std::string& error) {
     ++failures_;
-    if (dynamic_cast<const IoError*>(&e))  // names the file already
-      progress_.Print(stderr, std::string("lpir-gseg segment: error: ") + e.what() + "\n");
-    else
-      progress_.Print(stderr, "lpir-gseg segment: error: " + file + ": " + e.what() + "\n");
+    progress_.Print(stderr, "lpir-gseg segment: error: " + error + "\n");
+    if (report_) {
+      FrameRecord r = Record(in);
+      r.error = error;
+      report_->Add(r);
+    }
+    if (in.has_message || !in.from_drive) progress_.Step();  // a damaged part is no message
   }
 
   // Collects the oldest frame in flight and writes what it gives.
   void Finish() {
-    const Job job = std::move(jobs_.front());
+    const FrameInput job = std::move(jobs_.front());
     jobs_.pop_front();
     try {
       FrameTimes times;
       const Frame& frame = segmenter_.Collect(&times);
-      Write(job, frame);
-      size_t ground = 0, invalid = 0;
+      const std::string file = Write(job, frame);
+      FrameRecord r = Record(job);
+      r.points = job.cloud.size();
       for (uint32_t i = 0; i < frame.n; ++i) {
-        ground += frame.label[i];
-        invalid += frame.why[i] == kWhyInvalid;
+        r.ground += frame.label[i];
+        r.invalid += frame.why[i] == kWhyInvalid;
       }
+      r.ms = times.total_ms;
+      if (r.invalid && (report_ || a_.verbose))
+        r.reasons = CountInvalidReasons(job.cloud, segmenter_.params());
       ++frames_;
-      invalid_ += invalid;
+      invalid_ += r.invalid;
+      if (index_) index_->Add(job, r.ground, r.ms, file);
+      if (report_) report_->Add(r);
       std::string lines;
-      if (a_.verbose) lines += FrameLine(job, ground, invalid, times);
+      if (a_.verbose) lines += FrameLine(job.stem, r);
       if (a_.timings) lines += timings_.Add(job.stem, times);
       if (!lines.empty()) progress_.Print(stdout, lines);
-      progress_.Step(job.cloud.size(), ground);
+      progress_.Step(job.cloud.size(), r.ground);
     } catch (const std::exception& e) {
-      Report(job.file, e);
-      progress_.Step();
+      if (dynamic_cast<const IoError*>(&e))  // names the file already
+        Fail(job, e.what());
+      else
+        Fail(job, Where(job) + ": " + e.what());
     }
   }
 
-  // The labels as a .label file or a labelled cloud, and with --images the pictures.
-  void Write(const Job& job, const Frame& frame) const {
+  // The labels as a .label file, a labelled cloud or a labelled message, and with --images the
+  // pictures; returns the name written inside DIR ("" for a message).
+  std::string Write(const FrameInput& job, const Frame& frame) const {
     const fs::path out(a_.out_dir);
-    if (a_.format == "label") {
+    std::string name;
+    if (a_.format == "mcap") {
+      mcap_->Copy(job, true);
+      mcap_->AddLabelled(job, frame.label);
+    } else if (a_.format == "label") {
       std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
-      WriteLabelFile((out / (job.stem + ".label")).string(), labels);
+      name = job.stem + ".label";
+      WriteLabelFile((out / name).string(), labels);
     } else {
-      WriteLabelledCloud((out / (job.stem + "." + a_.format)).string(), job.cloud, frame.label,
+      name = job.stem + "." + a_.format;
+      WriteLabelledCloud((out / name).string(), job.cloud, frame.label,
                          a_.format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
     }
-    if (!a_.images) return;
+    if (!a_.images) return name;
     std::vector<uint8_t> truth;
     if (a_.has_gt) truth = LoadTruth(a_.gt, job.stem, job.cloud.size());
     WriteImages((out / "images").string(), job.stem, job.cloud, frame, segmenter_.params(),
                 truth.empty() ? nullptr : &truth);
+    return name;
   }
 
-  // "<stem>: N points, G % ground, T ms", and the invalid points when there are any.
-  static std::string FrameLine(const Job& job, size_t ground, size_t invalid,
-                               const FrameTimes& times) {
-    const size_t n = job.cloud.size();
+  // "<stem>: N points, G % ground, T ms", and the invalid points by reason when there are any:
+  // " (K invalid: a NaN/Inf, b at the origin, c out of range, d bad ring)", naming those > 0.
+  static std::string FrameLine(const std::string& stem, const FrameRecord& r) {
     char buf[160];
-    std::snprintf(buf, sizeof(buf), "%s: %zu points, %.1f %% ground, %.2f ms", job.stem.c_str(), n,
-                  n ? 100.0 * double(ground) / double(n) : 0.0, times.total_ms);
+    std::snprintf(buf, sizeof(buf), "%s: %zu points, %.1f %% ground, %.2f ms", stem.c_str(),
+                  r.points, r.points ? 100.0 * double(r.ground) / double(r.points) : 0.0, r.ms);
     std::string line = buf;
-    if (invalid) line += " (" + std::to_string(invalid) + " invalid)";
+    if (r.invalid) {
+      std::string why;
+      const std::pair<size_t, const char*> reasons[] = {{r.reasons.not_finite, "NaN/Inf"},
+                                                        {r.reasons.at_origin, "at the origin"},
+                                                        {r.reasons.out_of_range, "out of range"},
+                                                        {r.reasons.bad_ring, "bad ring"}};
+      for (const auto& [count, name] : reasons)
+        if (count) why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + name;
+      line += " (" + std::to_string(r.invalid) + " invalid: " + why + ")";
+    }
     return line + "\n";
   }
 
   const SegmentArgs& a_;
   Segmenter& segmenter_;
+  FrameSource& source_;
+  FrameReport* report_;  // optional, not owned (also index_, mcap_)
+  DriveIndex* index_;
+  LabelledMcap* mcap_;
   Progress progress_;
   Timings timings_;
-  std::deque<Job> jobs_;
+  std::deque<FrameInput> jobs_;
   size_t failures_ = 0;
   size_t frames_ = 0;   // segmented and written
   size_t invalid_ = 0;  // points of those frames labelled invalid
 };
+
+// The frames the inputs name: the cloud files (folders expanded), or the drive's topic (chosen
+// by ChooseCloudTopic; *topic set to it).
+// A drive whose topics cannot be listed (damage where a .db3 keeps its counts) is still read
+// up to the damage when --topic names the topic: a warning then, and no count for the progress.
+std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic) {
+  if (!a.drive) return OpenFileSource(ListInputs(a.inputs), a.read);
+  const std::string& drive = a.inputs[0];
+  std::unique_ptr<DriveReader> reader = OpenDrive(drive);
+  std::vector<DriveTopic> topics;
+  try {
+    topics = reader->Topics();
+    *topic = ChooseCloudTopic(drive, topics, a.topic);
+  } catch (const IoError& e) {
+    if (a.topic.empty())
+      throw IoError(drive, std::string("its topics cannot be listed (") + e.what() +
+                               "); --topic T reads T's messages up to the damage");
+    if (!a.quiet)
+      std::fprintf(stderr, "lpir-gseg segment: warning: %s; reading %s up to the damage\n",
+                   e.what(), a.topic.c_str());
+    *topic = a.topic;
+  }
+  size_t count = 0;
+  for (const DriveTopic& t : topics)
+    if (t.name == *topic) count = size_t(t.messages);
+  return OpenDriveSource(drive, std::move(reader), *topic, count, a.format == "mcap");
+}
 
 }  // namespace
 
@@ -292,7 +419,7 @@ int RunSegment(int argc, char** argv) {
   const Args args(argc, argv,
                   {"--images", "--nuscenes", "--quiet", "--verbose", "--timings", "--help"},
                   {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device",
-                   "--batch"});
+                   "--batch", "--topic", "--report"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(kExitCodesLine, stdout);
@@ -300,46 +427,72 @@ int RunSegment(int argc, char** argv) {
   }
   const SegmentArgs a = ParseSegmentArgs(args);
   const SensorProfile sensor = LoadSensorProfile(a.sensor, SensorsDir());
-  const std::vector<std::string> files = ListInputs(a.inputs);
+  std::string topic;
+  std::unique_ptr<FrameSource> source = OpenSource(a, &topic);
   Segmenter segmenter(sensor, a.options);
   if (!a.quiet && a.options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
     std::fprintf(stderr, "lpir-gseg segment: note: %s\n", segmenter.backend_note().c_str());
   fs::create_directories(a.out_dir);
+  const fs::path out(a.out_dir);
+  std::unique_ptr<FrameReport> report;
+  if (!a.report.empty())
+    report = std::make_unique<FrameReport>(a.report, BackendName(segmenter), DeviceName(segmenter));
+  std::unique_ptr<DriveIndex> index;
+  std::unique_ptr<LabelledMcap> mcap;
+  if (a.drive) index = std::make_unique<DriveIndex>((out / "index.csv").string());
+  if (a.format == "mcap") {
+    const fs::path mcap_path = out / (fs::path(a.inputs[0]).stem().string() + ".mcap");
+    std::error_code ec;
+    if (fs::equivalent(mcap_path, a.inputs[0], ec))
+      throw std::invalid_argument(mcap_path.string() +
+                                  " is the drive being read: give --format mcap another --out");
+    mcap = std::make_unique<LabelledMcap>(mcap_path.string(), topic);
+  }
   const std::string on =
       segmenter.backend() == Backend::kVulkan ? segmenter.backend_note() : "the CPU reference";
-  const char* plural = files.size() == 1 ? "" : "s";
+  const size_t total = source->count();
+  const std::string units = std::string(source->unit()) + (total == 1 ? "" : "s");
+  const std::string what =
+      a.drive ? units + " of " + topic + " in " + a.inputs[0] : units;  // "30 files"
   if (a.verbose)
-    std::printf("segmenting %zu file%s with sensor '%s' on %s\n", files.size(), plural,
+    std::printf("segmenting %zu %s with sensor '%s' on %s\n", total, what.c_str(),
                 segmenter.sensor().name.c_str(), on.c_str());
   const auto start = std::chrono::steady_clock::now();
   size_t failures = 0;
   std::string summary;
   {
-    SegmentRun run(a, segmenter, files.size());
-    for (const std::string& file : files) run.Submit(file);
-    failures = run.FinishAll();
+    SegmentRun run(a, segmenter, *source, report.get(), index.get(), mcap.get());
+    failures = run.Run();
+    if (index) index->Close();
+    if (mcap) mcap->Close();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (report) report->Close(run.frames(), failures, seconds);
     if (!a.quiet) {
-      // "segmented 30 of 30 files on X in 1.2 s (25.0 frames/s), 0 failed, 12 invalid points
-      // (non-ground); labels in OUT"
+      // "segmented 30 of 30 files with sensor 'S' on X in 1.2 s (25.0 frames/s), 0 failed, 12
+      // invalid points (...); labels in OUT"
       char buf[128];
       std::snprintf(buf, sizeof(buf), " in %.2f s (%.1f frames/s), %zu failed", seconds,
                     seconds > 0 ? double(run.frames()) / seconds : 0.0, failures);
-      std::string line = "segmented " + std::to_string(run.frames()) + " of " +
-                         std::to_string(files.size()) + " file" + plural + " with sensor '" +
-                         segmenter.sensor().name + "' on " + on + buf;
+      // a drive whose count is unknown (0): "segmented 2 messages of /points in D ..."
+      const std::string of = total || !a.drive ? " of " + std::to_string(total) : "";
+      std::string line = "segmented " + std::to_string(run.frames()) + of + " " + what +
+                         " with sensor '" + segmenter.sensor().name + "' on " + on + buf;
       if (run.invalid())
         line += ", " + std::to_string(run.invalid()) +
                 " invalid points (NaN/Inf, at the origin or out of range: non-ground)";
-      line += "; " + std::string(a.format == "label" ? "labels" : a.format + " clouds") + " in " +
-              a.out_dir + "\n";
+      const std::string outputs = a.format == "label"  ? "labels"
+                                  : a.format == "mcap" ? "labelled MCAP"
+                                                       : a.format + " clouds";
+      line += "; " + outputs + " in " + a.out_dir + "\n";
       summary = line;
     }
   }  // the progress line ends here, above the summary
   std::fputs(summary.c_str(), stdout);
   if (failures) {
-    std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, files.size());
+    const std::string of = total || !a.drive ? " of " + std::to_string(total) : "";
+    std::fprintf(stderr, "lpir-gseg segment: %zu%s %s failed\n", failures, of.c_str(),
+                 a.drive ? "messages or damaged parts" : "files");
     return kExitSomeFailed;
   }
   return kExitOk;

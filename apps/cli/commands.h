@@ -11,6 +11,7 @@ int RunCalibrate(int argc, char** argv);
 int RunDemo(int argc, char** argv);
 int RunDevices(int argc, char** argv);
 int RunBench(int argc, char** argv);
+int RunTopics(int argc, char** argv);
 
 // The folder holding sensors/*.txt (next to the binary's sources, or $LPIR_SENSORS_DIR).
 const char* SensorsDir();

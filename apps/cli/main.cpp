@@ -25,6 +25,8 @@ const char kUsage[] =
     "usage: lpir-gseg <command> [options]   (lpir-gseg help COMMAND: all of its options)\n"
     "  segment INPUT... --sensor NAME --out DIR [--backend auto|vulkan|cpu] [--device D]\n"
     "          [--timings] [--format label|pcd|ply] [--images] [--gt PATH] [--quiet|--verbose]\n"
+    "          [--report FILE.csv|.json]; or one recorded drive: segment DRIVE [--topic T]\n"
+    "          --sensor NAME --out DIR [--format label|mcap] ...\n"
     "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json] [--by-class]\n"
     "           [--by-range] [--ontology semantickitti|rellis3d]\n"
     "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels "
@@ -33,6 +35,7 @@ const char kUsage[] =
     "  demo [--out DIR] [--backend auto|vulkan|cpu] [--runs N]\n"
     "  devices\n"
     "  bench [--runs N] [--json]\n"
+    "  topics DRIVE     the topics of a recorded drive (.mcap, .db3, .bag)\n"
     "  help [COMMAND|exit-codes]   a command's help (as COMMAND --help), or the exit codes\n"
     "  --version        the version, the git commit built and which backends this machine has\n";
 
@@ -63,7 +66,7 @@ struct Command {
 const Command kCommands[] = {{"segment", lpir::RunSegment},   {"evaluate", lpir::RunEvaluate},
                              {"simulate", lpir::RunSimulate}, {"calibrate", lpir::RunCalibrate},
                              {"demo", lpir::RunDemo},         {"devices", lpir::RunDevices},
-                             {"bench", lpir::RunBench}};
+                             {"bench", lpir::RunBench},       {"topics", lpir::RunTopics}};
 
 // The command called `name`, or null.
 const Command* FindCommand(const char* name) {

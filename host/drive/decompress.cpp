@@ -2,10 +2,10 @@
 
 #include <bzlib.h>
 #include <lz4frame.h>
+#include <zlib.h>
 #include <zstd.h>
 
 #include <algorithm>
-#include <array>
 #include <memory>
 #include <stdexcept>
 
@@ -189,18 +189,7 @@ std::vector<uint8_t> CompressLz4Frame(const uint8_t* data, size_t size) {
 }
 
 uint32_t Crc32(const uint8_t* data, size_t size, uint32_t crc) {
-  static const auto table = [] {
-    std::array<uint32_t, 256> t{};
-    for (uint32_t i = 0; i < 256; ++i) {
-      uint32_t c = i;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[i] = c;
-    }
-    return t;
-  }();
-  crc = ~crc;
-  for (size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xFF] ^ (crc >> 8);
-  return ~crc;
+  return uint32_t(crc32_z(crc, data, size));
 }
 
 }  // namespace lpir

@@ -21,7 +21,8 @@ std::vector<uint8_t> DecompressBz2(const std::string& where, const uint8_t* data
 std::vector<uint8_t> CompressZstd(const uint8_t* data, size_t size);
 std::vector<uint8_t> CompressLz4Frame(const uint8_t* data, size_t size);
 
-// CRC-32 (ISO-HDLC, as zlib and MCAP), continuing from `crc` (0 to start).
+// CRC-32 (ISO-HDLC, as MCAP uses), continuing from `crc` (0 to start): zlib's, which reads
+// several bytes a step.
 uint32_t Crc32(const uint8_t* data, size_t size, uint32_t crc = 0);
 
 }  // namespace lpir

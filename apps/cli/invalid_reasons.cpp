@@ -1,0 +1,37 @@
+// Stage 1's validity test, reason by reason (see invalid_reasons.h): the same flushed inputs and
+// the same float operations as reference_cpu/prepare.cpp, so that a point is invalid here exactly
+// when it is invalid there.
+#include "apps/cli/invalid_reasons.h"
+
+#include <cmath>
+
+#include "reference_cpu/exact.h"
+
+namespace lpir {
+
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p) {
+  InvalidReasons r;
+  const bool has_ring = !cloud.ring.empty();
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const float x = exact::Ftz0(cloud.x(i)), y = exact::Ftz0(cloud.y(i));
+    const float z = exact::Ftz0(cloud.z(i)), in = exact::Ftz0(cloud.intensity(i));
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) {
+      ++r.not_finite;
+      continue;
+    }
+    if (x == 0.0f && y == 0.0f && z == 0.0f) {
+      ++r.at_origin;
+      continue;
+    }
+    const float r2 = exact::Ftz0(x * x) + exact::Ftz0(y * y);
+    const float zz = exact::Ftz0(z * z);
+    if (!(r2 >= p.min_range2 && r2 <= p.max_range2 && zz <= p.max_range2)) {
+      ++r.out_of_range;
+      continue;
+    }
+    if (has_ring && !(cloud.ring[i] >= 0 && cloud.ring[i] < int32_t(p.beams))) ++r.bad_ring;
+  }
+  return r;
+}
+
+}  // namespace lpir

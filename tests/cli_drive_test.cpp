@@ -1,0 +1,652 @@
+// lpir-gseg topics and segment on recorded drives, run as a user would, on the fixtures that
+// independent writers made (tests/data/drives/, README there): every message labelled as
+// `segment` labels the same frame given as a file, byte for byte; index.csv; --format mcap read
+// back; damaged copies (cut mid-chunk, a flipped byte) labelling every readable message, naming
+// the damage and exiting 1; a message without x written here with our MCAP writer.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "host/drive/drive.h"
+#include "host/drive/mcap_writer.h"
+#include "host/drive/pointcloud2.h"
+#include "host/io/label_file.h"
+#include "host/io/pcd.h"
+#include "tests/io_test_helpers.h"
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace lpir {
+namespace {
+
+const char kTopic[] = "/velodyne_points";
+constexpr long long kFirstStampNs = 1600000000LL * 1000000000LL;  // then 100 ms apart
+constexpr size_t kFrames = 3;
+
+std::string DrivesDir() {
+#ifdef LPIR_TEST_DATA_DIR
+  return test::EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) + std::string("/drives");
+#else
+  return test::SensorsDir() + "/../tests/data/drives";
+#endif
+}
+
+std::string Cli() { return test::CliPath(); }
+
+long long StampNs(size_t frame) { return kFirstStampNs + (long long)frame * 100000000LL; }
+
+// "<sequence %06>_<stamp ns>.label": segment's name for a drive's message.
+std::string LabelName(size_t sequence, size_t frame) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "%06zu_%lld.label", sequence, StampNs(frame));
+  return name;
+}
+
+std::string Name(size_t i) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "%06zu", i);
+  return name;
+}
+
+std::string FrameBase(size_t i) { return DrivesDir() + "/frames/" + Name(i); }
+
+// Frame i as the writers wrote it: the .bin's floats and the .ring's uint16 values.
+Cloud FrameWithRing(size_t i) {
+  const std::string bin = test::ReadRaw(FrameBase(i) + ".bin");
+  const std::string ring = test::ReadRaw(FrameBase(i) + ".ring");
+  Cloud cloud;
+  cloud.xyzi.resize(bin.size() / 4);
+  std::memcpy(cloud.xyzi.data(), bin.data(), cloud.xyzi.size() * 4);
+  for (size_t k = 0; k + 1 < ring.size(); k += 2)
+    cloud.ring.push_back(int32_t(uint8_t(ring[k])) | int32_t(uint8_t(ring[k + 1])) << 8);
+  return cloud;
+}
+
+// `segment` of the fixture frames given as files, once per run: with their rings (PCD files
+// written here, as the drives carry them) and as the committed .bin files (no ring).
+struct Reference {
+  test::ScopedDir dir;
+  std::string sensor = "vlp16";
+  Reference() {
+    std::string args;
+    for (size_t i = 0; i < kFrames; ++i) {
+      char name[16];
+      std::snprintf(name, sizeof(name), "/%06zu.pcd", i);
+      WritePcd(dir.path + name, FrameWithRing(i), nullptr, true);
+      args += " " + dir.path + name;
+    }
+    std::string log;
+    EXPECT_EQ(test::RunCommand(Cli() + " segment" + args + " --sensor " + sensor +
+                                   " --backend cpu --quiet --out " + dir.path + "/ring",
+                               &log),
+              0)
+        << log;
+    EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() + "/frames --sensor " + sensor +
+                                   " --backend cpu --quiet --out " + dir.path + "/bin",
+                               &log),
+              0)
+        << log;
+    size_t ground = 0;
+    for (size_t i = 0; i < kFrames; ++i)
+      for (uint32_t l : ReadLabelFile(dir.path + "/ring/" + Name(i) + ".label")) ground += l;
+    EXPECT_GT(ground, 100u) << "labels all 0 would make the comparisons empty";
+  }
+  // The .label bytes of frame i: with rings, or from the .bin file.
+  std::string Ring(size_t i) const { return Label("/ring/", i); }
+  std::string Bin(size_t i) const { return Label("/bin/", i); }
+  std::string RingDir() const { return dir.path + "/ring"; }
+
+ private:
+  std::string Label(const char* sub, size_t i) const {
+    char name[16];
+    std::snprintf(name, sizeof(name), "%06zu.label", i);
+    return test::ReadFileBytes(dir.path + sub + name);
+  }
+};
+
+const Reference& Ref() {
+  static const Reference* ref = new Reference;  // kept to the end of the run
+  return *ref;
+}
+
+std::string Sensor() { return Ref().sensor; }
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> Split(const std::string& line, char sep) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == sep)
+      out.emplace_back();
+    else
+      out.back() += c;
+  }
+  return out;
+}
+
+// The .label files in `dir`, by name.
+std::vector<std::string> LabelFiles(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".label") names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// The label file in `dir` of the message with frame i's stamp ("" when none): the sequence a
+// reader gives a message after damage is its place among those yielded.
+std::string LabelOfStamp(const std::string& dir, size_t frame) {
+  const std::string suffix = "_" + std::to_string(StampNs(frame)) + ".label";
+  for (const std::string& name : LabelFiles(dir))
+    if (name.size() > suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return test::ReadFileBytes(dir + "/" + name);
+  return "";
+}
+
+struct Kind {
+  const char* file;
+  bool mcap, bag;
+};
+
+const Kind kKinds[] = {
+    {"vlp16_zstd.mcap", true, false}, {"vlp16_lz4.mcap", true, false},
+    {"vlp16_none.mcap", true, false}, {"vlp16.db3", false, false},
+    {"vlp16_bz2.bag", false, true},   {"vlp16_lz4.bag", false, true},
+};
+
+std::string DrivePath(const Kind& k) { return DrivesDir() + "/" + k.file; }
+
+class CliDrive : public ::testing::TestWithParam<Kind> {
+ protected:
+  void SetUp() override {
+    if (test::ReadRaw(DrivePath(GetParam())).empty())
+      GTEST_FAIL() << "fixture " << DrivePath(GetParam()) << " is missing";
+  }
+};
+
+TEST_P(CliDrive, LabelsEveryMessageAsSegmentLabelsTheSameFrameAsAFile) {
+  test::ScopedDir out;
+  std::string log;
+  ASSERT_EQ(test::RunCommand(Cli() + " segment " + DrivePath(GetParam()) + " --sensor " + Sensor() +
+                                 " --backend cpu --out " + out.path,
+                             &log),
+            0)
+      << log;
+  std::vector<std::string> expected_names;
+  for (size_t i = 0; i < kFrames; ++i) {
+    expected_names.push_back(LabelName(i, i));
+    const std::string labels = test::ReadFileBytes(out.path + "/" + LabelName(i, i));
+    ASSERT_FALSE(labels.empty()) << LabelName(i, i) << " missing; " << log;
+    EXPECT_EQ(labels, Ref().Ring(i)) << "message " << i;
+    EXPECT_EQ(labels.size(), FrameWithRing(i).size() * 4);
+  }
+  EXPECT_EQ(LabelFiles(out.path), expected_names);
+  EXPECT_NE(log.find("progress: 3/3"), std::string::npos) << log;  // piped: plain lines
+  EXPECT_NE(log.find("segmented 3 of 3 messages of /velodyne_points"), std::string::npos) << log;
+}
+
+TEST_P(CliDrive, IndexListsEveryMessage) {
+  test::ScopedDir out;
+  std::string log;
+  ASSERT_EQ(
+      test::RunCommand(Cli() + " segment " + DrivePath(GetParam()) + " --topic " + kTopic +
+                           " --sensor " + Sensor() + " --backend cpu --quiet --out " + out.path,
+                       &log),
+      0)
+      << log;
+  const std::vector<std::string> lines = Lines(test::ReadFileBytes(out.path + "/index.csv"));
+  ASSERT_EQ(lines.size(), kFrames + 1);
+  EXPECT_EQ(lines[0], "sequence,stamp_ns,topic,points,ground_fraction,ms,file");
+  for (size_t i = 0; i < kFrames; ++i) {
+    const std::vector<std::string> f = Split(lines[i + 1], ',');
+    ASSERT_EQ(f.size(), 7u) << lines[i + 1];
+    EXPECT_EQ(f[0], std::to_string(i));
+    EXPECT_EQ(f[1], std::to_string(StampNs(i)));
+    EXPECT_EQ(f[2], kTopic);
+    const size_t n = FrameWithRing(i).size();
+    EXPECT_EQ(f[3], std::to_string(n));
+    size_t ground = 0;
+    for (uint32_t l : ReadLabelFile(out.path + "/" + LabelName(i, i), n)) ground += l;
+    EXPECT_NEAR(std::stod(f[4]), double(ground) / double(n), 1e-6);
+    EXPECT_GT(std::stod(f[5]), 0.0);
+    EXPECT_EQ(f[6], LabelName(i, i));
+  }
+}
+
+TEST_P(CliDrive, TopicsListsTheTopicItsTypeAndCount) {
+  std::string log;
+  ASSERT_EQ(test::RunCommand(Cli() + " topics " + DrivePath(GetParam()), &log), 0) << log;
+  const std::vector<std::string> lines = Lines(log);
+  ASSERT_EQ(lines.size(), 2u) << log;
+  std::istringstream head(lines[0]), row(lines[1]);
+  std::string a, b, c, d;
+  head >> a >> b >> c >> d;
+  EXPECT_EQ(a + " " + b + " " + c + " " + d, "topic type encoding messages");
+  row >> a >> b >> c >> d;
+  EXPECT_EQ(a, kTopic);
+  EXPECT_EQ(b, GetParam().bag ? "sensor_msgs/PointCloud2" : "sensor_msgs/msg/PointCloud2");
+  EXPECT_EQ(c, GetParam().bag ? "ros1" : "cdr");
+  EXPECT_EQ(d, "3");
+}
+
+// Every message of `topic` in `path`, in order (damage fails the test).
+std::vector<DriveMessage> ReadTopic(const std::string& path, const std::string& topic) {
+  std::vector<DriveMessage> messages;
+  std::unique_ptr<DriveReader> reader = OpenDrive(path);
+  reader->SelectTopic(topic);
+  DriveMessage m;
+  std::string problem;
+  for (DriveStep step; (step = reader->Next(&m, &problem)) != DriveStep::kEnd;) {
+    EXPECT_EQ(step, DriveStep::kMessage) << problem;
+    if (step == DriveStep::kMessage) messages.push_back(m);
+    if (messages.size() > 100) break;
+  }
+  return messages;
+}
+
+// The uint8 `label` field of every point of a CDR PointCloud2, as .label bytes (uint32 LE).
+std::string LabelFieldAsLabelFile(const DriveMessage& m) {
+  const PointCloud2 c = ParseCdrPointCloud2("ground message", m.data.data(), m.data.size());
+  const PointField* label = nullptr;
+  for (const PointField& f : c.fields)
+    if (f.name == "label") label = &f;
+  if (!label || label->datatype != kPfUint8) return "no uint8 label field";
+  std::string out;
+  for (uint32_t row = 0; row < c.height; ++row)
+    for (uint32_t col = 0; col < c.width; ++col) {
+      const uint8_t l =
+          c.data[size_t(row) * c.row_step + size_t(col) * c.point_step + label->offset];
+      out.append(1, char(l)).append(3, '\0');
+    }
+  return out;
+}
+
+TEST_P(CliDrive, FormatMcapHoldsTheTopicAndItsLabelsReadBackByOurReader) {
+  const std::string drive = DrivePath(GetParam());
+  test::ScopedDir out;
+  std::string log;
+  ASSERT_EQ(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
+                                 " --backend cpu --format mcap --out " + out.path,
+                             &log),
+            0)
+      << log;
+  const std::string mcap = out.path + "/" + fs::path(drive).stem().string() + ".mcap";
+  ASSERT_TRUE(fs::exists(mcap)) << log;
+  EXPECT_EQ(LabelFiles(out.path), std::vector<std::string>{});
+  std::vector<DriveTopic> topics = OpenDrive(mcap)->Topics();
+  std::sort(topics.begin(), topics.end(),
+            [](const DriveTopic& a, const DriveTopic& b) { return a.name < b.name; });
+  ASSERT_EQ(topics.size(), 2u);
+  EXPECT_EQ(topics[0].name, kTopic);
+  EXPECT_EQ(topics[1].name, std::string(kTopic) + "/ground");
+  for (const DriveTopic& t : topics) {
+    EXPECT_EQ(t.type, "sensor_msgs/msg/PointCloud2");
+    EXPECT_EQ(t.encoding, "cdr");
+    EXPECT_EQ(t.messages, kFrames);
+  }
+  const std::vector<DriveMessage> input = ReadTopic(drive, kTopic);
+  const std::vector<DriveMessage> copied = ReadTopic(mcap, kTopic);
+  const std::vector<DriveMessage> ground = ReadTopic(mcap, std::string(kTopic) + "/ground");
+  ASSERT_EQ(input.size(), kFrames);
+  ASSERT_EQ(copied.size(), kFrames);
+  ASSERT_EQ(ground.size(), kFrames);
+  for (size_t i = 0; i < kFrames; ++i) {
+    EXPECT_EQ(copied[i].log_time_ns, input[i].log_time_ns);
+    EXPECT_EQ(ground[i].log_time_ns, input[i].log_time_ns);
+    if (!GetParam().bag) {
+      EXPECT_EQ(copied[i].data, input[i].data) << "copied as it was";
+    }
+    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, copied[i]), FrameWithRing(i)));
+    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, ground[i]), FrameWithRing(i)));
+    EXPECT_EQ(LabelFieldAsLabelFile(ground[i]), Ref().Ring(i)) << "message " << i;
+    const PointCloud2 in =
+        GetParam().bag ? ParseRos1PointCloud2("in", input[i].data.data(), input[i].data.size())
+                       : ParseCdrPointCloud2("in", input[i].data.data(), input[i].data.size());
+    const PointCloud2 labelled =
+        ParseCdrPointCloud2("out", ground[i].data.data(), ground[i].data.size());
+    EXPECT_EQ(labelled.stamp_ns(), in.stamp_ns());
+    EXPECT_EQ(labelled.frame_id, in.frame_id);
+    EXPECT_EQ(labelled.fields.size(), in.fields.size() + 1);
+  }
+}
+
+TEST(CliDriveMcap, StandardMcapToolsReadTheLabelledOutput) {
+  // LPIR_DRIVE_TOOLS: a tools/drive_fixtures folder where `npm ci` has run, when this one has not
+  const std::string tools =
+      test::EnvOr("LPIR_DRIVE_TOOLS", (test::SensorsDir() + "/../tools/drive_fixtures").c_str());
+  if (test::RunCommand("node --version") != 0 || !fs::exists(tools + "/node_modules/@mcap/core"))
+    GTEST_SKIP() << "node or " << tools << "/node_modules absent (npm ci there)";
+  test::ScopedDir out;
+  std::string log;
+  ASSERT_EQ(
+      test::RunCommand(Cli() + " segment " + DrivesDir() + "/vlp16_zstd.mcap --sensor " + Sensor() +
+                           " --backend cpu --format mcap "
+                           "--quiet --out " +
+                           out.path,
+                       &log),
+      0)
+      << log;
+  EXPECT_EQ(test::RunCommand("node " + tools + "/read_mcap.mjs " + out.path +
+                                 "/vlp16_zstd.mcap --expect " + kTopic + ":3 --expect " + kTopic +
+                                 "/ground:3 --labels " + Ref().RingDir(),
+                             &log),
+            0)
+      << log;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, CliDrive, ::testing::ValuesIn(kKinds),
+                         [](const ::testing::TestParamInfo<Kind>& info) {
+                           std::string name = info.param.file;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+// ---- Damaged copies: the chunks found by walking the records here, not by the readers ----
+
+uint64_t Le(const std::string& b, size_t at, int bytes) {
+  uint64_t v = 0;
+  for (int k = bytes - 1; k >= 0; --k) v = v << 8 | uint8_t(b[at + size_t(k)]);
+  return v;
+}
+
+struct Span {
+  size_t data = 0, size = 0;              // a chunk's (compressed) payload
+  size_t compression = 0, name_size = 0;  // its compression's name
+};
+
+// MCAP: records after the 8-byte magic (opcode u8, length u64, body) up to the footer; a Chunk
+// (0x06) body holds start, end, uncompressed size (u64 each), CRC u32, compression (u32 length +
+// bytes), then the records' length u64 and bytes.
+std::vector<Span> McapChunks(const std::string& b) {
+  std::vector<Span> chunks;
+  for (size_t at = 8; at + 9 <= b.size();) {
+    const uint8_t op = uint8_t(b[at]);
+    const uint64_t len = Le(b, at + 1, 8);
+    const size_t body = at + 9;
+    if (op == 0x02 || len > b.size() - body) break;
+    if (op == 0x06) {
+      const size_t name = body + 32, name_size = Le(b, body + 28, 4);
+      chunks.push_back({name + name_size + 8, size_t(Le(b, name + name_size, 8)), name, name_size});
+    }
+    at = body + len;
+  }
+  return chunks;
+}
+
+// ROS 1 bag 2.0: records after "#ROSBAG V2.0\n" (header length u32, fields of u32 length +
+// "name=value", data length u32, data); a chunk's header holds "op=\x05".
+std::vector<Span> BagChunks(const std::string& b) {
+  std::vector<Span> chunks;
+  for (size_t at = 13; at + 4 <= b.size();) {
+    const uint64_t header_len = Le(b, at, 4);
+    if (header_len > b.size() - at - 4 || b.size() - at - 4 - header_len < 4) break;
+    const size_t data_len_at = at + 4 + header_len;
+    const uint64_t data_len = Le(b, data_len_at, 4);
+    if (data_len > b.size() - data_len_at - 4) break;
+    const std::string header = b.substr(at + 4, header_len);
+    const size_t name = header.find("compression=");
+    if (header.find(std::string("op=\x05", 4)) != std::string::npos && name >= 4) {
+      const size_t field = size_t(Le(header, name - 4, 4));  // "compression=<name>"
+      chunks.push_back({data_len_at + 4, size_t(data_len), at + 4 + name + 12, field - 12});
+    }
+    at = data_len_at + 4 + data_len;
+  }
+  return chunks;
+}
+
+// A copy of `kind` changed by `edit`, in `dir` under the fixture's name.
+std::string DamagedCopy(const test::ScopedDir& dir, const Kind& kind,
+                        const std::function<void(std::string*, const std::vector<Span>&)>& edit) {
+  std::string bytes = test::ReadRaw(DrivePath(kind));
+  edit(&bytes, kind.mcap ? McapChunks(bytes) : BagChunks(bytes));
+  const std::string path = dir.path + "/" + kind.file;
+  test::WriteRaw(path, bytes);
+  return path;
+}
+
+class CliDamagedDrive : public ::testing::TestWithParam<Kind> {};
+
+TEST_P(CliDamagedDrive, CutMidChunkLabelsEveryMessageBeforeItNamesItAndExits1) {
+  test::ScopedDir dir;
+  const std::string path = DamagedCopy(dir, GetParam(), [](std::string* b, const auto& chunks) {
+    ASSERT_EQ(chunks.size(), kFrames) << "one message per chunk";
+    b->resize(chunks.back().data + chunks.back().size / 2);
+  });
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + path + " --sensor " + Sensor() +
+                                 " --backend cpu --out " + dir.path + "/out",
+                             &log),
+            1)
+      << log;
+  for (size_t i = 0; i + 1 < kFrames; ++i)
+    EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(i, i)), Ref().Ring(i))
+        << "message " << i << "; " << log;
+  EXPECT_EQ(LabelFiles(dir.path + "/out").size(), kFrames - 1) << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
+  EXPECT_EQ(Lines(test::ReadFileBytes(dir.path + "/out/index.csv")).size(), kFrames) << log;
+}
+
+TEST_P(CliDamagedDrive, AnUnknownCompressionLabelsTheOtherMessagesNamesItAndExits1) {
+  std::string unknown;
+  test::ScopedDir dir;
+  const std::string path =
+      DamagedCopy(dir, GetParam(), [&](std::string* b, const std::vector<Span>& chunks) {
+        ASSERT_EQ(chunks.size(), kFrames);
+        unknown.assign(chunks[1].name_size, 'q');  // same length: every offset holds
+        b->replace(chunks[1].compression, chunks[1].name_size, unknown);
+      });
+  if (unknown.empty()) GTEST_SKIP() << "uncompressed: no name to change";
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + path + " --sensor " + Sensor() +
+                                 " --backend cpu --out " + dir.path + "/out",
+                             &log),
+            1)
+      << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(0, 0)), Ref().Ring(0)) << log;
+  EXPECT_EQ(LabelOfStamp(dir.path + "/out", 1), "") << log;
+  EXPECT_EQ(LabelOfStamp(dir.path + "/out", 2), Ref().Ring(2)) << "read on past it; " << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
+  EXPECT_NE(log.find(unknown), std::string::npos) << log;
+}
+
+// A .db3 cut inside its last page: its message counts cannot be taken, so the topic must be
+// named; the two messages before the cut are labelled, the damage named, exit 1.
+TEST(CliDamagedDb3, CutInItsLastPageLabelsTheMessagesBeforeItWhenTheTopicIsNamed) {
+  test::ScopedDir dir;
+  const std::string path = dir.path + "/vlp16.db3";
+  const std::string bytes = test::ReadRaw(DrivesDir() + "/vlp16.db3");
+  ASSERT_GT(bytes.size(), 2048u);
+  test::WriteRaw(path, bytes.substr(0, bytes.size() - 2048));
+  const std::string segment =
+      Cli() + " segment " + path + " --sensor " + Sensor() + " --backend cpu --out " + dir.path;
+  std::string log;
+  EXPECT_EQ(test::RunCommand(segment + "/a", &log), 4) << log;
+  EXPECT_NE(log.find("--topic T reads T's messages up to the damage"), std::string::npos) << log;
+  EXPECT_EQ(test::RunCommand(segment + "/b --topic " + kTopic, &log), 1) << log;
+  for (size_t i = 0; i + 1 < kFrames; ++i)
+    EXPECT_EQ(test::ReadFileBytes(dir.path + "/b/" + LabelName(i, i)), Ref().Ring(i)) << log;
+  EXPECT_EQ(LabelFiles(dir.path + "/b").size(), kFrames - 1) << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
+  EXPECT_NE(log.find("segmented 2 messages of /velodyne_points"), std::string::npos) << log;
+}
+
+// MCAP only: its chunks carry a CRC (a bag's bz2 or lz4 chunk may decompress a flipped byte).
+class CliFlippedDrive : public ::testing::TestWithParam<Kind> {};
+
+TEST_P(CliFlippedDrive, AFlippedByteLabelsTheOtherMessagesNamesItAndExits1) {
+  test::ScopedDir dir;
+  const std::string path = DamagedCopy(dir, GetParam(), [](std::string* b, const auto& chunks) {
+    ASSERT_EQ(chunks.size(), kFrames);
+    (*b)[chunks[1].data + chunks[1].size / 2] ^= 0x10;
+  });
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + path + " --sensor " + Sensor() +
+                                 " --backend cpu --out " + dir.path + "/out --report " + dir.path +
+                                 "/r.csv",
+                             &log),
+            1)
+      << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(0, 0)), Ref().Ring(0)) << log;
+  EXPECT_EQ(LabelOfStamp(dir.path + "/out", 2), Ref().Ring(2)) << log;
+  EXPECT_EQ(LabelOfStamp(dir.path + "/out", 1), "") << log;
+  EXPECT_EQ(LabelFiles(dir.path + "/out").size(), 2u) << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
+  // the report: the two frames and the damage, in that order, the damage with its error
+  const std::vector<std::string> rows = Lines(test::ReadFileBytes(dir.path + "/r.csv"));
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[1].back(), ',');                       // no error
+  EXPECT_NE(rows[2].find(path, 1), std::string::npos);  // the error names the copy
+  EXPECT_EQ(rows[3].back(), ',');
+}
+
+std::string KindName(const ::testing::TestParamInfo<Kind>& info) {
+  std::string name = info.param.file;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, CliDamagedDrive,
+                         ::testing::Values(kKinds[0], kKinds[1], kKinds[2], kKinds[4], kKinds[5]),
+                         KindName);
+INSTANTIATE_TEST_SUITE_P(Fixtures, CliFlippedDrive,
+                         ::testing::Values(kKinds[0], kKinds[1], kKinds[2]), KindName);
+
+// A CDR PointCloud2 of `cloud`: fields x y z intensity float32 (the first named `x_name`).
+std::vector<uint8_t> CdrCloud(const Cloud& cloud, long long stamp_ns, const std::string& x_name) {
+  PointCloud2 m;
+  m.stamp_sec = int32_t(stamp_ns / 1000000000LL);
+  m.stamp_nanosec = uint32_t(stamp_ns % 1000000000LL);
+  m.frame_id = "velodyne";
+  m.width = uint32_t(cloud.size());
+  m.fields = {{x_name, 0, kPfFloat32, 1},
+              {"y", 4, kPfFloat32, 1},
+              {"z", 8, kPfFloat32, 1},
+              {"intensity", 12, kPfFloat32, 1}};
+  m.point_step = 16;
+  m.row_step = 16 * m.width;
+  m.data.resize(cloud.xyzi.size() * 4);
+  std::memcpy(m.data.data(), cloud.xyzi.data(), m.data.size());
+  m.is_dense = true;
+  return SerializeCdrPointCloud2(m);
+}
+
+Cloud BinFrame(size_t i) {
+  const std::string bin = test::ReadRaw(FrameBase(i) + ".bin");
+  Cloud cloud;
+  cloud.xyzi.resize(bin.size() / 4);
+  std::memcpy(cloud.xyzi.data(), bin.data(), cloud.xyzi.size() * 4);
+  return cloud;
+}
+
+TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles) {
+  test::ScopedDir dir;
+  const std::string path = dir.path + "/no_x.mcap";
+  {
+    McapWriter w(path, McapCompression::kZstd);
+    const uint16_t schema =
+        w.AddSchema("sensor_msgs/msg/PointCloud2", "ros2msg", PointCloud2Ros2MsgDefinition());
+    const uint16_t channel = w.AddChannel("/points", schema, "cdr");
+    for (size_t i = 0; i < kFrames; ++i) {
+      const std::vector<uint8_t> m = CdrCloud(BinFrame(i), StampNs(i), i == 1 ? "q" : "x");
+      w.Write(channel, uint32_t(i), uint64_t(StampNs(i)), uint64_t(StampNs(i)), m.data(), m.size());
+    }
+    w.Close();
+  }
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + path + " --sensor " + Sensor() +
+                                 " --backend cpu --out " + dir.path + "/out --report " + dir.path +
+                                 "/r.json",
+                             &log),
+            1)
+      << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(0, 0)), Ref().Bin(0)) << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(2, 2)), Ref().Bin(2)) << log;
+  EXPECT_EQ(LabelFiles(dir.path + "/out").size(), 2u) << log;
+  EXPECT_NE(log.find("lpir-gseg segment: error: " + path + ": /points message 1"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("'x'"), std::string::npos) << log;
+  EXPECT_NE(log.find("1 of 3 messages or damaged parts failed"), std::string::npos) << log;
+  if (test::RunCommand("python3 -c 'import json'") != 0) return;
+  const std::string script =
+      "import json,sys\n"
+      "for f in json.load(open(sys.argv[1]))['frames']:\n"
+      "  print(f['sequence'],f['stamp_ns'],f['topic'],f['points']>0,f['error'] is None)\n";
+  std::ofstream(dir.path + "/check.py") << script;
+  std::string parsed;
+  ASSERT_EQ(test::RunCommand("python3 " + dir.path + "/check.py " + dir.path + "/r.json", &parsed),
+            0)
+      << parsed;
+  EXPECT_EQ(parsed, "0 " + std::to_string(StampNs(0)) + " /points True True\n" + "1 " +
+                        std::to_string(StampNs(1)) + " /points False False\n" + "2 " +
+                        std::to_string(StampNs(2)) + " /points True True\n");
+}
+
+TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
+  test::ScopedDir dir;
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() + "/vlp16.db3 " + FrameBase(0) +
+                                 ".bin --sensor vlp16 --out " + dir.path,
+                             &log),
+            2);
+  EXPECT_NE(log.find("on its own"), std::string::npos) << log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + FrameBase(0) +
+                                 ".bin --format mcap --sensor vlp16 --out " + dir.path,
+                             &log),
+            2);
+  EXPECT_NE(log.find("--format mcap is for a recorded drive"), std::string::npos) << log;
+}
+
+TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {
+  test::ScopedDir dir;
+  const std::string drive = dir.path + "/vlp16_zstd.mcap";
+  test::WriteRaw(drive, test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
+                                 " --backend cpu --format mcap --out " + dir.path,
+                             &log),
+            2);
+  EXPECT_NE(log.find("is the drive being read"), std::string::npos) << log;
+  EXPECT_EQ(test::ReadRaw(drive), test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
+}
+
+TEST(CliDriveArgs, AnAbsentTopicIsNamedWithTheTopicsThereAre) {
+  test::ScopedDir dir;
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() +
+                                 "/vlp16.db3 --topic /nope --sensor vlp16 --out " + dir.path,
+                             &log),
+            2);
+  EXPECT_NE(log.find("/nope"), std::string::npos) << log;
+  EXPECT_NE(log.find(kTopic), std::string::npos) << log;
+}
+
+TEST(CliDriveArgs, TopicsOfAMissingDriveIsAnErrorNamingIt) {
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " topics /nonexistent/drive.mcap", &log), 4);  // cannot run
+  EXPECT_NE(log.find("/nonexistent/drive.mcap"), std::string::npos) << log;
+  EXPECT_EQ(test::RunCommand(Cli() + " topics", &log), 2);
+  EXPECT_NE(log.find("usage: lpir-gseg topics DRIVE"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace lpir
