@@ -78,6 +78,11 @@ struct Params {
                      // as range^2 * beam spacing / sensor height)
   float occ_front;   // m, ... and, for a pixel whose class is ground, nearer than range + this (an
                      // object standing farther behind such a pixel leaves it ground)
+  // --- our addition: stage 7 fuse, a step in the ground is not an occluder (see fuse.cpp) ---
+  uint occ_step_rows;    // rows above an occluded pixel searched for the step's shape (0: none)
+  float occ_step;        // m, the tallest step in the ground (a curb) that spares the pixel ...
+  float occ_step_grade;  // ... plus this times how far beyond the pixel the pixel above lies
+  float occ_step_reach;  // m, pixels above farther than range + this are not looked at
   uint pad1;
   uint pad2;
 };
