@@ -34,6 +34,7 @@ const Field kFields[] = {
     LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
     LPIR_F(occ_grade),        LPIR_F(occ_front),        LPIR_U(occ_step_rows),
     LPIR_F(occ_step),         LPIR_F(occ_step_grade),   LPIR_F(occ_step_reach),
+    LPIR_U(comp_seed_min),    LPIR_F(comp_seed_share),
 };
 #undef LPIR_F
 #undef LPIR_U
@@ -107,6 +108,8 @@ Params DefaultParams() {
   p.occ_step = 0.15f;
   p.occ_step_grade = 0.1f;
   p.occ_step_reach = 3.0f;
+  p.comp_seed_min = 10;
+  p.comp_seed_share = 0.8f;
   return p;
 }
 

@@ -83,8 +83,10 @@ struct Params {
   float occ_step;        // m, the tallest step in the ground (a curb) that spares the pixel ...
   float occ_step_grade;  // ... plus this times how far beyond the pixel the pixel above lies
   float occ_step_reach;  // m, pixels above farther than range + this are not looked at
-  uint pad1;
-  uint pad2;
+  // --- our addition: stage 8 grow, a small component of seeds stays ground (see grow.cpp) ---
+  uint comp_seed_min;     // pixels: a component smaller than this is non-ground whatever it holds
+  float comp_seed_share;  // a component under min_component stays ground when at least this share
+                          // of its pixels are seeds (fused ground); above 1: never
 };
 
 #ifdef __cplusplus
