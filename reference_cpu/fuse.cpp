@@ -16,6 +16,12 @@
 // on the continuation of the ground plane; the beam above it hits the object nearer or at about
 // the same range, which flat open ground never does. occ_rows 2 by default; unknown pixels take
 // the coarse label (docs/decisions/fuse.md).
+// A step in the ground is not an occluder (our addition): an occluded pixel is spared when, over
+// the rows v - k, k = 1 .. min(occ_step_rows, v), of its column, no filled pixel nearer than
+// range + occ_step_reach rises above z + occ_step + occ_step_grade * max(its range - range, 0)
+// (not steep), and one of them is of class ground and farther than the pixel (a landing): the
+// column climbs a curb or a bank onto ground that goes on, where a wall, a hedge or a car keeps
+// rising.
 #include <algorithm>
 
 #include "reference_cpu/exact.h"
@@ -64,6 +70,38 @@ void Occlude(const uint32_t* __restrict above_filled, const float* __restrict ab
   }
 }
 
+// The step bounds of one row's pixels: far = Ftz0(r + occ_step_reach), base = Ftz0(z + occ_step).
+void StepBounds(const Params& p, const float* __restrict range, const float* __restrict height,
+                uint32_t w, float* __restrict far, float* __restrict base) {
+  const float reach = p.occ_step_reach, step = p.occ_step;
+  for (uint32_t u = 0; u < w; ++u) {
+    far[u] = exact::Ftz0(range[u] + reach);
+    base[u] = exact::Ftz0(height[u] + step);
+  }
+}
+
+// Adds one row above to the step marks of a row's pixels. A pixel above counts when it is filled
+// and nearer than far; it is steep when higher than base + occ_step_grade * max(d, 0), d = its
+// range - the pixel's, and a landing when of class ground with d > 0. The first row above sets the
+// marks, the next ones add to them.
+void Step(const Params& p, const uint32_t* __restrict above_filled,
+          const uint32_t* __restrict above_cls, const float* __restrict above_range,
+          const float* __restrict above_height, const float* __restrict range,
+          const float* __restrict far, const float* __restrict base, uint32_t w, bool first,
+          uint32_t* __restrict steep, uint32_t* __restrict landing) {
+  const float grade = p.occ_step_grade;
+  for (uint32_t u = 0; u < w; ++u) {
+    const float d = exact::Ftz0(above_range[u] - range[u]);
+    const float beyond = d > 0.0f ? d : 0.0f;
+    const float bound = exact::Ftz0(base[u] + exact::Ftz0(grade * beyond));
+    const uint32_t counts = uint32_t(above_filled[u] != 0) & uint32_t(above_range[u] < far[u]);
+    const uint32_t high = counts & uint32_t(above_height[u] > bound);
+    const uint32_t ground = counts & uint32_t(above_cls[u] == kPixGround) & uint32_t(d > 0.0f);
+    steep[u] = first ? high : steep[u] | high;
+    landing[u] = first ? ground : landing[u] | ground;
+  }
+}
+
 // The coarse label of each pixel's winning point, kNoOpinion where the pixel has none.
 void Opinions(const uint32_t* __restrict point, const uint32_t* __restrict coarse, uint32_t w,
               uint32_t* __restrict opinion) {
@@ -105,11 +143,12 @@ void Fuse(const Params& p, Frame& f) {
   const float* __restrict height = f.f_height.data();
   uint32_t* __restrict fused = f.pixel_fused.data();
   // Pieces of rows, so that the scratch stays in the L1 cache.
-  float reach[kPiece], top[kPiece];
-  uint32_t occluded[kPiece], opinion[kPiece];
+  float reach[kPiece], top[kPiece], far[kPiece], base[kPiece];
+  uint32_t occluded[kPiece], opinion[kPiece], steep[kPiece], landing[kPiece];
   for (uint32_t v = 0; v < h; ++v) {
     // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
     const uint32_t rows_above = p.occ_rows < v ? p.occ_rows : v;
+    const uint32_t step_rows = p.occ_step_rows < v ? p.occ_step_rows : v;
     for (uint32_t u0 = 0; u0 < w; u0 += kPiece) {
       const uint32_t n = w - u0 < kPiece ? w - u0 : kPiece, at = v * w + u0;
       if (rows_above) {
@@ -117,6 +156,18 @@ void Fuse(const Params& p, Frame& f) {
         for (uint32_t k = 1; k <= rows_above; ++k) {
           const uint32_t above = at - k * w;
           Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);
+        }
+        if (step_rows) {
+          StepBounds(p, range + at, height + at, n, far, base);
+          for (uint32_t k = 1; k <= step_rows; ++k) {
+            const uint32_t above = at - k * w;
+            Step(p, filled + above, cls + above, range + above, height + above, range + at, far,
+                 base, n, k == 1, steep, landing);
+          }
+          for (uint32_t u = 0; u < n; ++u) {
+            const uint32_t spared = landing[u] & (steep[u] ^ 1u);
+            occluded[u] &= spared ^ 1u;
+          }
         }
       } else {
         for (uint32_t u = 0; u < n; ++u) occluded[u] = 0;

@@ -12,7 +12,11 @@
 // pixels left over are non-ground. Decision and measurements: docs/decisions/grow.md.
 // Connectivity: 8-connected components of ground pixels, each labelled by its lowest pixel index
 // (pixel_comp, kNone elsewhere); components of fewer than min_component pixels become non-ground
-// in pixel_label and keep their component label in pixel_comp (it records the components found).
+// in pixel_label and keep their component label in pixel_comp (it records the components found),
+// except one of at least comp_seed_min pixels whose seeds (pixels fused ground) number at least
+// comp_seed_share * its size (one rounded float product; counts are exact in float below 2^24):
+// ground that the coarse segmentation vouches for, cut off from the rest (a sidewalk between
+// parked cars), not an object's flat top grown from a few seeds (docs/decisions/grow.md).
 // pixel_label: kPixGround / kPixNonGround, kPixEmpty where no pixel was measured or filled.
 #include <algorithm>
 #include <cmath>
@@ -45,7 +49,7 @@ thread_local std::vector<uint8_t> state;
 thread_local std::vector<Pixel> stack;
 thread_local std::vector<Run> runs;
 thread_local std::vector<uint32_t> row_runs;  // beams + 1 offsets into runs
-thread_local std::vector<uint32_t> parent, comp_size;
+thread_local std::vector<uint32_t> parent, comp_size, comp_seeds;
 
 // Eight bytes of the state (any alignment).
 inline uint64_t Word(const uint8_t* s) {
@@ -272,18 +276,32 @@ void JoinRuns(uint32_t w, uint32_t h) {
   }
 }
 
+// Whether a component of `size` pixels, `seeds` of them seeds, is removed.
+inline bool Removed(const Params& p, uint32_t size, uint32_t seeds) {
+  const bool kept = size >= p.comp_seed_min && float(seeds) >= p.comp_seed_share * float(size);
+  return size < p.min_component && !kept;
+}
+
 // Each run's pixels get their component's label (the start of its root run) in pixel_comp, and
-// non-ground in pixel_label when the component has fewer than min_component pixels.
+// non-ground in pixel_label when the component is removed (Removed: its size and seed count).
 void LabelComponents(const Params& p, Frame& f) {
   uint32_t* __restrict comp = f.pixel_comp.data();
   uint32_t* __restrict label = f.pixel_label.data();
+  const uint32_t* __restrict fused = f.pixel_fused.data();
   const uint32_t* __restrict up = parent.data();
   const Run* __restrict run = runs.data();
   const uint32_t n = uint32_t(runs.size());
+  comp_seeds.assign(n, 0);
+  for (uint32_t k = 0; k < n; ++k) {
+    uint32_t seeds = 0;
+    for (uint32_t x = run[k].start; x <= run[k].start + (run[k].u1 - run[k].u0); ++x)
+      seeds += fused[x] == kPixGround;
+    comp_seeds[up[k]] += seeds;
+  }
   for (uint32_t k = 0; k < n; ++k) {
     const uint32_t root = up[k], len = run[k].u1 - run[k].u0 + 1;
     std::fill(comp + run[k].start, comp + run[k].start + len, run[root].start);
-    if (comp_size[root] < p.min_component)
+    if (Removed(p, comp_size[root], comp_seeds[root]))
       std::fill(label + run[k].start, label + run[k].start + len, kPixNonGround);
   }
 }

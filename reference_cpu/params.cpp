@@ -32,7 +32,9 @@ const Field kFields[] = {
     LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),
     LPIR_U(min_component),    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
     LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
-    LPIR_F(occ_grade),        LPIR_F(occ_front),
+    LPIR_F(occ_grade),        LPIR_F(occ_front),        LPIR_U(occ_step_rows),
+    LPIR_F(occ_step),         LPIR_F(occ_step_grade),   LPIR_F(occ_step_reach),
+    LPIR_U(comp_seed_min),    LPIR_F(comp_seed_share),
 };
 #undef LPIR_F
 #undef LPIR_U
@@ -99,9 +101,15 @@ Params DefaultParams() {
   p.bp_height_gate = 0.2f;
   p.occ_rows = 2;
   p.occ_margin = 0.3f;
-  p.occ_rise = 0.075f;
+  p.occ_rise = 0.045f;
   p.occ_grade = 0.0002f;
   p.occ_front = 0.1f;
+  p.occ_step_rows = 10;
+  p.occ_step = 0.15f;
+  p.occ_step_grade = 0.1f;
+  p.occ_step_reach = 3.0f;
+  p.comp_seed_min = 10;
+  p.comp_seed_share = 0.8f;
   return p;
 }
 

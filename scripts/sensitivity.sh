@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # scripts/sensitivity.sh: the DG F1 change (summed over the five labelled KITTI frames) when each
-# main threshold of the hdl64e profile is set 25 % below and 25 % above its default, one at a
-# time, as a markdown table (docs/accuracy.md, "No knife edge"). Needs build/attribute
-# (scripts/build.sh attribute) and ../shared/data (or LPIR_DATA_DIR).
+# main threshold of the hdl64e profile is set 25 % below and 25 % above its default (whole-number
+# ones rounded down), one at a time, as a markdown table (docs/accuracy.md, "No knife edge").
+# Needs build/attribute (scripts/build.sh attribute) and ../shared/data (or LPIR_DATA_DIR).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${LPIR_DATA_DIR:-../shared/data}
@@ -25,8 +25,9 @@ params=(
   "plane_dist_scale 2.5" "ground_max_above 0.3" "hole_gap 0.25" "t_edge 0.12"
   "t_slope_low 0.09" "t_slope_high 0.25" "t_stdz_low 0.000025" "t_stdz_high 0.000144"
   "t_stdi_low 0.035" "t_stdi_high 0.1" "grow_di 0.35" "grow_dz 0.03" "min_component 300"
-  "bp_range_gate 0.15" "bp_height_gate 0.2" "occ_margin 0.3" "occ_rise 0.075"
-  "occ_grade 0.0002" "occ_front 0.1")
+  "bp_range_gate 0.15" "bp_height_gate 0.2" "occ_margin 0.3" "occ_rise 0.045"
+  "occ_grade 0.0002" "occ_front 0.1" "occ_step_rows 10" "occ_step 0.15" "occ_step_grade 0.1"
+  "occ_step_reach 3" "comp_seed_min 10" "comp_seed_share 0.8")
 
 base=$(f1)
 echo "Defaults: DG F1 $base (summed over ${frames[*]})."
@@ -35,8 +36,8 @@ echo "| parameter | default | F1 at -25 % | F1 at +25 % | change -25 % / +25 % |
 echo "|---|---|---|---|---|"
 for entry in "${params[@]}"; do
   read -r name value <<<"$entry"
-  lo=$(awk -v v="$value" -v n="$name" 'BEGIN { x = v * 0.75; if (n == "min_component") x = int(x); print x }')
-  hi=$(awk -v v="$value" -v n="$name" 'BEGIN { x = v * 1.25; if (n == "min_component") x = int(x); print x }')
+  lo=$(awk -v v="$value" -v n="$name" 'BEGIN { x = v * 0.75; if (n ~ /^(min_component|occ_step_rows|comp_seed_min)$/) x = int(x); print x }')
+  hi=$(awk -v v="$value" -v n="$name" 'BEGIN { x = v * 1.25; if (n ~ /^(min_component|occ_step_rows|comp_seed_min)$/) x = int(x); print x }')
   a=$(f1 --param "$name" "$lo")
   b=$(f1 --param "$name" "$hi")
   awk -v n="$name" -v v="$value" -v a="$a" -v b="$b" -v base="$base" \

@@ -14,6 +14,11 @@
 // is ground reach = min(reach, r + occ_front); top = Ftz0(z + occ_rise). An
 // occluder: filled above != 0, range above < reach, height above > top (computed for every pixel,
 // empty ones too, as the reference does; an empty pixel is empty whatever they say).
+// Step spare over rows v - k, k = 1 .. min(occ_step_rows, v): far = Ftz0(r + occ_step_reach),
+// base = Ftz0(z + occ_step); for each row above, d = Ftz0(range above - r), beyond = d > 0 ? d :
+// 0, bound = Ftz0(base + Ftz0(occ_step_grade * beyond)); it counts when filled != 0 and range
+// above < far; steep |= counts & height above > bound; landing |= counts & class above == ground &
+// d > 0. occluded &= !(landing & !steep).
 // Decision: agree = class == opinion, or class unknown and opinion ground; vote = agree ? opinion
 // : unknown; kept = occluded ? non-ground : vote; fused = class empty ? empty : kept.
 // No ties and no reductions: each invocation writes only its own pixels.
@@ -86,6 +91,26 @@ void main() {
       occluded |= uvec4(notEqual(FilledAt(above), uvec4(0u))) &
                   uvec4(lessThan(RangeAt(above), reach)) &
                   uvec4(greaterThan(HeightAt(above), top));
+    }
+    // A step in the ground (a curb, a bank) spares the pixel.
+    uint step_rows = min(p.occ_step_rows, v);
+    if (step_rows != 0u) {
+      precise vec4 far = exact_Ftz0(r + p.occ_step_reach);
+      precise vec4 base = exact_Ftz0(HeightAt(e) + p.occ_step);
+      uvec4 steep = uvec4(0u), landing = uvec4(0u);
+      for (uint k = 1u; k <= step_rows; ++k) {
+        uint above = e - k * row;
+        vec4 ra = RangeAt(above);
+        precise vec4 d = exact_Ftz0(ra - r);
+        vec4 beyond = mix(vec4(0.0), d, greaterThan(d, vec4(0.0)));
+        precise vec4 lift = exact_Ftz0(p.occ_step_grade * beyond);
+        precise vec4 bound = exact_Ftz0(base + lift);
+        uvec4 counts = uvec4(notEqual(FilledAt(above), uvec4(0u))) & uvec4(lessThan(ra, far));
+        steep |= counts & uvec4(greaterThan(HeightAt(above), bound));
+        landing |= counts & uvec4(equal(ClassAt(above), uvec4(kPixGround))) &
+                uvec4(greaterThan(d, vec4(0.0)));
+      }
+      occluded &= (landing & (steep ^ uvec4(1u))) ^ uvec4(1u);
     }
   }
 

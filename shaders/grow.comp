@@ -12,7 +12,7 @@
 // pipeline each, recorded in this order with a compute-to-compute barrier between them
 // (host/stages/grow.cpp):
 //   0 init    grow_reach[x + 1] = 0 for ground, x + 1 for unknown, kNone otherwise;
-//             grow_reach[0] = 0; pixel_comp[x] = x; grow_sizes[x] = 0.
+//             grow_reach[0] = 0; pixel_comp[x] = x; grow_sizes[x] = grow_sizes[count + x] = 0.
 //   1 reach   for each node x and each forward neighbour y (right, below-left, below,
 //             below-right) that is a node, not both ground, with an allowed step: union of
 //             x + 1 and y + 1 in grow_reach.
@@ -21,9 +21,13 @@
 //             A grown x is joined in pixel_comp with each forward neighbour that grows (the
 //             neighbour's test is made here too, so no pass sits between growing and joining).
 //   3 count   for a grown x: root = Find(x) in pixel_comp, pixel_comp[x] = root,
-//             grow_sizes[root] += 1.
+//             grow_sizes[root] += 1, and grow_sizes[count + root] += 1 when x is a seed
+//             (pixel_fused ground).
 //   4 finish  pixel_comp[x] = kNone off ground; pixel_label[x] = pixel_grown[x], ground ->
-//             non-ground where grow_sizes[pixel_comp[x]] < min_component.
+//             non-ground where the component is removed: size < min_component and not (size >=
+//             comp_seed_min and float(seeds) >= comp_seed_share * float(size), one rounded
+//             product), size = grow_sizes[pixel_comp[x]], seeds = grow_sizes[count +
+//             pixel_comp[x]].
 // Step test from pixel a to pixel b (the reference's StepAllowed, each op rounded: `precise`):
 // di = |ib - ia|, dz = |zb - za|, step = |rb - ra|, + min(ra, rb) * column_arc when the column
 // changes; allowed = grow_dz + grow_grade * step; di <= grow_di && dz <= allowed. Every term is
@@ -47,7 +51,7 @@ layout(std430, set = 0, binding = 5) buffer PixelGrown { uint pixel_grown[]; };
 layout(std430, set = 0, binding = 6) buffer PixelComp { uint pixel_comp[]; };
 layout(std430, set = 0, binding = 7) buffer PixelLabel { uint pixel_label[]; };
 layout(std430, set = 0, binding = 8) buffer GrowReach { uint grow_reach[]; };  // pixels + 1 nodes
-layout(std430, set = 0, binding = 9) buffer GrowSizes { uint grow_sizes[]; };
+layout(std430, set = 0, binding = 9) buffer GrowSizes { uint grow_sizes[]; };  // 2 per pixel
 
 layout(constant_id = 1) const uint kPass = 0u;
 
@@ -147,6 +151,7 @@ void main() {
     if (x == 0u) grow_reach[0] = kSeed;
     pixel_comp[x] = x;
     grow_sizes[x] = 0u;
+    grow_sizes[pc.count + x] = 0u;
     return;
   }
   uint v = x / p.width, u = x - v * p.width;
@@ -180,6 +185,7 @@ void main() {
     uint root = FindComp(x);
     atomicMin(pixel_comp[x], root);
     atomicAdd(grow_sizes[root], 1u);
+    if (pixel_fused[x] == kPixGround) atomicAdd(grow_sizes[pc.count + root], 1u);
     return;
   }
   if (pass == kFinish) {
@@ -189,6 +195,11 @@ void main() {
       pixel_label[x] = g;
       return;
     }
-    pixel_label[x] = grow_sizes[pixel_comp[x]] < p.min_component ? kPixNonGround : kPixGround;
+    uint root = pixel_comp[x];
+    uint size = grow_sizes[root], seeds = grow_sizes[pc.count + root];
+    precise float need = p.comp_seed_share * float(size);
+    bool kept = size >= p.comp_seed_min && float(seeds) >= need;
+    bool removed = size < p.min_component && !kept;
+    pixel_label[x] = removed ? kPixNonGround : kPixGround;
   }
 }

@@ -161,6 +161,42 @@ TEST_F(FuseVeto, AnObjectBehindAGroundPixelLeavesItGround) {
   EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
 }
 
+// A step in the ground spares an occluded pixel: the column above climbs no higher than occ_step
+// (plus occ_step_grade per metre beyond the pixel) within occ_step_reach, onto a pixel of class
+// ground farther away. A curb's foot stays ground; a wall's, a hedge's or a car's does not.
+TEST_F(FuseVeto, AStepOntoGroundSparesTheFootOfACurb) {
+  ASSERT_GE(im.p.occ_step_rows, 3u) << "the default no longer looks three rows up";
+  const float curb = z + 0.5f * (im.p.occ_rise + im.p.occ_step);  // above top, below base
+  // A curb: its face one row up (at the pixel's range), the sidewalk on (class ground, farther).
+  Ground(0);
+  im.Measure(v - 1, 0, kPixNonGround, false, r, curb);
+  im.Measure(v - 2, 0, kPixGround, true, r + 0.5f, curb);
+  im.Measure(v - 3, 0, kPixGround, true, r + 1.0f, curb + 0.05f);  // rising gently beyond
+  // A wall: the same face, then higher than the step at the same range.
+  Ground(1);
+  im.Measure(v - 1, 1, kPixNonGround, false, r, curb);
+  im.Measure(v - 2, 1, kPixGround, true, r + 0.5f, curb);
+  im.Measure(v - 3, 1, kPixNonGround, false, r, z + im.p.occ_step + 0.3f);
+  // A low step with nothing of class ground beyond it (a low box, a hedge's foot).
+  Ground(2);
+  im.Measure(v - 1, 2, kPixNonGround, false, r, curb);
+  im.Measure(v - 2, 2, kPixUnknown, true, r + 0.5f, curb);
+  // The landing beyond occ_step_reach does not count.
+  Ground(3);
+  im.Measure(v - 1, 3, kPixNonGround, false, r, curb);
+  im.Measure(v - 2, 3, kPixGround, true, r + im.p.occ_step_reach + 0.5f, curb);
+  // A class-ground pixel above, but one that rises off a car body nearer than the pixel.
+  Ground(4);
+  im.Measure(v - 1, 4, kPixNonGround, false, r - 2.0f, z + 0.6f);
+  im.Measure(v - 2, 4, kPixGround, true, r + 0.5f, curb);
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixGround);
+  for (uint32_t u = 1; u <= 4; ++u) EXPECT_EQ(im.Fused(v, u), kPixNonGround) << "column " << u;
+  im.p.occ_step_rows = 0;  // no rows looked at: the curb's foot is vetoed too
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+}
+
 TEST_F(FuseVeto, VetoOverridesAnUnknownCoarseGroundSeed) {
   im.Measure(v, 0, kPixUnknown, true, r, z);  // would become ground without the veto
   im.Measure(v - 1, 0, kPixNonGround, false, r, z + 1.0f);

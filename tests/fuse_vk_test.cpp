@@ -3,7 +3,8 @@
 // (RunReference) on random clouds, the simulated HDL-64E scenes and the real scans when
 // ../shared/data is present, each also under other veto parameters; and hand-made images that
 // put occluders exactly on the veto's thresholds (range == reach, height == top, one ulp either
-// side), in the top rows and with occ_rows beyond the image.
+// side) and pixels above exactly on the step spare's (range == far, height == bound), in the top
+// rows and with occ_rows beyond the image.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -141,12 +142,15 @@ void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const F
   struct Variant {
     uint32_t rows;
     float margin, rise, grade, front;
+    uint32_t step_rows;
+    float step, step_grade, step_reach;
   };
-  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f, 0.1f},
-                              {1, 0.1f, 0.1f, 0.0f, 0.3f},
-                              {3, 0.0f, 0.0f, 0.001f, 0.0f},
-                              {8, -0.5f, -0.05f, 0.01f, -0.2f},
-                              {200, 1.0f, 0.5f, 0.0f, 1000.0f}};
+  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f, 0.1f, 10, 0.15f, 0.1f, 3.0f},
+                              {1, 0.1f, 0.1f, 0.0f, 0.3f, 0, 0.15f, 0.1f, 3.0f},
+                              {2, 0.3f, 0.075f, 0.0002f, 0.1f, 1, 0.3f, 0.0f, 1000.0f},
+                              {3, 0.0f, 0.0f, 0.001f, 0.0f, 4, 0.0f, 1.0f, 0.5f},
+                              {8, -0.5f, -0.05f, 0.01f, -0.2f, 3, -0.1f, -0.5f, -1.0f},
+                              {200, 1.0f, 0.5f, 0.0f, 1000.0f, 200, 1.0f, 0.3f, 10.0f}};
   for (const Variant& var : variants) {
     Params q = p;
     q.occ_rows = var.rows;
@@ -154,10 +158,17 @@ void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const F
     q.occ_rise = var.rise;
     q.occ_grade = var.grade;
     q.occ_front = var.front;
-    char text[160];
-    std::snprintf(text, sizeof(text), "%s, occ_rows %u margin %g rise %g grade %g front %g",
+    q.occ_step_rows = var.step_rows;
+    q.occ_step = var.step;
+    q.occ_step_grade = var.step_grade;
+    q.occ_step_reach = var.step_reach;
+    char text[240];
+    std::snprintf(text, sizeof(text),
+                  "%s, occ_rows %u margin %g rise %g grade %g front %g, step rows %u step %g "
+                  "grade %g reach %g",
                   what.c_str(), var.rows, double(var.margin), double(var.rise), double(var.grade),
-                  double(var.front));
+                  double(var.front), var.step_rows, double(var.step), double(var.step_grade),
+                  double(var.step_reach));
     EXPECT_EQ(ExpectSameFuse(context, q, f, text), size_t(p.width) * p.beams);
   }
 }
@@ -379,6 +390,75 @@ TEST_F(FuseVk, VetoAtItsExactThresholds) {
     }
 }
 
+// The step spare's bound as the reference computes it for a pixel above at range ra (each
+// operation rounded; tests build with -ffp-contract=off).
+float StepBound(const Params& p, float r, float z, float ra) {
+  const float base = exact::Ftz0(z + p.occ_step);
+  const float d = exact::Ftz0(ra - r);
+  const float beyond = d > 0.0f ? d : 0.0f;
+  return exact::Ftz0(base + exact::Ftz0(p.occ_step_grade * beyond));
+}
+float StepFar(const Params& p, float r) { return exact::Ftz0(r + p.occ_step_reach); }
+
+TEST_F(FuseVk, StepSpareAtItsExactThresholds) {
+  // Every column: a seed at row v under an occluder one row up (nearer, higher than the veto's
+  // top, not above the step's base), a landing two rows up (class ground, farther) and a candidate
+  // three rows up whose range and height sit on the step's bounds or one ulp beside them.
+  for (uint32_t cls : {kPixGround, kPixUnknown})
+    for (uint32_t step_rows : {2u, 3u, 10u}) {
+      const uint32_t beams = 8, v = 6;
+      Image im(64, beams);
+      im.p.occ_step_rows = step_rows;
+      const float ranges[] = {5.0f, 10.0f, 37.3f};
+      uint32_t u = 0;
+      size_t vetoes = 0, spared = 0;
+      std::vector<std::pair<uint32_t, bool>> expect;  // column, vetoed
+      for (float r : ranges) {
+        const float z = -1.7f + 0.01f * float(u);
+        const float far = StepFar(im.p, r);
+        const float ra = r + 1.5f, bound = StepBound(im.p, r, z, ra);
+        const float far_in = std::nextafter(far, 0.0f);
+        const struct {
+          float landing_range, range, height;
+          bool veto;
+        } cands[] = {
+            {r + 1.0f, ra, bound, false},                                // at the bound: not steep
+            {r + 1.0f, ra, std::nextafter(bound, 1e9f), true},           // steep
+            {r + 1.0f, far, z + 2.0f, false},                            // at far: not looked at
+            {r + 1.0f, far_in, z + 2.0f, true},                          // inside far: steep
+            {r, ra, z, true},                                            // landing at d == 0: none
+            {far, ra, z, true},                                          // landing at far: none
+            {std::nextafter(r, 1e9f), ra, z, false},                     // landing one ulp beyond
+            {far_in, r - 1.0f, StepBound(im.p, r, z, r - 1.0f), false},  // nearer, at base
+        };
+        for (const auto& c : cands) {
+          im.Measure(v, u, cls, true, r, z);
+          im.Measure(v - 1, u, kPixNonGround, false, r - 0.5f, z + 0.1f);
+          im.Measure(v - 2, u, kPixGround, true, c.landing_range, z);
+          im.Measure(v - 3, u, kPixNonGround, false, c.range, c.height);
+          // A candidate beyond occ_step_rows is not looked at: a steep one then spares.
+          const bool looked_at = step_rows >= 3;
+          const bool landing = c.landing_range > r && c.landing_range < far;
+          expect.push_back({u, looked_at ? c.veto : !landing});
+          ++u;
+        }
+      }
+      ASSERT_LE(u, im.p.width);
+      Frame cpu = im.f;
+      Fuse(im.p, cpu);
+      for (const auto& [col, veto] : expect) {
+        EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixNonGround : kPixGround)
+            << "reference, class " << cls << ", step rows " << step_rows << ", column " << col;
+        vetoes += veto, spared += !veto;
+      }
+      EXPECT_GT(vetoes, 0u);
+      EXPECT_GT(spared, 0u);
+      EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f,
+                               "step thresholds, step rows " + std::to_string(step_rows)),
+                size_t(im.p.width) * beams);
+    }
+}
+
 TEST_F(FuseVk, TopRowsAndReachBeyondTheImage) {
   // Ground pixels on every row of a 5-row image under occluders on every row above: rows 0 ..
   // occ_rows - 1 see fewer rows than occ_rows (row 0 none); occ_rows beyond the image.
@@ -412,11 +492,16 @@ TEST_F(FuseVk, RandomImagesEveryClassAndOpinion) {
     im.p.occ_grade = (rng() % 2) ? 0.0f : 0.0002f;
     const float fronts[] = {0.0f, 0.3f, 1000.0f};  // 10 + 0.3 = 10.3: range above == the bound
     im.p.occ_front = fronts[rng() % 3];
-    const float values[] = {0.0f, 2.5f, 2.8f, 2.575f, 10.0f, 10.3f, 10.32f, -1.7f, -1.625f, 1.0f};
+    im.p.occ_step_rows = rng() % 12;
+    im.p.occ_step = (rng() % 2) ? 0.0f : 0.15f;  // -1.7 + 0.15 = -1.55: a height above == base
+    im.p.occ_step_grade = (rng() % 2) ? 0.0f : 0.1f;
+    im.p.occ_step_reach = (rng() % 2) ? 0.3f : 3.0f;  // 10 + 0.3 = 10.3: a range above == far
+    const float values[] = {0.0f,   2.5f,  2.8f,    2.575f, 10.0f,  10.3f,
+                            10.32f, -1.7f, -1.625f, 1.0f,   -1.55f, 13.0f};
     for (uint32_t v = 0; v < beams; ++v)
       for (uint32_t u = 0; u < width; ++u) {
         const uint32_t kind = rng() % 8;
-        const float r = values[rng() % 10], z = values[rng() % 10];
+        const float r = values[rng() % 12], z = values[rng() % 12];
         if (kind < 5) {
           im.Measure(v, u, rng() % 4, rng() % 2, r, z);
         } else if (kind < 7) {

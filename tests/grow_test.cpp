@@ -259,6 +259,7 @@ TEST(Grow, SmallComponentsBecomeNonGroundAndComponentsAreLabelledByTheirLowestPi
       im.Set(1, k - m / 2, kPixGround, -1.7f);  // row 1, columns 0 up
   }
   im.p.min_component = m;
+  im.p.comp_seed_share = 2.0f;  // every pixel here is a seed: keep no component for its seeds
   im.Run();
   const uint32_t comp_a = im.Pix(3, 0), comp_c = im.Pix(0, w - m / 2);
   uint32_t a = 0, b = 0, c = 0;
@@ -290,13 +291,43 @@ TEST(Grow, SmallComponentsBecomeNonGroundAndComponentsAreLabelledByTheirLowestPi
   EXPECT_EQ(im.f.pixel_label[im.Pix(4, 40)], kPixEmpty);
 }
 
+// A component under min_component stays ground when at least comp_seed_share of its pixels are
+// seeds (fused ground) and it has at least comp_seed_min pixels; one grown mostly from unknown
+// pixels, or too small, does not.
+TEST(Grow, SmallComponentsOfSeedsStayGround) {
+  Image im(64, 8);
+  im.p.min_component = 40;
+  im.p.comp_seed_min = 10;
+  im.p.comp_seed_share = 0.8f;
+  // A: 20 pixels on row 1, 16 seeds then 4 unknown grown from them: share 0.8 -> kept.
+  for (uint32_t u = 0; u < 20; ++u) im.Set(1, u, u < 16 ? kPixGround : kPixUnknown, -1.7f);
+  // B: 20 pixels on row 4, 15 seeds then 5 unknown: share 0.75 -> removed.
+  for (uint32_t u = 0; u < 20; ++u) im.Set(4, u, u < 15 ? kPixGround : kPixUnknown, -1.7f);
+  // C: 9 seeds on row 6: under comp_seed_min -> removed.
+  for (uint32_t u = 0; u < 9; ++u) im.Set(6, u, kPixGround, -1.7f);
+  im.Run();
+  for (uint32_t u = 0; u < 20; ++u) {
+    EXPECT_EQ(im.Grown(1, u), kPixGround) << "column " << u;
+    EXPECT_EQ(im.f.pixel_label[im.Pix(1, u)], kPixGround) << "column " << u;
+    EXPECT_EQ(im.Grown(4, u), kPixGround) << "column " << u;
+    EXPECT_EQ(im.f.pixel_label[im.Pix(4, u)], kPixNonGround) << "column " << u;
+  }
+  for (uint32_t u = 0; u < 9; ++u) EXPECT_EQ(im.f.pixel_label[im.Pix(6, u)], kPixNonGround);
+  im.p.comp_seed_share = 2.0f;  // above 1: no component is kept for its seeds
+  im.Run();
+  for (uint32_t u = 0; u < 20; ++u) EXPECT_EQ(im.f.pixel_label[im.Pix(1, u)], kPixNonGround);
+}
+
 TEST(Grow, ComponentLabelsAreTheLowestIndexOnRandomImages) {
   // Independent check by union-find: every ground pixel of pixel_grown carries the lowest pixel
   // index of its 8-connected component; pixel_label is ground exactly for components of at least
-  // min_component pixels.
+  // min_component pixels, or of at least comp_seed_min pixels comp_seed_share of which are seeds.
+  const float shares[] = {0.0f, 0.5f, 0.8f, 1.0f, 2.0f};
   for (uint32_t seed = 0; seed < 60; ++seed) {
     Image im = RandomImage(1000 + seed, 0.0f);
     im.p.min_component = 1 + seed % 12;
+    im.p.comp_seed_min = seed % 5;
+    im.p.comp_seed_share = shares[seed % 5];
     im.Run();
     const uint32_t w = im.p.width, h = im.p.beams, pixels = w * h;
     std::vector<uint32_t> parent(pixels);
@@ -319,16 +350,21 @@ TEST(Grow, ComponentLabelsAreTheLowestIndexOnRandomImages) {
             if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
           }
       }
-    std::vector<uint32_t> size(pixels, 0);
+    std::vector<uint32_t> size(pixels, 0), seeds(pixels, 0);
     for (uint32_t k = 0; k < pixels; ++k)
-      if (im.f.pixel_grown[k] == kPixGround) ++size[find(k)];
+      if (im.f.pixel_grown[k] == kPixGround) {
+        ++size[find(k)];
+        seeds[find(k)] += im.f.pixel_fused[k] == kPixGround;
+      }
     for (uint32_t k = 0; k < pixels; ++k) {
       if (im.f.pixel_grown[k] != kPixGround) {
         ASSERT_EQ(im.f.pixel_comp[k], kNone);
         continue;
       }
       const uint32_t root = find(k);  // the lowest index of the component (roots are minima)
-      const bool keep = size[root] >= im.p.min_component;
+      const bool by_seeds = size[root] >= im.p.comp_seed_min &&
+                            double(seeds[root]) >= double(im.p.comp_seed_share) * size[root];
+      const bool keep = size[root] >= im.p.min_component || by_seeds;
       ASSERT_EQ(im.f.pixel_label[k], keep ? kPixGround : kPixNonGround)
           << "seed " << seed << " pixel " << k;
       if (keep) {

@@ -100,7 +100,7 @@ vk::Status GrowOnGpu(const vk::Device& device, const Params& p, Frame& f, double
   b.pixel_comp = h.Out(&f.pixel_comp, pixels);
   b.pixel_label = h.Out(&f.pixel_label, pixels);
   b.grow_reach = h.Scratch(vk::GrowStage::ReachBytes(pixels));
-  b.grow_sizes = h.Scratch(4 * VkDeviceSize(pixels));
+  b.grow_sizes = h.Scratch(vk::GrowStage::SizesBytes(pixels));
   return h.Run<vk::GrowStage>(
       b,
       [&](const vk::GrowStage& s, vk::CommandBuffer& cmd) {
@@ -142,9 +142,10 @@ class GrowRunner {
       b = std::move(made).value();
     };
     make(params_, sizeof(Params));
-    for (vk::Buffer* b : {&fused_, &inten_, &height_, &range_, &grown_, &comp_, &label_, &sizes_})
+    for (vk::Buffer* b : {&fused_, &inten_, &height_, &range_, &grown_, &comp_, &label_})
       make(*b, 4 * VkDeviceSize(kMaxPixels));
     make(reach_, vk::GrowStage::ReachBytes(kMaxPixels));
+    make(sizes_, vk::GrowStage::SizesBytes(kMaxPixels));
     auto transfer = vk::Transfer::Create(device);
     ASSERT_TRUE(transfer.ok()) << transfer.status().message();
     transfer_.emplace(std::move(transfer).value());
@@ -214,12 +215,22 @@ struct Image {
   }
 };
 
+// The rule that keeps a small component of seeds, drawn: off (share above 1), at its default, or
+// at shares whose product with a size lands on a whole number of seeds (0.5, 1) or next to one
+// (0.8, 0.75).
+void SeedShare(std::mt19937& rng, Params& p) {
+  const float shares[] = {2.0f, 0.8f, 0.5f, 1.0f, 0.75f};
+  p.comp_seed_share = shares[rng() % 5];
+  p.comp_seed_min = rng() % 8;
+}
+
 Image RandomImage(uint32_t seed, float grow_grade, uint32_t max_width, uint32_t max_beams) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<uint32_t> width_pick(1, max_width), beams_pick(1, max_beams);
   Image im(width_pick(rng), beams_pick(rng));
   im.p.min_component = rng() % 16;
   im.p.grow_grade = grow_grade;
+  SeedShare(rng, im.p);
   std::discrete_distribution<int> cls({3, 2, 12, 1, 0.2});  // ground, non-ground, unknown, empty, 7
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
   const uint32_t classes[5] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, 7u};
@@ -248,6 +259,7 @@ Image MixedImage(std::mt19937& rng, uint32_t max_width, uint32_t max_beams) {
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
   im.p.min_component = rng() % 40;
   im.p.grow_grade = uni(rng) < 0.5f ? 0.0f : 0.05f;
+  SeedShare(rng, im.p);
   const double weights[5] = {1.0 + 10 * uni(rng), 1.0 + 10 * uni(rng), 1.0 + 20 * uni(rng),
                              5 * uni(rng), 0.3 * uni(rng)};
   std::discrete_distribution<int> cls(weights, weights + 5);

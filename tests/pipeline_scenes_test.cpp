@@ -104,7 +104,7 @@ Street Score(const SimScan& scan, const Frame& f) {
 constexpr double kUrbanF1Floor = 0.97;  // the target: DG F1 >= 97 %
 constexpr double kUrbanPrecisionFloor = 0.99;
 constexpr double kRampGroundFloor = 0.94;      // road points on the 8-10 % ramp labelled ground
-constexpr double kSidewalkGroundFloor = 0.92;  // sidewalk and curb points labelled ground
+constexpr double kSidewalkGroundFloor = 0.97;  // sidewalk and curb points labelled ground
 
 // Streets without a car parked right beside the sensor (see the disabled test below for those).
 TEST(PipelineScenes, UrbanStreets) {

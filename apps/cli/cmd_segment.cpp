@@ -386,12 +386,12 @@ class SegmentRun {
   size_t invalid_ = 0;  // points of those frames labelled invalid
 };
 
-// The frames the inputs name: the cloud files (folders expanded), or the drive's topic (chosen
-// by ChooseCloudTopic; *topic set to it).
+// The frames the inputs name, read one ahead (ReadAhead): the cloud files (folders expanded), or
+// the drive's topic (chosen by ChooseCloudTopic; *topic set to it).
 // A drive whose topics cannot be listed (damage where a .db3 keeps its counts) is still read
 // up to the damage when --topic names the topic: a warning then, and no count for the progress.
 std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic) {
-  if (!a.drive) return OpenFileSource(ListInputs(a.inputs), a.read);
+  if (!a.drive) return ReadAhead(OpenFileSource(ListInputs(a.inputs), a.read));
   const std::string& drive = a.inputs[0];
   std::unique_ptr<DriveReader> reader = OpenDrive(drive);
   std::vector<DriveTopic> topics;
@@ -410,7 +410,7 @@ std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic
   size_t count = 0;
   for (const DriveTopic& t : topics)
     if (t.name == *topic) count = size_t(t.messages);
-  return OpenDriveSource(drive, std::move(reader), *topic, count, a.format == "mcap");
+  return ReadAhead(OpenDriveSource(drive, std::move(reader), *topic, count, a.format == "mcap"));
 }
 
 }  // namespace

@@ -1,10 +1,14 @@
 // segment's frame sources (see frame_source.h).
 #include "apps/cli/frame_source.h"
 
+#include <condition_variable>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "host/io/io_error.h"
@@ -113,7 +117,75 @@ class DriveSource : public FrameSource {
   bool keep_;
 };
 
+class ReadAheadSource : public FrameSource {
+ public:
+  explicit ReadAheadSource(std::unique_ptr<FrameSource> source)
+      : source_(std::move(source)), reader_([this] { Read(); }) {}
+  ~ReadAheadSource() override {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    reader_.join();
+  }
+  size_t count() const override { return source_->count(); }
+  const char* unit() const override { return source_->unit(); }
+  SourceStep Next(FrameInput* in, std::string* error) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return ready_.has_value(); });
+    Slot slot = std::move(*ready_);
+    ready_.reset();
+    lock.unlock();
+    changed_.notify_all();
+    if (slot.exception) std::rethrow_exception(slot.exception);
+    *in = std::move(slot.in);
+    *error = std::move(slot.error);
+    return slot.step;
+  }
+
+ private:
+  struct Slot {
+    FrameInput in;
+    std::string error;
+    SourceStep step = SourceStep::kEnd;
+    std::exception_ptr exception;
+  };
+
+  // The second thread: reads a frame, waits until the last one was taken, hands it over; ends
+  // after the source's end or an exception, or when the source is destroyed.
+  void Read() {
+    for (;;) {
+      Slot slot;
+      try {
+        slot.step = source_->Next(&slot.in, &slot.error);
+      } catch (...) {
+        slot.exception = std::current_exception();
+      }
+      const bool last = slot.step == SourceStep::kEnd || slot.exception;
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait(lock, [this] { return stop_ || !ready_.has_value(); });
+      if (stop_) return;
+      ready_ = std::move(slot);
+      lock.unlock();
+      changed_.notify_all();
+      if (last) return;
+    }
+  }
+
+  std::unique_ptr<FrameSource> source_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::optional<Slot> ready_;
+  bool stop_ = false;
+  std::thread reader_;  // last: started once everything it uses is built
+};
+
 }  // namespace
+
+std::unique_ptr<FrameSource> ReadAhead(std::unique_ptr<FrameSource> source) {
+  return std::make_unique<ReadAheadSource>(std::move(source));
+}
 
 std::unique_ptr<FrameSource> OpenFileSource(std::vector<std::string> files, ReadOptions read) {
   return std::make_unique<FileSource>(std::move(files), read);

@@ -62,4 +62,9 @@ std::unique_ptr<FrameSource> OpenDriveSource(const std::string& drive,
                                              const std::string& topic, size_t count,
                                              bool keep_messages);
 
+// `source` read one frame ahead on a second thread: while the caller segments a frame, the next
+// is read and decoded. Frames, failures and their order are `source`'s; at most one frame waits
+// read. An exception from `source` reaches the caller's Next in its place.
+std::unique_ptr<FrameSource> ReadAhead(std::unique_ptr<FrameSource> source);
+
 }  // namespace lpir

@@ -24,7 +24,7 @@ struct GrowBuffers {
   const Buffer* pixel_comp = nullptr;   // out: uint32 component label per pixel, kNone off ground
   const Buffer* pixel_label = nullptr;  // out: uint32 kPix* per pixel
   const Buffer* grow_reach = nullptr;   // uint32 per pixel + 1 (ReachBytes): growing's union-find
-  const Buffer* grow_sizes = nullptr;   // uint32 per pixel: component sizes
+  const Buffer* grow_sizes = nullptr;   // 2 uint32 per pixel (SizesBytes): sizes, seed counts
 };
 
 class GrowStage {
@@ -34,6 +34,8 @@ class GrowStage {
 
   // The grow_reach buffer's size for an image of `pixels` pixels.
   static VkDeviceSize ReachBytes(uint64_t pixels) { return 4 * (VkDeviceSize(pixels) + 1); }
+  // The grow_sizes buffer's size: each component's size, then its seed count, by root pixel.
+  static VkDeviceSize SizesBytes(uint64_t pixels) { return 8 * VkDeviceSize(pixels); }
 
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers);
   // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).

@@ -78,8 +78,15 @@ struct Params {
                      // as range^2 * beam spacing / sensor height)
   float occ_front;   // m, ... and, for a pixel whose class is ground, nearer than range + this (an
                      // object standing farther behind such a pixel leaves it ground)
-  uint pad1;
-  uint pad2;
+  // --- our addition: stage 7 fuse, a step in the ground is not an occluder (see fuse.cpp) ---
+  uint occ_step_rows;    // rows above an occluded pixel searched for the step's shape (0: none)
+  float occ_step;        // m, the tallest step in the ground (a curb) that spares the pixel ...
+  float occ_step_grade;  // ... plus this times how far beyond the pixel the pixel above lies
+  float occ_step_reach;  // m, pixels above farther than range + this are not looked at
+  // --- our addition: stage 8 grow, a small component of seeds stays ground (see grow.cpp) ---
+  uint comp_seed_min;     // pixels: a component smaller than this is non-ground whatever it holds
+  float comp_seed_share;  // a component under min_component stays ground when at least this share
+                          // of its pixels are seeds (fused ground); above 1: never
 };
 
 #ifdef __cplusplus
