@@ -532,7 +532,7 @@ void ExpectDamagedMiddle(const Walk& walk, const std::vector<std::string>& words
   ASSERT_EQ(walk.damages.size(), 1u);
   EXPECT_EQ(walk.damage_after[0], 1u);
   EXPECT_NE(walk.damages[0].find("chunk 2 at byte"), std::string::npos) << walk.damages[0];
-  EXPECT_NE(walk.damages[0].find("(after 1 messages of /points)"), std::string::npos)
+  EXPECT_NE(walk.damages[0].find("(after 1 message of /points)"), std::string::npos)
       << walk.damages[0];
   for (const std::string& word : words) {
     EXPECT_NE(walk.damages[0].find(word), std::string::npos) << word << ": " << walk.damages[0];

@@ -435,7 +435,7 @@ TEST_F(Ros1BagTest, CutMidChunkNamesTheChunk) {
   ASSERT_EQ(steps.size(), 5u + 1 + 1);
   const std::string& problem = steps[5].problem;
   EXPECT_EQ(steps[5].kind, DriveStep::kDamage);
-  EXPECT_NE(problem.find("chunk 2 at byte " + std::to_string(bag.chunk_pos[2])), std::string::npos)
+  EXPECT_NE(problem.find("chunk 3 at byte " + std::to_string(bag.chunk_pos[2])), std::string::npos)
       << problem;
   EXPECT_NE(problem.find("truncated"), std::string::npos) << problem;
 }
@@ -494,7 +494,7 @@ TEST_F(Ros1BagTest, DamagedChunkIsReportedAndReadingGoesOn) {
                                        [](const Step& s) { return s.kind == DriveStep::kDamage; });
       EXPECT_EQ(damage - steps.begin(), 3) << "after chunk 0's messages, before chunk 2's";
       EXPECT_NE(damage->problem.find(path), std::string::npos) << damage->problem;
-      EXPECT_NE(damage->problem.find("chunk 1 at byte " + std::to_string(bag.chunk_pos[1])),
+      EXPECT_NE(damage->problem.find("chunk 2 at byte " + std::to_string(bag.chunk_pos[1])),
                 std::string::npos)
           << damage->problem;
       EXPECT_NE(damage->problem.find(c.words), std::string::npos) << damage->problem;

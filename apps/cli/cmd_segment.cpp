@@ -490,9 +490,13 @@ int RunSegment(int argc, char** argv) {
   }  // the progress line ends here, above the summary
   std::fputs(summary.c_str(), stdout);
   if (failures) {
-    const std::string of = total || !a.drive ? " of " + std::to_string(total) : "";
-    std::fprintf(stderr, "lpir-gseg segment: %zu%s %s failed\n", failures, of.c_str(),
-                 a.drive ? "messages or damaged parts" : "files");
+    if (a.drive)  // a damaged part may hold any number of messages: counted apart from them
+      std::fprintf(stderr,
+                   "lpir-gseg segment: %s: %zu problem%s (damaged parts, or messages that do not "
+                   "decode, each named above); every other message labelled\n",
+                   a.inputs[0].c_str(), failures, failures == 1 ? "" : "s");
+    else
+      std::fprintf(stderr, "lpir-gseg segment: %zu of %zu files failed\n", failures, total);
     return kExitSomeFailed;
   }
   return kExitOk;

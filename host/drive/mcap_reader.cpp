@@ -200,7 +200,7 @@ class McapReader : public DriveReader {
       }
       if (!damage_.empty()) {
         *problem = path_ + ": " + damage_ + " (after " + std::to_string(sequence_) +
-                   " messages of " + topic_ + ")";
+                   (sequence_ == 1 ? " message" : " messages") + " of " + topic_ + ")";
         damage_.clear();
         return DriveStep::kDamage;
       }

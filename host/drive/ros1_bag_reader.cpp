@@ -314,7 +314,8 @@ class Ros1Bag : public DriveReader {
  private:
   // kDamage with `what` and how many of the topic's messages came before it.
   DriveStep Damaged(const std::string& what, std::string* problem) const {
-    *problem = what + " (after " + std::to_string(sequence_) + " messages of " + topic_ + ")";
+    *problem = what + " (after " + std::to_string(sequence_) +
+               (sequence_ == 1 ? " message" : " messages") + " of " + topic_ + ")";
     return DriveStep::kDamage;
   }
 
@@ -337,7 +338,8 @@ class Ros1Bag : public DriveReader {
   }
 
   std::string ChunkWhere(uint32_t c) const {
-    return "chunk " + std::to_string(c) + " at byte " + std::to_string(chunks_[c]);
+    return "chunk " + std::to_string(c + 1) + " at byte " +
+           std::to_string(chunks_[c]);  // 1-based, as MCAP's
   }
 
   // The record at `pos`: its lengths checked against the file. Broken when the file ends inside
