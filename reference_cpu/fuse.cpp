@@ -70,36 +70,29 @@ void Occlude(const uint32_t* __restrict above_filled, const float* __restrict ab
   }
 }
 
-// The step bounds of one row's pixels: far = Ftz0(r + occ_step_reach), base = Ftz0(z + occ_step).
-void StepBounds(const Params& p, const float* __restrict range, const float* __restrict height,
-                uint32_t w, float* __restrict far, float* __restrict base) {
-  const float reach = p.occ_step_reach, step = p.occ_step;
-  for (uint32_t u = 0; u < w; ++u) {
-    far[u] = exact::Ftz0(range[u] + reach);
-    base[u] = exact::Ftz0(height[u] + step);
-  }
-}
-
-// Adds one row above to the step marks of a row's pixels. A pixel above counts when it is filled
-// and nearer than far; it is steep when higher than base + occ_step_grade * max(d, 0), d = its
-// range - the pixel's, and a landing when of class ground with d > 0. The first row above sets the
-// marks, the next ones add to them.
-void Step(const Params& p, const uint32_t* __restrict above_filled,
-          const uint32_t* __restrict above_cls, const float* __restrict above_range,
-          const float* __restrict above_height, const float* __restrict range,
-          const float* __restrict far, const float* __restrict base, uint32_t w, bool first,
-          uint32_t* __restrict steep, uint32_t* __restrict landing) {
+// Whether the occluded pixel i (row v, range r, height z) is spared as a step: over the rows
+// above, i - k w for k = 1 .. rows, a pixel counts when it is filled and nearer than far =
+// Ftz0(r + occ_step_reach); it is steep when higher than Ftz0(base + Ftz0(occ_step_grade *
+// max(d, 0))), base = Ftz0(z + occ_step) and d = Ftz0(its range - r), and a landing when of class
+// ground with d > 0. Spared: a landing and nothing steep. Only occluded pixels ask (a minority:
+// the feet of objects), so the test runs per pixel.
+bool SparedStep(const Params& p, const uint32_t* __restrict filled, const uint32_t* __restrict cls,
+                const float* __restrict range, const float* __restrict height, uint32_t i,
+                uint32_t w, uint32_t rows) {
+  const float r = range[i];
+  const float far = exact::Ftz0(r + p.occ_step_reach);
+  const float base = exact::Ftz0(height[i] + p.occ_step);
   const float grade = p.occ_step_grade;
-  for (uint32_t u = 0; u < w; ++u) {
-    const float d = exact::Ftz0(above_range[u] - range[u]);
+  bool landing = false;
+  for (uint32_t k = 1; k <= rows; ++k) {  // the first steep pixel decides: not spared
+    const uint32_t a = i - k * w;
+    if (!filled[a] || !(range[a] < far)) continue;
+    const float d = exact::Ftz0(range[a] - r);
     const float beyond = d > 0.0f ? d : 0.0f;
-    const float bound = exact::Ftz0(base[u] + exact::Ftz0(grade * beyond));
-    const uint32_t counts = uint32_t(above_filled[u] != 0) & uint32_t(above_range[u] < far[u]);
-    const uint32_t high = counts & uint32_t(above_height[u] > bound);
-    const uint32_t ground = counts & uint32_t(above_cls[u] == kPixGround) & uint32_t(d > 0.0f);
-    steep[u] = first ? high : steep[u] | high;
-    landing[u] = first ? ground : landing[u] | ground;
+    if (height[a] > exact::Ftz0(base + exact::Ftz0(grade * beyond))) return false;
+    landing = landing || (cls[a] == kPixGround && d > 0.0f);
   }
+  return landing;
 }
 
 // The coarse label of each pixel's winning point, kNoOpinion where the pixel has none.
@@ -143,8 +136,8 @@ void Fuse(const Params& p, Frame& f) {
   const float* __restrict height = f.f_height.data();
   uint32_t* __restrict fused = f.pixel_fused.data();
   // Pieces of rows, so that the scratch stays in the L1 cache.
-  float reach[kPiece], top[kPiece], far[kPiece], base[kPiece];
-  uint32_t occluded[kPiece], opinion[kPiece], steep[kPiece], landing[kPiece];
+  float reach[kPiece], top[kPiece];
+  uint32_t occluded[kPiece], opinion[kPiece];
   for (uint32_t v = 0; v < h; ++v) {
     // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
     const uint32_t rows_above = p.occ_rows < v ? p.occ_rows : v;
@@ -158,16 +151,9 @@ void Fuse(const Params& p, Frame& f) {
           Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);
         }
         if (step_rows) {
-          StepBounds(p, range + at, height + at, n, far, base);
-          for (uint32_t k = 1; k <= step_rows; ++k) {
-            const uint32_t above = at - k * w;
-            Step(p, filled + above, cls + above, range + above, height + above, range + at, far,
-                 base, n, k == 1, steep, landing);
-          }
-          for (uint32_t u = 0; u < n; ++u) {
-            const uint32_t spared = landing[u] & (steep[u] ^ 1u);
-            occluded[u] &= spared ^ 1u;
-          }
+          for (uint32_t u = 0; u < n; ++u)
+            if (occluded[u] && SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
+              occluded[u] = 0;
         }
       } else {
         for (uint32_t u = 0; u < n; ++u) occluded[u] = 0;
