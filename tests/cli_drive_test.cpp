@@ -21,6 +21,7 @@
 #include "host/drive/pointcloud2.h"
 #include "host/io/label_file.h"
 #include "host/io/pcd.h"
+#include "tests/drive_fixtures.h"
 #include "tests/io_test_helpers.h"
 #include "tests/test_util.h"
 
@@ -32,14 +33,6 @@ namespace {
 const char kTopic[] = "/velodyne_points";
 constexpr long long kFirstStampNs = 1600000000LL * 1000000000LL;  // then 100 ms apart
 constexpr size_t kFrames = 3;
-
-std::string DrivesDir() {
-#ifdef LPIR_TEST_DATA_DIR
-  return test::EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) + std::string("/drives");
-#else
-  return test::SensorsDir() + "/../tests/data/drives";
-#endif
-}
 
 std::string Cli() { return test::CliPath(); }
 
@@ -58,19 +51,7 @@ std::string Name(size_t i) {
   return name;
 }
 
-std::string FrameBase(size_t i) { return DrivesDir() + "/frames/" + Name(i); }
-
-// Frame i as the writers wrote it: the .bin's floats and the .ring's uint16 values.
-Cloud FrameWithRing(size_t i) {
-  const std::string bin = test::ReadRaw(FrameBase(i) + ".bin");
-  const std::string ring = test::ReadRaw(FrameBase(i) + ".ring");
-  Cloud cloud;
-  cloud.xyzi.resize(bin.size() / 4);
-  std::memcpy(cloud.xyzi.data(), bin.data(), cloud.xyzi.size() * 4);
-  for (size_t k = 0; k + 1 < ring.size(); k += 2)
-    cloud.ring.push_back(int32_t(uint8_t(ring[k])) | int32_t(uint8_t(ring[k + 1])) << 8);
-  return cloud;
-}
+std::string FrameBase(size_t i) { return test::FixtureFrameBase(i); }
 
 // `segment` of the fixture frames given as files, once per run: with their rings (PCD files
 // written here, as the drives carry them) and as the committed .bin files (no ring).
@@ -82,7 +63,7 @@ struct Reference {
     for (size_t i = 0; i < kFrames; ++i) {
       char name[16];
       std::snprintf(name, sizeof(name), "/%06zu.pcd", i);
-      WritePcd(dir.path + name, FrameWithRing(i), nullptr, true);
+      WritePcd(dir.path + name, test::FixtureFrame(i), nullptr, true);
       args += " " + dir.path + name;
     }
     std::string log;
@@ -91,8 +72,8 @@ struct Reference {
                                &log),
               0)
         << log;
-    EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() + "/frames --sensor " + sensor +
-                                   " --backend cpu --quiet --out " + dir.path + "/bin",
+    EXPECT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() + "/frames --sensor " +
+                                   sensor + " --backend cpu --quiet --out " + dir.path + "/bin",
                                &log),
               0)
         << log;
@@ -139,21 +120,11 @@ std::vector<std::string> Split(const std::string& line, char sep) {
   return out;
 }
 
-// The .label files in `dir`, by name.
-std::vector<std::string> LabelFiles(const std::string& dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec))
-    if (e.path().extension() == ".label") names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 // The label file in `dir` of the message with frame i's stamp ("" when none): the sequence a
 // reader gives a message after damage is its place among those yielded.
 std::string LabelOfStamp(const std::string& dir, size_t frame) {
   const std::string suffix = "_" + std::to_string(StampNs(frame)) + ".label";
-  for (const std::string& name : LabelFiles(dir))
+  for (const std::string& name : test::LabelFiles(dir))
     if (name.size() > suffix.size() &&
         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
       return test::ReadFileBytes(dir + "/" + name);
@@ -171,7 +142,7 @@ const Kind kKinds[] = {
     {"vlp16_bz2.bag", false, true},   {"vlp16_lz4.bag", false, true},
 };
 
-std::string DrivePath(const Kind& k) { return DrivesDir() + "/" + k.file; }
+std::string DrivePath(const Kind& k) { return test::DrivesDir() + "/" + k.file; }
 
 class CliDrive : public ::testing::TestWithParam<Kind> {
  protected:
@@ -195,9 +166,9 @@ TEST_P(CliDrive, LabelsEveryMessageAsSegmentLabelsTheSameFrameAsAFile) {
     const std::string labels = test::ReadFileBytes(out.path + "/" + LabelName(i, i));
     ASSERT_FALSE(labels.empty()) << LabelName(i, i) << " missing; " << log;
     EXPECT_EQ(labels, Ref().Ring(i)) << "message " << i;
-    EXPECT_EQ(labels.size(), FrameWithRing(i).size() * 4);
+    EXPECT_EQ(labels.size(), test::FixtureFrame(i).size() * 4);
   }
-  EXPECT_EQ(LabelFiles(out.path), expected_names);
+  EXPECT_EQ(test::LabelFiles(out.path), expected_names);
   EXPECT_NE(log.find("progress: 3/3"), std::string::npos) << log;  // piped: plain lines
   EXPECT_NE(log.find("segmented 3 of 3 messages of /velodyne_points"), std::string::npos) << log;
 }
@@ -220,7 +191,7 @@ TEST_P(CliDrive, IndexListsEveryMessage) {
     EXPECT_EQ(f[0], std::to_string(i));
     EXPECT_EQ(f[1], std::to_string(StampNs(i)));
     EXPECT_EQ(f[2], kTopic);
-    const size_t n = FrameWithRing(i).size();
+    const size_t n = test::FixtureFrame(i).size();
     EXPECT_EQ(f[3], std::to_string(n));
     size_t ground = 0;
     for (uint32_t l : ReadLabelFile(out.path + "/" + LabelName(i, i), n)) ground += l;
@@ -289,7 +260,7 @@ TEST_P(CliDrive, FormatMcapHoldsTheTopicAndItsLabelsReadBackByOurReader) {
       << log;
   const std::string mcap = out.path + "/" + fs::path(drive).stem().string() + ".mcap";
   ASSERT_TRUE(fs::exists(mcap)) << log;
-  EXPECT_EQ(LabelFiles(out.path), std::vector<std::string>{});
+  EXPECT_EQ(test::LabelFiles(out.path), std::vector<std::string>{});
   std::vector<DriveTopic> topics = OpenDrive(mcap)->Topics();
   std::sort(topics.begin(), topics.end(),
             [](const DriveTopic& a, const DriveTopic& b) { return a.name < b.name; });
@@ -313,8 +284,8 @@ TEST_P(CliDrive, FormatMcapHoldsTheTopicAndItsLabelsReadBackByOurReader) {
     if (!GetParam().bag) {
       EXPECT_EQ(copied[i].data, input[i].data) << "copied as it was";
     }
-    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, copied[i]), FrameWithRing(i)));
-    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, ground[i]), FrameWithRing(i)));
+    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, copied[i]), test::FixtureFrame(i)));
+    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, ground[i]), test::FixtureFrame(i)));
     EXPECT_EQ(LabelFieldAsLabelFile(ground[i]), Ref().Ring(i)) << "message " << i;
     const PointCloud2 in =
         GetParam().bag ? ParseRos1PointCloud2("in", input[i].data.data(), input[i].data.size())
@@ -335,13 +306,13 @@ TEST(CliDriveMcap, StandardMcapToolsReadTheLabelledOutput) {
     GTEST_SKIP() << "node or " << tools << "/node_modules absent (npm ci there)";
   test::ScopedDir out;
   std::string log;
-  ASSERT_EQ(
-      test::RunCommand(Cli() + " segment " + DrivesDir() + "/vlp16_zstd.mcap --sensor " + Sensor() +
-                           " --backend cpu --format mcap "
-                           "--quiet --out " +
-                           out.path,
-                       &log),
-      0)
+  ASSERT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() +
+                                 "/vlp16_zstd.mcap --sensor " + Sensor() +
+                                 " --backend cpu --format mcap "
+                                 "--quiet --out " +
+                                 out.path,
+                             &log),
+            0)
       << log;
   EXPECT_EQ(test::RunCommand("node " + tools + "/read_mcap.mjs " + out.path +
                                  "/vlp16_zstd.mcap --expect " + kTopic + ":3 --expect " + kTopic +
@@ -439,7 +410,7 @@ TEST_P(CliDamagedDrive, CutMidChunkLabelsEveryMessageBeforeItNamesItAndExits1) {
   for (size_t i = 0; i + 1 < kFrames; ++i)
     EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(i, i)), Ref().Ring(i))
         << "message " << i << "; " << log;
-  EXPECT_EQ(LabelFiles(dir.path + "/out").size(), kFrames - 1) << log;
+  EXPECT_EQ(test::LabelFiles(dir.path + "/out").size(), kFrames - 1) << log;
   EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
   EXPECT_EQ(Lines(test::ReadFileBytes(dir.path + "/out/index.csv")).size(), kFrames) << log;
 }
@@ -472,7 +443,7 @@ TEST_P(CliDamagedDrive, AnUnknownCompressionLabelsTheOtherMessagesNamesItAndExit
 TEST(CliDamagedDb3, CutInItsLastPageLabelsTheMessagesBeforeItWhenTheTopicIsNamed) {
   test::ScopedDir dir;
   const std::string path = dir.path + "/vlp16.db3";
-  const std::string bytes = test::ReadRaw(DrivesDir() + "/vlp16.db3");
+  const std::string bytes = test::ReadRaw(test::DrivesDir() + "/vlp16.db3");
   ASSERT_GT(bytes.size(), 2048u);
   test::WriteRaw(path, bytes.substr(0, bytes.size() - 2048));
   const std::string segment =
@@ -483,7 +454,7 @@ TEST(CliDamagedDb3, CutInItsLastPageLabelsTheMessagesBeforeItWhenTheTopicIsNamed
   EXPECT_EQ(test::RunCommand(segment + "/b --topic " + kTopic, &log), 1) << log;
   for (size_t i = 0; i + 1 < kFrames; ++i)
     EXPECT_EQ(test::ReadFileBytes(dir.path + "/b/" + LabelName(i, i)), Ref().Ring(i)) << log;
-  EXPECT_EQ(LabelFiles(dir.path + "/b").size(), kFrames - 1) << log;
+  EXPECT_EQ(test::LabelFiles(dir.path + "/b").size(), kFrames - 1) << log;
   EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
   EXPECT_NE(log.find("segmented 2 messages of /velodyne_points"), std::string::npos) << log;
 }
@@ -507,7 +478,7 @@ TEST_P(CliFlippedDrive, AFlippedByteLabelsTheOtherMessagesNamesItAndExits1) {
   EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(0, 0)), Ref().Ring(0)) << log;
   EXPECT_EQ(LabelOfStamp(dir.path + "/out", 2), Ref().Ring(2)) << log;
   EXPECT_EQ(LabelOfStamp(dir.path + "/out", 1), "") << log;
-  EXPECT_EQ(LabelFiles(dir.path + "/out").size(), 2u) << log;
+  EXPECT_EQ(test::LabelFiles(dir.path + "/out").size(), 2u) << log;
   EXPECT_NE(log.find("lpir-gseg segment: error: " + path), std::string::npos) << log;
   // the report: the two frames and the damage, in that order, the damage with its error
   const std::vector<std::string> rows = Lines(test::ReadFileBytes(dir.path + "/r.csv"));
@@ -580,7 +551,7 @@ TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles)
       << log;
   EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(0, 0)), Ref().Bin(0)) << log;
   EXPECT_EQ(test::ReadFileBytes(dir.path + "/out/" + LabelName(2, 2)), Ref().Bin(2)) << log;
-  EXPECT_EQ(LabelFiles(dir.path + "/out").size(), 2u) << log;
+  EXPECT_EQ(test::LabelFiles(dir.path + "/out").size(), 2u) << log;
   EXPECT_NE(log.find("lpir-gseg segment: error: " + path + ": /points message 1"),
             std::string::npos)
       << log;
@@ -604,8 +575,8 @@ TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles)
 TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
   test::ScopedDir dir;
   std::string log;
-  EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() + "/vlp16.db3 " + FrameBase(0) +
-                                 ".bin --sensor vlp16 --out " + dir.path,
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() + "/vlp16.db3 " +
+                                 FrameBase(0) + ".bin --sensor vlp16 --out " + dir.path,
                              &log),
             2);
   EXPECT_NE(log.find("on its own"), std::string::npos) << log;
@@ -619,20 +590,20 @@ TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
 TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {
   test::ScopedDir dir;
   const std::string drive = dir.path + "/vlp16_zstd.mcap";
-  test::WriteRaw(drive, test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
+  test::WriteRaw(drive, test::ReadRaw(test::DrivesDir() + "/vlp16_zstd.mcap"));
   std::string log;
   EXPECT_EQ(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
                                  " --backend cpu --format mcap --out " + dir.path,
                              &log),
             2);
   EXPECT_NE(log.find("is the drive being read"), std::string::npos) << log;
-  EXPECT_EQ(test::ReadRaw(drive), test::ReadRaw(DrivesDir() + "/vlp16_zstd.mcap"));
+  EXPECT_EQ(test::ReadRaw(drive), test::ReadRaw(test::DrivesDir() + "/vlp16_zstd.mcap"));
 }
 
 TEST(CliDriveArgs, AnAbsentTopicIsNamedWithTheTopicsThereAre) {
   test::ScopedDir dir;
   std::string log;
-  EXPECT_EQ(test::RunCommand(Cli() + " segment " + DrivesDir() +
+  EXPECT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() +
                                  "/vlp16.db3 --topic /nope --sensor vlp16 --out " + dir.path,
                              &log),
             2);

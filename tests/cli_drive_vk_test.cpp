@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/drive_fixtures.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -15,23 +16,7 @@ namespace fs = std::filesystem;
 namespace lpir {
 namespace {
 
-std::string Drive() {
-#ifdef LPIR_TEST_DATA_DIR
-  return test::EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) +
-         std::string("/drives/vlp16_zstd.mcap");
-#else
-  return test::SensorsDir() + "/../tests/data/drives/vlp16_zstd.mcap";
-#endif
-}
-
-std::vector<std::string> Labels(const std::string& dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec))
-    if (e.path().extension() == ".label") names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::string Drive() { return test::DrivesDir() + "/vlp16_zstd.mcap"; }
 
 TEST(CliDriveVulkan, LabelsEqualTheReferenceInFlightAndInBatches) {
   LPIR_REQUIRE_VULKAN();
@@ -39,7 +24,7 @@ TEST(CliDriveVulkan, LabelsEqualTheReferenceInFlightAndInBatches) {
   const std::string segment = test::CliPath() + " segment " + Drive() + " --sensor vlp16 --out ";
   std::string log;
   ASSERT_EQ(test::RunCommand(segment + dir.path + "/cpu --backend cpu --quiet", &log), 0) << log;
-  const std::vector<std::string> names = Labels(dir.path + "/cpu");
+  const std::vector<std::string> names = test::LabelFiles(dir.path + "/cpu");
   ASSERT_EQ(names.size(), 3u) << log;
   size_t ground = 0;
   for (const std::string& name : names)
@@ -52,7 +37,7 @@ TEST(CliDriveVulkan, LabelsEqualTheReferenceInFlightAndInBatches) {
                                &log),
               0)
         << log;
-    EXPECT_EQ(Labels(out), names) << "--batch " << batch;
+    EXPECT_EQ(test::LabelFiles(out), names) << "--batch " << batch;
     for (const std::string& name : names)
       EXPECT_EQ(test::ReadFileBytes(out + "/" + name),
                 test::ReadFileBytes(dir.path + "/cpu/" + name))

@@ -3,6 +3,8 @@
 // copies of them made here: truncated mid-chunk, a flipped byte in a chunk, an unknown
 // compression. The chunks are found by walking the files' records in this test, not by the
 // readers under test.
+#include "tests/drive_fixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,10 +27,6 @@ const char kTopic[] = "/velodyne_points";
 constexpr uint64_t kFirstStampNs = 1600000000ull * 1000000000ull;  // then 100 ms apart
 constexpr size_t kFrames = 3;
 
-std::string DrivesDir() {
-  return test::EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) + std::string("/drives");
-}
-
 enum class Container { kMcap, kDb3, kBag };
 
 struct Fixture {
@@ -48,7 +46,7 @@ const Fixture kFixtures[] = {
     {"vlp16_lz4.bag", Container::kBag, "sensor_msgs/PointCloud2", "ros1", "lz4"},
 };
 
-std::string FixturePath(const Fixture& f) { return DrivesDir() + "/" + f.file; }
+std::string FixturePath(const Fixture& f) { return test::DrivesDir() + "/" + f.file; }
 
 // gtest's name for a fixture in test names and listings: its file name.
 void PrintTo(const Fixture& f, std::ostream* os) { *os << f.file; }
@@ -57,21 +55,6 @@ std::string FixtureName(const ::testing::TestParamInfo<Fixture>& info) {
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return name;
-}
-
-// Frame i as the writers read it: the .bin's floats and the .ring's uint16 values.
-Cloud ExpectedFrame(size_t i) {
-  char name[16];
-  std::snprintf(name, sizeof(name), "%06zu", i);
-  const std::string base = DrivesDir() + "/frames/" + name;
-  const std::string bin = test::ReadRaw(base + ".bin");
-  const std::string ring = test::ReadRaw(base + ".ring");
-  Cloud cloud;
-  cloud.xyzi.resize(bin.size() / 4);
-  std::memcpy(cloud.xyzi.data(), bin.data(), cloud.xyzi.size() * 4);
-  for (size_t k = 0; k + 1 < ring.size(); k += 2)
-    cloud.ring.push_back(int32_t(uint8_t(ring[k])) | int32_t(uint8_t(ring[k + 1])) << 8);
-  return cloud;
 }
 
 std::string Lower(std::string s) {
@@ -117,7 +100,7 @@ ReadOut ReadAll(const std::string& path, const std::string& topic) {
   } catch (const IoError& e) {
     return ::testing::AssertionFailure() << "cannot decode: " << e.what();
   }
-  const ::testing::AssertionResult same = test::SameBits(cloud, ExpectedFrame(frame));
+  const ::testing::AssertionResult same = test::SameBits(cloud, test::FixtureFrame(frame));
   if (!same) return ::testing::AssertionFailure() << "frame " << frame << ": " << same.message();
   return ::testing::AssertionSuccess();
 }
