@@ -372,15 +372,28 @@ Cloud CloudFromPointCloud2(const std::string& where, const PointCloud2& cloud) {
       roles.ring ? ReaderFor<DoubleFn, DoubleReader>(roles.ring->datatype, big) : nullptr;
   out.xyzi.resize(points * 4);
   if (roles.ring) out.ring.resize(points);
+  // The layout drivers publish (x, y, z and intensity float32, little-endian: the host's, as Load
+  // takes it) is read by plain copies, which compile to loads; any other by the field readers.
+  const bool plain = !big && roles.intensity && roles.intensity->datatype == kPfFloat32 &&
+                     roles.xyz[0]->datatype == kPfFloat32 && roles.xyz[1]->datatype == kPfFloat32 &&
+                     roles.xyz[2]->datatype == kPfFloat32;
+  const uint32_t intensity_at = roles.intensity ? roles.intensity->offset : 0;
   size_t i = 0;
   for (uint32_t row = 0; row < cloud.height; ++row) {
     const uint8_t* record = cloud.data.data() + uint64_t(row) * cloud.row_step;
     for (uint32_t col = 0; col < cloud.width; ++col, ++i, record += cloud.point_step) {
       float* xyzi = &out.xyzi[4 * i];
-      xyzi[0] = xyz_read[0](record + xyz_at[0]);
-      xyzi[1] = xyz_read[1](record + xyz_at[1]);
-      xyzi[2] = xyz_read[2](record + xyz_at[2]);
-      xyzi[3] = intensity_read ? intensity_read(record + roles.intensity->offset) : 0.0f;
+      if (plain) {
+        std::memcpy(&xyzi[0], record + xyz_at[0], 4);
+        std::memcpy(&xyzi[1], record + xyz_at[1], 4);
+        std::memcpy(&xyzi[2], record + xyz_at[2], 4);
+        std::memcpy(&xyzi[3], record + intensity_at, 4);
+      } else {
+        xyzi[0] = xyz_read[0](record + xyz_at[0]);
+        xyzi[1] = xyz_read[1](record + xyz_at[1]);
+        xyzi[2] = xyz_read[2](record + xyz_at[2]);
+        xyzi[3] = intensity_read ? intensity_read(record + intensity_at) : 0.0f;
+      }
       if (ring_read) {
         const double value = ring_read(record + roles.ring->offset);
         if (!RingFromValue(value, &out.ring[i])) {
