@@ -36,37 +36,39 @@ size_t TypeSize(uint8_t type) {
   }
 }
 
-// Stores `value` converted to `type` at p, byte-swapped when big-endian.
+// Stores `value` converted to `type` at p, byte-swapped when big-endian. Integer types take it
+// through int64_t, whose conversion to a narrower type wraps (a negative value into an unsigned
+// field is defined that way, not by the float conversion).
 void Store(uint8_t* p, uint8_t type, double value, bool big) {
   uint8_t b[8] = {};
   switch (type) {
     case kPfInt8: {
-      const int8_t v = int8_t(value);
+      const int8_t v = int8_t(int64_t(value));
       std::memcpy(b, &v, 1);
       break;
     }
     case kPfUint8: {
-      const uint8_t v = uint8_t(value);
+      const uint8_t v = uint8_t(int64_t(value));
       std::memcpy(b, &v, 1);
       break;
     }
     case kPfInt16: {
-      const int16_t v = int16_t(value);
+      const int16_t v = int16_t(int64_t(value));
       std::memcpy(b, &v, 2);
       break;
     }
     case kPfUint16: {
-      const uint16_t v = uint16_t(value);
+      const uint16_t v = uint16_t(int64_t(value));
       std::memcpy(b, &v, 2);
       break;
     }
     case kPfInt32: {
-      const int32_t v = int32_t(value);
+      const int32_t v = int32_t(int64_t(value));
       std::memcpy(b, &v, 4);
       break;
     }
     case kPfUint32: {
-      const uint32_t v = uint32_t(value);
+      const uint32_t v = uint32_t(int64_t(value));
       std::memcpy(b, &v, 4);
       break;
     }

@@ -20,13 +20,39 @@ size_t LargestAllocationDuring(F&& run) {
 
 }  // namespace lpir::test
 
-// noinline: GCC would otherwise see free() of a `new` pointer at each call site and warn.
-__attribute__((noinline)) void* operator new(std::size_t size) {
-  size_t largest = lpir::test::g_largest_allocation.load();
-  while (size > largest && !lpir::test::g_largest_allocation.compare_exchange_weak(largest, size)) {
+// Every form of the unaligned operators is replaced together (std::stable_sort's buffer comes
+// from the nothrow form and goes back through plain delete), so that each allocation and its
+// release meet in malloc and free. noinline: GCC would otherwise see free() of a `new` pointer at
+// each call site and warn.
+namespace lpir::test {
+inline void* TrackedAllocation(std::size_t size) noexcept {
+  size_t largest = g_largest_allocation.load();
+  while (size > largest && !g_largest_allocation.compare_exchange_weak(largest, size)) {
   }
-  if (void* p = std::malloc(size ? size : 1)) return p;
+  return std::malloc(size ? size : 1);
+}
+}  // namespace lpir::test
+__attribute__((noinline)) void* operator new(std::size_t size) {
+  if (void* p = lpir::test::TrackedAllocation(size)) return p;
   throw std::bad_alloc();
+}
+__attribute__((noinline)) void* operator new[](std::size_t size) {
+  if (void* p = lpir::test::TrackedAllocation(size)) return p;
+  throw std::bad_alloc();
+}
+__attribute__((noinline)) void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  return lpir::test::TrackedAllocation(size);
+}
+__attribute__((noinline)) void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  return lpir::test::TrackedAllocation(size);
 }
 __attribute__((noinline)) void operator delete(void* p) noexcept { std::free(p); }
 __attribute__((noinline)) void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+__attribute__((noinline)) void operator delete[](void* p) noexcept { std::free(p); }
+__attribute__((noinline)) void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+__attribute__((noinline)) void operator delete(void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
+__attribute__((noinline)) void operator delete[](void* p, const std::nothrow_t&) noexcept {
+  std::free(p);
+}
