@@ -27,6 +27,7 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
+#include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
 #include "host/frame_pipeline.h"
 #include "host/io/kitti_bin.h"
@@ -51,11 +52,6 @@ const char kHelp[] =
     "  --device D         Vulkan device (index or name part; none such: exit code 4); without\n"
     "                     --device and without a usable device, CPU rows only\n"
     "  --json             one JSON object instead of the table\n";
-
-using Clock = std::chrono::steady_clock;
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
 
 struct Spread {
   double median = 0, p25 = 0, p75 = 0;

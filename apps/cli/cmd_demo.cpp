@@ -17,6 +17,7 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
+#include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
 #include "apps/viz/images.h"
 #include "host/eval/metrics.h"
@@ -39,17 +40,6 @@ const char kHelp[] =
     "  writes pictures. Timing: set-up (device, pipelines, buffers) and the first frame are\n"
     "  stated apart; then 3 warm-up frames, then N timed frames (1 to 1000): their median wall\n"
     "  time a frame, upload to download, and the frames per second it gives.\n";
-
-using Clock = std::chrono::steady_clock;
-double Ms(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
-}
 
 }  // namespace
 

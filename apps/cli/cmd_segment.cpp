@@ -27,6 +27,7 @@
 #include "apps/cli/frame_source.h"
 #include "apps/cli/invalid_reasons.h"
 #include "apps/cli/progress.h"
+#include "apps/cli/timing.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
 #include "host/drive/drive.h"
@@ -96,13 +97,6 @@ std::vector<std::string> ListInputs(const std::vector<std::string>& inputs) {
     }
   }
   return files;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t h = v.size() / 2;
-  return v.size() % 2 ? v[h] : 0.5 * (v[h - 1] + v[h]);
 }
 
 // Per-stage times of every frame, a line each as the frames finish and their medians at the end.
