@@ -32,9 +32,9 @@ const Field kFields[] = {
     LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),
     LPIR_U(min_component),    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
     LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
-    LPIR_F(occ_grade),        LPIR_F(occ_front),        LPIR_U(occ_step_rows),
-    LPIR_F(occ_step),         LPIR_F(occ_step_grade),   LPIR_F(occ_step_reach),
-    LPIR_U(comp_seed_min),    LPIR_F(comp_seed_share),
+    LPIR_F(occ_grade),        LPIR_F(occ_front),        LPIR_F(occ_pass),
+    LPIR_U(occ_step_rows),    LPIR_F(occ_step),         LPIR_F(occ_step_grade),
+    LPIR_F(occ_step_reach),   LPIR_U(comp_seed_min),    LPIR_F(comp_seed_share),
 };
 #undef LPIR_F
 #undef LPIR_U
@@ -104,6 +104,7 @@ Params DefaultParams() {
   p.occ_rise = 0.045f;
   p.occ_grade = 0.0002f;
   p.occ_front = 0.1f;
+  p.occ_pass = 0.15f;
   p.occ_step_rows = 10;
   p.occ_step = 0.15f;
   p.occ_step_grade = 0.1f;

@@ -11,9 +11,11 @@
 // Occlusion veto over rows v - k, k = 1 .. min(occ_rows, v) of the same column: the pixel's
 // bounds, each one rounded float op (`precise`, never an FMA), in this order: rr = r * r,
 // grade = occ_grade * rr, near = r + occ_margin, reach = near + grade, and where the pixel's class
-// is ground reach = min(reach, r + occ_front); top = Ftz0(z + occ_rise). An
-// occluder: filled above != 0, range above < reach, height above > top (computed for every pixel,
-// empty ones too, as the reference does; an empty pixel is empty whatever they say).
+// is ground reach = min(reach, r + occ_front); top = Ftz0(z + occ_rise); pass = Ftz0(occ_pass *
+// r). An occluder: filled above != 0, range above < reach, height above > top, and not passed
+// under: the pixel's class is ground, d = Ftz0(range above - r) < 0 and Ftz0(z * d) >= pass
+// (computed for every pixel, empty ones too, as the reference does; an empty pixel is empty
+// whatever they say).
 // Step spare over rows v - k, k = 1 .. min(occ_step_rows, v): far = Ftz0(r + occ_step_reach),
 // base = Ftz0(z + occ_step); for each row above, d = Ftz0(range above - r), beyond = d > 0 ? d :
 // 0, bound = Ftz0(base + Ftz0(occ_step_grade * beyond)); it counts when filled != 0 and range
@@ -85,18 +87,25 @@ void main() {
     precise vec4 any = near + grade;
     precise vec4 front = r + p.occ_front;
     vec4 reach = mix(any, min(any, front), equal(c, uvec4(kPixGround)));
-    precise vec4 top = exact_Ftz0(HeightAt(e) + p.occ_rise);  // as the reference: may flush
+    vec4 z = HeightAt(e);
+    precise vec4 top = exact_Ftz0(z + p.occ_rise);  // as the reference: may flush
+    precise vec4 pass = exact_Ftz0(p.occ_pass * r);
+    uvec4 ground = uvec4(equal(c, uvec4(kPixGround)));
     for (uint k = 1u; k <= rows_above; ++k) {
       uint above = e - k * row;
-      occluded |= uvec4(notEqual(FilledAt(above), uvec4(0u))) &
-                  uvec4(lessThan(RangeAt(above), reach)) &
-                  uvec4(greaterThan(HeightAt(above), top));
+      vec4 ra = RangeAt(above);
+      precise vec4 d = exact_Ftz0(ra - r);
+      precise vec4 clearance = exact_Ftz0(z * d);
+      uvec4 passed = ground & uvec4(lessThan(d, vec4(0.0))) &
+                     uvec4(greaterThanEqual(clearance, pass));
+      occluded |= uvec4(notEqual(FilledAt(above), uvec4(0u))) & uvec4(lessThan(ra, reach)) &
+                  uvec4(greaterThan(HeightAt(above), top)) & (passed ^ uvec4(1u));
     }
     // A step in the ground (a curb, a bank) spares the pixel.
     uint step_rows = min(p.occ_step_rows, v);
     if (step_rows != 0u) {
       precise vec4 far = exact_Ftz0(r + p.occ_step_reach);
-      precise vec4 base = exact_Ftz0(HeightAt(e) + p.occ_step);
+      precise vec4 base = exact_Ftz0(z + p.occ_step);
       uvec4 steep = uvec4(0u), landing = uvec4(0u);
       for (uint k = 1u; k <= step_rows; ++k) {
         uint above = e - k * row;

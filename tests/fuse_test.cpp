@@ -187,12 +187,38 @@ TEST_F(FuseVeto, AStepOntoGroundSparesTheFootOfACurb) {
   im.Measure(v - 2, 3, kPixGround, true, r + im.p.occ_step_reach + 0.5f, curb);
   // A class-ground pixel above, but one that rises off a car body nearer than the pixel.
   Ground(4);
-  im.Measure(v - 1, 4, kPixNonGround, false, r - 2.0f, z + 0.6f);
+  im.Measure(v - 1, 4, kPixNonGround, false, r - 1.0f, z + 0.6f);
   im.Measure(v - 2, 4, kPixGround, true, r + 0.5f, curb);
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixGround);
   for (uint32_t u = 1; u <= 4; ++u) EXPECT_EQ(im.Fused(v, u), kPixNonGround) << "column " << u;
   im.p.occ_step_rows = 0;  // no rows looked at: the curb's foot is vetoed too
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+}
+
+// A pixel of class ground whose ray passed the occluder's range with at least occ_pass of clearance
+// (z * (range above - r) / r above the pixel's height) is ground seen under or past the object.
+TEST_F(FuseVeto, GroundSeenUnderAnObjectIsNotItsFoot) {
+  const float high = z + 1.0f;
+  const float passed = r * (1.0f + 1.5f * im.p.occ_pass / z);  // 1.5 x the clearance needed
+  const float grazed = r * (1.0f + 0.5f * im.p.occ_pass / z);  // half of it: the object's foot
+  ASSERT_GT(im.p.occ_pass, 0.0f);
+  Ground(0);
+  im.Measure(v - 1, 0, kPixNonGround, false, passed, high);  // a crown or a raised body
+  im.Measure(v, 1, kPixUnknown, true, r, z);                 // a seed, but not of class ground
+  im.Measure(v - 1, 1, kPixNonGround, false, passed, high);
+  Ground(2);
+  im.Measure(v - 1, 2, kPixNonGround, false, grazed, high);
+  Ground(3);  // passed under the first occluder, not the second, on its face
+  im.Measure(v - 1, 3, kPixNonGround, false, passed, high);
+  im.Measure(v - 2, 3, kPixNonGround, false, r, high);
+  Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixGround);
+  EXPECT_EQ(im.Fused(v, 1), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 3), kPixNonGround);
+  im.p.occ_pass = 1000.0f;  // no ray passes that high: the veto holds
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
 }

@@ -141,16 +141,16 @@ void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const F
   EXPECT_EQ(ExpectSameFuse(context, p, f, what), size_t(p.width) * p.beams);
   struct Variant {
     uint32_t rows;
-    float margin, rise, grade, front;
+    float margin, rise, grade, front, pass;
     uint32_t step_rows;
     float step, step_grade, step_reach;
   };
-  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f, 0.1f, 10, 0.15f, 0.1f, 3.0f},
-                              {1, 0.1f, 0.1f, 0.0f, 0.3f, 0, 0.15f, 0.1f, 3.0f},
-                              {2, 0.3f, 0.075f, 0.0002f, 0.1f, 1, 0.3f, 0.0f, 1000.0f},
-                              {3, 0.0f, 0.0f, 0.001f, 0.0f, 4, 0.0f, 1.0f, 0.5f},
-                              {8, -0.5f, -0.05f, 0.01f, -0.2f, 3, -0.1f, -0.5f, -1.0f},
-                              {200, 1.0f, 0.5f, 0.0f, 1000.0f, 200, 1.0f, 0.3f, 10.0f}};
+  const Variant variants[] = {{0, 0.3f, 0.075f, 0.0002f, 0.1f, 0.15f, 10, 0.15f, 0.1f, 3.0f},
+                              {1, 0.1f, 0.1f, 0.0f, 0.3f, 1000.0f, 0, 0.15f, 0.1f, 3.0f},
+                              {2, 0.3f, 0.075f, 0.0002f, 0.1f, 0.0f, 1, 0.3f, 0.0f, 1000.0f},
+                              {3, 0.0f, 0.0f, 0.001f, 0.0f, 0.05f, 4, 0.0f, 1.0f, 0.5f},
+                              {8, -0.5f, -0.05f, 0.01f, -0.2f, -0.1f, 3, -0.1f, -0.5f, -1.0f},
+                              {200, 1.0f, 0.5f, 0.0f, 1000.0f, 0.5f, 200, 1.0f, 0.3f, 10.0f}};
   for (const Variant& var : variants) {
     Params q = p;
     q.occ_rows = var.rows;
@@ -158,17 +158,18 @@ void ExpectSameFuseVariants(const vk::Context& context, const Params& p, const F
     q.occ_rise = var.rise;
     q.occ_grade = var.grade;
     q.occ_front = var.front;
+    q.occ_pass = var.pass;
     q.occ_step_rows = var.step_rows;
     q.occ_step = var.step;
     q.occ_step_grade = var.step_grade;
     q.occ_step_reach = var.step_reach;
     char text[240];
     std::snprintf(text, sizeof(text),
-                  "%s, occ_rows %u margin %g rise %g grade %g front %g, step rows %u step %g "
-                  "grade %g reach %g",
+                  "%s, occ_rows %u margin %g rise %g grade %g front %g pass %g, step rows %u "
+                  "step %g grade %g reach %g",
                   what.c_str(), var.rows, double(var.margin), double(var.rise), double(var.grade),
-                  double(var.front), var.step_rows, double(var.step), double(var.step_grade),
-                  double(var.step_reach));
+                  double(var.front), double(var.pass), var.step_rows, double(var.step),
+                  double(var.step_grade), double(var.step_reach));
     EXPECT_EQ(ExpectSameFuse(context, q, f, text), size_t(p.width) * p.beams);
   }
 }
@@ -409,6 +410,7 @@ TEST_F(FuseVk, StepSpareAtItsExactThresholds) {
       const uint32_t beams = 8, v = 6;
       Image im(64, beams);
       im.p.occ_step_rows = step_rows;
+      im.p.occ_pass = 1000.0f;  // the occluder is nearer: no pixel here is passed under
       const float ranges[] = {5.0f, 10.0f, 37.3f};
       uint32_t u = 0;
       size_t vetoes = 0, spared = 0;
@@ -459,6 +461,66 @@ TEST_F(FuseVk, StepSpareAtItsExactThresholds) {
     }
 }
 
+// The ray's clearance at the occluder's range as the reference computes it, Ftz0(z * Ftz0(ra - r)),
+// and the farthest range ra < r at which it still reaches Ftz0(occ_pass * r) (one ulp farther, it
+// no longer does, or ra is the pixel's own range).
+float Clearance(float r, float z, float ra) { return exact::Ftz0(z * exact::Ftz0(ra - r)); }
+float PassedAt(const Params& p, float r, float z) {
+  const float pass = exact::Ftz0(p.occ_pass * r);
+  float ra = std::min(r + pass / z, std::nextafter(r, 0.0f));
+  while (!(Clearance(r, z, ra) >= pass)) ra = std::nextafter(ra, -1e9f);
+  for (float up = std::nextafter(ra, 1e9f); up < r && Clearance(r, z, up) >= pass;
+       up = std::nextafter(ra, 1e9f))
+    ra = up;
+  return ra;
+}
+
+TEST_F(FuseVk, PassedUnderAtItsExactThresholds) {
+  // Every column: a seed at row v under one occluder a row up (higher than the veto's top) whose
+  // range gives the ray a clearance at occ_pass or one ulp short of it; only a pixel of class
+  // ground is spared, and only by an occluder nearer than itself.
+  for (float occ_pass : {0.15f, 0.0f})
+    for (uint32_t cls : {kPixGround, kPixUnknown}) {
+      const uint32_t beams = 4, v = 3;
+      Image im(64, beams);
+      im.p.occ_pass = occ_pass;
+      uint32_t u = 0;
+      size_t vetoes = 0, spared = 0;
+      std::vector<std::pair<uint32_t, bool>> expect;  // column, vetoed
+      for (float r : {5.0f, 10.0f, 15.0f, 37.3f}) {
+        const float z = -1.7f + 0.01f * float(u);
+        const float at = PassedAt(im.p, r, z);
+        const struct {
+          float range;
+          bool passed;
+        } cands[] = {{at, true},
+                     {std::nextafter(at, 1e9f), false},
+                     {r, false},  // d == 0: not nearer
+                     {std::nextafter(r, 0.0f), occ_pass == 0.0f},
+                     {0.5f * at, true}};
+        for (const auto& c : cands) {
+          im.Measure(v, u, cls, true, r, z);
+          im.Measure(v - 1, u, kPixNonGround, false, c.range, z + 1.0f);
+          expect.push_back({u, !(c.passed && cls == kPixGround)});
+          ++u;
+        }
+      }
+      ASSERT_LE(u, im.p.width);
+      Frame cpu = im.f;
+      Fuse(im.p, cpu);
+      for (const auto& [col, veto] : expect) {
+        EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixNonGround : kPixGround)
+            << "reference, class " << cls << ", occ_pass " << occ_pass << ", column " << col;
+        vetoes += veto, spared += !veto;
+      }
+      EXPECT_GT(vetoes, 0u);
+      EXPECT_EQ(spared > 0, cls == kPixGround);
+      EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f,
+                               "passed under, occ_pass " + std::to_string(occ_pass)),
+                size_t(im.p.width) * beams);
+    }
+}
+
 TEST_F(FuseVk, TopRowsAndReachBeyondTheImage) {
   // Ground pixels on every row of a 5-row image under occluders on every row above: rows 0 ..
   // occ_rows - 1 see fewer rows than occ_rows (row 0 none); occ_rows beyond the image.
@@ -492,6 +554,8 @@ TEST_F(FuseVk, RandomImagesEveryClassAndOpinion) {
     im.p.occ_grade = (rng() % 2) ? 0.0f : 0.0002f;
     const float fronts[] = {0.0f, 0.3f, 1000.0f};  // 10 + 0.3 = 10.3: range above == the bound
     im.p.occ_front = fronts[rng() % 3];
+    const float passes[] = {0.0f, 0.15f, 1000.0f};  // -1.7 * (2.5 - 10) = 12.75 = 1.275 * 10
+    im.p.occ_pass = passes[rng() % 3];
     im.p.occ_step_rows = rng() % 12;
     im.p.occ_step = (rng() % 2) ? 0.0f : 0.15f;  // -1.7 + 0.15 = -1.55: a height above == base
     im.p.occ_step_grade = (rng() % 2) ? 0.0f : 0.1f;

@@ -78,6 +78,8 @@ struct Params {
                      // as range^2 * beam spacing / sensor height)
   float occ_front;   // m, ... and, for a pixel whose class is ground, nearer than range + this (an
                      // object standing farther behind such a pixel leaves it ground)
+  float occ_pass;  // m, ... and, for a pixel of class ground, not one its ray passed under with at
+                   // least this clearance above the pixel's height (ground seen past an object)
   // --- our addition: stage 7 fuse, a step in the ground is not an occluder (see fuse.cpp) ---
   uint occ_step_rows;    // rows above an occluded pixel searched for the step's shape (0: none)
   float occ_step;        // m, the tallest step in the ground (a curb) that spares the pixel ...
@@ -87,6 +89,7 @@ struct Params {
   uint comp_seed_min;     // pixels: a component smaller than this is non-ground whatever it holds
   float comp_seed_share;  // a component under min_component stays ground when at least this share
                           // of its pixels are seeds (fused ground); above 1: never
+  uint pad0, pad1, pad2;  // unused: the block is a whole number of vec4s
 };
 
 #ifdef __cplusplus
