@@ -23,9 +23,9 @@ namespace {
 // RS-Ruby-80, Pandar64 and OT128 profiles are held to 96 % at least.
 const std::map<std::string, double>& F1Floors() {
   static const std::map<std::string, double> floors = {
-      {"hdl32e", 0.975},    {"hdl64e", 0.98}, {"os1-128", 0.98},
-      {"os1-64", 0.975},    {"ot128", 0.98},  {"pandar64", 0.975},
-      {"rs-ruby80", 0.975}, {"vlp16", 0.955}, {"vlp32c", 0.96},
+      {"hdl32e", 0.98},    {"hdl64e", 0.985}, {"os1-128", 0.985},
+      {"os1-64", 0.985},   {"ot128", 0.985},  {"pandar64", 0.98},
+      {"rs-ruby80", 0.98}, {"vlp16", 0.965},  {"vlp32c", 0.97},
   };
   return floors;
 }
