@@ -326,6 +326,22 @@ float Reach(const Params& p, float r, uint32_t cls) {
 }
 float Top(const Params& p, float z) { return z + p.occ_rise; }
 
+// Runs the reference on `im` and checks each (column, vetoed) pair of `expect` on row v: vetoed is
+// non-ground, else ground. Returns how many were vetoed and how many spared; `what` names the case.
+std::pair<size_t, size_t> ExpectVerdicts(const Image& im, uint32_t v,
+                                         const std::vector<std::pair<uint32_t, bool>>& expect,
+                                         const std::string& what) {
+  Frame cpu = im.f;
+  Fuse(im.p, cpu);
+  size_t vetoes = 0, spared = 0;
+  for (const auto& [col, veto] : expect) {
+    EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixNonGround : kPixGround)
+        << "reference, " << what << ", column " << col;
+    vetoes += veto, spared += !veto;
+  }
+  return {vetoes, spared};
+}
+
 TEST_F(FuseVk, VetoAtItsExactThresholds) {
   // Every column: a seed at row v (coarse ground, class ground or unknown: their reaches differ),
   // one occluder candidate k rows above; the candidate's range and height sit on the thresholds or
@@ -337,7 +353,6 @@ TEST_F(FuseVk, VetoAtItsExactThresholds) {
       im.p.occ_rows = occ_rows;
       const float ranges[] = {2.5f, 10.0f, 15.0f, 37.3f, 80.0f};
       uint32_t u = 0;
-      size_t vetoes = 0, spared = 0;
       std::vector<std::pair<uint32_t, bool>> expect;
       for (float r : ranges) {
         const float z = -1.7f + 0.01f * float(u);
@@ -375,14 +390,8 @@ TEST_F(FuseVk, VetoAtItsExactThresholds) {
         }
       }
       ASSERT_LE(u, im.p.width);
-      Frame cpu = im.f;
-      Fuse(im.p, cpu);
-      for (const auto& [col, veto] : expect) {
-        const uint32_t got = cpu.pixel_fused[im.Pix(v, col)];
-        EXPECT_EQ(got, veto ? kPixNonGround : kPixGround)
-            << "reference, class " << cls << ", occ_rows " << occ_rows << ", column " << col;
-        vetoes += veto, spared += !veto;
-      }
+      const auto [vetoes, spared] = ExpectVerdicts(
+          im, v, expect, "class " + std::to_string(cls) + ", occ_rows " + std::to_string(occ_rows));
       EXPECT_GT(vetoes, 0u);
       EXPECT_GT(spared, 0u);
       EXPECT_EQ(
@@ -413,7 +422,6 @@ TEST_F(FuseVk, StepSpareAtItsExactThresholds) {
       im.p.occ_pass = 1000.0f;  // the occluder is nearer: no pixel here is passed under
       const float ranges[] = {5.0f, 10.0f, 37.3f};
       uint32_t u = 0;
-      size_t vetoes = 0, spared = 0;
       std::vector<std::pair<uint32_t, bool>> expect;  // column, vetoed
       for (float r : ranges) {
         const float z = -1.7f + 0.01f * float(u);
@@ -446,13 +454,9 @@ TEST_F(FuseVk, StepSpareAtItsExactThresholds) {
         }
       }
       ASSERT_LE(u, im.p.width);
-      Frame cpu = im.f;
-      Fuse(im.p, cpu);
-      for (const auto& [col, veto] : expect) {
-        EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixNonGround : kPixGround)
-            << "reference, class " << cls << ", step rows " << step_rows << ", column " << col;
-        vetoes += veto, spared += !veto;
-      }
+      const auto [vetoes, spared] = ExpectVerdicts(
+          im, v, expect,
+          "class " + std::to_string(cls) + ", step rows " + std::to_string(step_rows));
       EXPECT_GT(vetoes, 0u);
       EXPECT_GT(spared, 0u);
       EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f,
@@ -485,7 +489,6 @@ TEST_F(FuseVk, PassedUnderAtItsExactThresholds) {
       Image im(64, beams);
       im.p.occ_pass = occ_pass;
       uint32_t u = 0;
-      size_t vetoes = 0, spared = 0;
       std::vector<std::pair<uint32_t, bool>> expect;  // column, vetoed
       for (float r : {5.0f, 10.0f, 15.0f, 37.3f}) {
         const float z = -1.7f + 0.01f * float(u);
@@ -506,13 +509,8 @@ TEST_F(FuseVk, PassedUnderAtItsExactThresholds) {
         }
       }
       ASSERT_LE(u, im.p.width);
-      Frame cpu = im.f;
-      Fuse(im.p, cpu);
-      for (const auto& [col, veto] : expect) {
-        EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixNonGround : kPixGround)
-            << "reference, class " << cls << ", occ_pass " << occ_pass << ", column " << col;
-        vetoes += veto, spared += !veto;
-      }
+      const auto [vetoes, spared] = ExpectVerdicts(
+          im, v, expect, "class " + std::to_string(cls) + ", occ_pass " + std::to_string(occ_pass));
       EXPECT_GT(vetoes, 0u);
       EXPECT_EQ(spared > 0, cls == kPixGround);
       EXPECT_EQ(ExpectSameFuse(context(), im.p, im.f,
