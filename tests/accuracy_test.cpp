@@ -150,7 +150,7 @@ TEST(AccuracyRellis, Os1ScanStaysAboveTheFloor) {
   const Scores s = ScoreCounts(CountFrame(Protocol::kRellis, pred, truth, nullptr));
   std::printf("rellis 000104: P %.2f R %.2f F1 %.2f\n", 100 * s.precision, 100 * s.recall,
               100 * s.f1);
-  EXPECT_GE(100 * s.f1, 95.5);
+  EXPECT_GE(100 * s.f1, 95.6);
   EXPECT_GE(100 * s.precision, 96.5);
 }
 
