@@ -43,14 +43,13 @@ constexpr uint32_t kNoOpinion = kPixUnknown;
 constexpr uint32_t kPiece = 256;
 
 // The occluder bounds of one row's pixels: reach = (r + occ_margin) + occ_grade * r^2, for a
-// pixel of class ground min(that, r + occ_front), top = Ftz0(z + occ_rise), and the clearance
-// that spares a pixel of class ground, pass = Ftz0(occ_pass * r) (computed for every pixel, used
-// where the pixel is not empty).
+// pixel of class ground min(that, r + occ_front), and top = Ftz0(z + occ_rise) (computed for every
+// pixel, used where the pixel is not empty).
 void Bounds(const Params& p, const float* __restrict range, const float* __restrict height,
             const uint32_t* __restrict cls, uint32_t w, float* __restrict reach,
-            float* __restrict top, float* __restrict pass) {
+            float* __restrict top) {
   const float margin = p.occ_margin, rise = p.occ_rise, occ_grade = p.occ_grade;
-  const float front = p.occ_front, occ_pass = p.occ_pass;
+  const float front = p.occ_front;
   for (uint32_t u = 0; u < w; ++u) {
     const float r = range[u];
     const float rr = r * r;
@@ -60,29 +59,40 @@ void Bounds(const Params& p, const float* __restrict range, const float* __restr
     const float ground = std::min(any, r + front);
     reach[u] = cls[u] == kPixGround ? ground : any;
     top[u] = exact::Ftz0(height[u] + rise);  // a device may flush a subnormal sum
-    pass[u] = exact::Ftz0(occ_pass * r);
   }
 }
 
-// Marks the pixels of a row (range, height, cls) that the row above_* occludes: filled there,
-// nearer than the reach, higher than the top, and not passed under: for a pixel of class ground,
-// d = Ftz0(range above - r) < 0 and Ftz0(z * d) >= pass (z * d / r is the ray's clearance at the
-// range above, the pixel's height taken for the ground's there). The tests have no side effects,
-// so they are evaluated together. The first row above sets the marks, the next ones add to them.
+// Marks the pixels of a row that the row above_* would occlude before the pass rule (filled
+// there, nearer than the reach, higher than the top); the three tests have no side effects, so
+// they are evaluated together. The first row above sets the marks, the next ones add to them.
 void Occlude(const uint32_t* __restrict above_filled, const float* __restrict above_range,
-             const float* __restrict above_height, const float* __restrict range,
-             const float* __restrict height, const uint32_t* __restrict cls,
-             const float* __restrict reach, const float* __restrict top,
-             const float* __restrict pass, uint32_t w, bool first, uint32_t* __restrict occluded) {
+             const float* __restrict above_height, const float* __restrict reach,
+             const float* __restrict top, uint32_t w, bool first, uint32_t* __restrict occluded) {
   for (uint32_t u = 0; u < w; ++u) {
-    const float d = exact::Ftz0(above_range[u] - range[u]);
-    const float clearance = exact::Ftz0(height[u] * d);
-    const uint32_t passed =
-        uint32_t(cls[u] == kPixGround) & uint32_t(d < 0.0f) & uint32_t(clearance >= pass[u]);
     const uint32_t occluder = uint32_t(above_filled[u] != 0) & uint32_t(above_range[u] < reach[u]) &
-                              uint32_t(above_height[u] > top[u]) & (passed ^ 1u);
+                              uint32_t(above_height[u] > top[u]);
     occluded[u] = first ? occluder : occluded[u] | occluder;
   }
+}
+
+// Whether the marked pixel i of class ground (range r, height z, bounds reach and top) keeps an
+// occluder under the pass rule: one of the rows i - k w, k = 1 .. rows, that Occlude counts and
+// that its ray did not pass under, i.e. not (d = Ftz0(range above - r) < 0 and Ftz0(z * d) >=
+// Ftz0(occ_pass * r)); z * d / r is the ray's clearance at the range above, the pixel's height
+// taken for the ground's there. Only marked pixels of class ground ask (the feet of objects and
+// the ground seen past them: a minority), so the test runs per pixel.
+bool KeepsOccluder(const Params& p, const uint32_t* __restrict filled,
+                   const float* __restrict range, const float* __restrict height, uint32_t i,
+                   uint32_t w, uint32_t rows, float reach, float top) {
+  const float r = range[i], z = height[i];
+  const float pass = exact::Ftz0(p.occ_pass * r);
+  for (uint32_t k = 1; k <= rows; ++k) {
+    const uint32_t a = i - k * w;
+    if (!filled[a] || !(range[a] < reach) || !(height[a] > top)) continue;
+    const float d = exact::Ftz0(range[a] - r);
+    if (!(d < 0.0f && exact::Ftz0(z * d) >= pass)) return true;
+  }
+  return false;
 }
 
 // Whether the occluded pixel i (row v, range r, height z) is spared as a step: over the rows
@@ -151,7 +161,7 @@ void Fuse(const Params& p, Frame& f) {
   const float* __restrict height = f.f_height.data();
   uint32_t* __restrict fused = f.pixel_fused.data();
   // Pieces of rows, so that the scratch stays in the L1 cache.
-  float reach[kPiece], top[kPiece], pass[kPiece];
+  float reach[kPiece], top[kPiece];
   uint32_t occluded[kPiece], opinion[kPiece];
   for (uint32_t v = 0; v < h; ++v) {
     // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
@@ -160,12 +170,15 @@ void Fuse(const Params& p, Frame& f) {
     for (uint32_t u0 = 0; u0 < w; u0 += kPiece) {
       const uint32_t n = w - u0 < kPiece ? w - u0 : kPiece, at = v * w + u0;
       if (rows_above) {
-        Bounds(p, range + at, height + at, cls + at, n, reach, top, pass);
+        Bounds(p, range + at, height + at, cls + at, n, reach, top);
         for (uint32_t k = 1; k <= rows_above; ++k) {
           const uint32_t above = at - k * w;
-          Occlude(filled + above, range + above, height + above, range + at, height + at, cls + at,
-                  reach, top, pass, n, k == 1, occluded);
+          Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);
         }
+        for (uint32_t u = 0; u < n; ++u)
+          if (occluded[u] && cls[at + u] == kPixGround)
+            occluded[u] =
+                KeepsOccluder(p, filled, range, height, at + u, w, rows_above, reach[u], top[u]);
         if (step_rows) {
           for (uint32_t u = 0; u < n; ++u)
             if (occluded[u] && SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
