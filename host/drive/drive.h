@@ -58,12 +58,13 @@ class DriveReader {
   virtual uint64_t ChunkCount() = 0;
   // Restricts the selected topic to the messages in chunks first..last (1 <= first <= last <=
   // ChunkCount()) and starts from the first of them; call after SelectTopic (which clears the
-  // restriction). A message keeps the sequence a reading of every chunk gives it (the messages
-  // of the chunks before `first` are counted, from the message indexes without decompressing
-  // them when the drive has them), so the runs over ranges that cover the drive yield together
-  // what one run yields. A damaged part is reported by the range holding its chunk; one between
-  // chunks by the range of the chunk before it (the first range: before every chunk). IoError
-  // naming the file for a drive without chunks or a range outside 1..ChunkCount().
+  // restriction). A message's sequence counts every message of the topic before it, those of
+  // the chunks outside the range included (from the index or message indexes, without
+  // decompressing those chunks, when the drive has them; else by reading them), so that runs
+  // over ranges that cover an undamaged drive yield together what one run yields. A damaged part
+  // is reported by the range holding its chunk, one between chunks by the range of the chunk
+  // before it (the first range: before every chunk). IoError naming the file for a drive without
+  // chunks or a range outside 1..ChunkCount().
   virtual void SelectChunks(uint64_t first, uint64_t last) = 0;
 };
 
