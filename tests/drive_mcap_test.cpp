@@ -845,6 +845,7 @@ TEST_P(DriveMcapCompression, ChunkRangesTogetherYieldTheWholeRun) {
       auto reader = OpenMcap(path, workers);
       const uint64_t chunks = reader->ChunkCount();
       EXPECT_EQ(chunks, path == w.path ? 3u : 4u);
+      EXPECT_EQ(reader->ChunksIndexed(), path == w.path);
       const std::vector<std::string> whole = WalkLines(WalkTopic(reader.get(), "/points"));
       std::vector<std::vector<std::pair<uint64_t, uint64_t>>> partitions = {{{1, chunks}}};
       partitions.push_back({});

@@ -736,6 +736,7 @@ TEST_F(Ros1BagTest, ChunkRangesTogetherYieldTheWholeRun) {
       const std::string path = Write("mixed.bag", bag.bytes);
       auto reader = OpenRos1Bag(path, workers);
       EXPECT_EQ(reader->ChunkCount(), 3u);
+      EXPECT_EQ(reader->ChunksIndexed(), indexed);
       std::vector<std::string> whole = StepLines(ReadAll(reader.get(), "/points"));
       whole.pop_back();  // "end"
       std::sort(whole.begin(), whole.end());

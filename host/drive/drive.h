@@ -56,6 +56,10 @@ class DriveReader {
   // or index when the drive has one, else from a walk of the records (an unindexed ROS 1 bag:
   // the scan of Topics).
   virtual uint64_t ChunkCount() = 0;
+  // True when SelectChunks finds where a range starts from the drive's index (an MCAP summary
+  // with chunk indexes, a ROS 1 bag's index) without reading the chunks before it; false when it
+  // reads them (or the drive has no chunks).
+  virtual bool ChunksIndexed() = 0;
   // Restricts the selected topic to the messages in chunks first..last (1 <= first <= last <=
   // ChunkCount()) and starts from the first of them; call after SelectTopic (which clears the
   // restriction). A message's sequence counts every message of the topic before it, those of

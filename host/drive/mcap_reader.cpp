@@ -222,6 +222,8 @@ class McapReader : public DriveReader {
     return scan_chunk_count_;
   }
 
+  bool ChunksIndexed() override { return indexed_; }
+
   void SelectChunks(uint64_t first, uint64_t last) override {
     if (selected_.empty()) throw IoError(path_, "SelectChunks before SelectTopic");
     const uint64_t n = ChunkCount();

@@ -250,6 +250,11 @@ class Ros1Bag : public DriveReader {
     return chunks_.size();
   }
 
+  bool ChunksIndexed() override {
+    EnsureCatalogue();
+    return indexed_;
+  }
+
   void SelectChunks(uint64_t first, uint64_t last) override {
     if (topic_.empty()) throw IoError(path_, "SelectChunks before SelectTopic");
     const uint64_t n = ChunkCount();
