@@ -224,10 +224,11 @@ def drive_ranges(drive: str, per_task: int) -> List[Optional[Tuple[int, int]]]:
     `per_task` chunks each, in order. A drive that cannot be opened is one task (which names
     the problem)."""
     try:
-        count, indexed = lpir_gseg._core._Drive(drive, read_threads=1).chunks()
+        reader = lpir_gseg._core._Drive(drive, read_threads=1)
+        count = reader.chunk_count() if reader.chunks_indexed() else 0
     except Exception:  # noqa: BLE001 (the task reports it)
         return [None]
-    if not indexed or count <= per_task:
+    if count <= per_task:
         return [None]
     return [(first, min(first + per_task - 1, count)) for first in range(1, count + 1, per_task)]
 

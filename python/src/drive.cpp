@@ -39,17 +39,13 @@ class PyDrive {
     return out;
   }
 
-  // (chunk count, whether a range is found from the index): DriveReader::ChunkCount and
-  // ChunksIndexed.
-  py::tuple Chunks() {
-    uint64_t count = 0;
-    bool indexed = false;
-    {
-      py::gil_scoped_release nogil;
-      count = reader_->ChunkCount();
-      indexed = reader_->ChunksIndexed();
-    }
-    return py::make_tuple(count, indexed);
+  uint64_t ChunkCount() {
+    py::gil_scoped_release nogil;
+    return reader_->ChunkCount();
+  }
+  bool ChunksIndexed() {
+    py::gil_scoped_release nogil;
+    return reader_->ChunksIndexed();
   }
 
   // `topic`, restricted to chunks first..last when first is not 0 (DriveReader::SelectChunks).
@@ -113,9 +109,11 @@ void BindDrive(py::module_& m) {
       .def_property_readonly("path", &PyDrive::path)
       .def("topics", &PyDrive::Topics,
            "topics()\n--\n\n(name, type, encoding, messages) for every topic of the drive.")
-      .def("chunks", &PyDrive::Chunks,
-           "chunks()\n--\n\n(count, indexed): the drive's chunks (0 for a .db3), and whether "
-           "select finds a range's start from the index without reading the chunks before it.")
+      .def("chunk_count", &PyDrive::ChunkCount,
+           "chunk_count()\n--\n\nThe drive's chunks, numbered from 1 (0 for a .db3).")
+      .def("chunks_indexed", &PyDrive::ChunksIndexed,
+           "chunks_indexed()\n--\n\nWhether select finds a range's start from the drive's "
+           "index, without reading the chunks before it.")
       .def("select", &PyDrive::Select, py::arg("topic"), py::arg("first_chunk") = 0,
            py::arg("last_chunk") = 0,
            "select(topic, first_chunk=0, last_chunk=0)\n--\n\nReads `topic` from its first "

@@ -179,7 +179,7 @@ def test_chunk_ranges_and_the_fleet_split_give_the_whole_drives_files(tmp_path, 
     from lpir_gseg import fleet
 
     drive = lpir_gseg._core._Drive(DRIVES / name)
-    count, indexed = drive.chunks()
+    count, indexed = drive.chunk_count(), drive.chunks_indexed()
     assert (count, indexed) == ((0, False) if name.endswith(".db3") else (3, True))
     whole = []
     drive.select(TOPIC)
