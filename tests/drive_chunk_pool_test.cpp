@@ -150,15 +150,17 @@ TEST(ChunkPool, WorkerCountFromTheMachineOrLpirReadThreads) {
   const std::string keep = saved ? saved : "";
   unsetenv("LPIR_READ_THREADS");
   const unsigned hw = std::thread::hardware_concurrency();
-  const unsigned expected = hw < 1 ? 1 : hw > kMaxReadThreads ? kMaxReadThreads : hw;
+  const unsigned expected = hw < 1 ? 1 : hw > kDefaultReadThreadsCap ? kDefaultReadThreadsCap : hw;
   EXPECT_EQ(DefaultReadThreads(), expected);
   EXPECT_EQ(ReadThreads(0), expected);
   EXPECT_EQ(ReadThreads(3), 3u);
   EXPECT_EQ(ReadThreads(kMaxReadThreads + 1), expected);
   setenv("LPIR_READ_THREADS", "5", 1);
   EXPECT_EQ(DefaultReadThreads(), 5u);
+  setenv("LPIR_READ_THREADS", "64", 1);
+  EXPECT_EQ(DefaultReadThreads(), 64u);
   EXPECT_EQ(ReadThreads(2), 2u);  // asked for: the variable does not override it
-  for (const char* bad : {"0", "9", "two", "3x", ""}) {
+  for (const char* bad : {"0", "65", "two", "3x", ""}) {
     setenv("LPIR_READ_THREADS", bad, 1);
     EXPECT_EQ(DefaultReadThreads(), expected) << bad;
   }

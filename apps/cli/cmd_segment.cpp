@@ -57,7 +57,7 @@ const char kHelp[] =
     "                   `lpir-gseg topics DRIVE --chunks` counts them), named and indexed with\n"
     "                   the sequence numbers a whole run gives them; chunks before A are skipped\n"
     "                   without decompressing them when the drive has an index\n"
-    "  --read-threads N threads decompressing a drive's chunks ahead (1 to 8; default: the\n"
+    "  --read-threads N threads decompressing a drive's chunks ahead (1 to 64; default: the\n"
     "                   CPU count, at most 8, or LPIR_READ_THREADS; 1: decompressed in turn)\n"
     "  --sensor NAME    sensor profile (hdl64e, hdl32e, vlp32c, os1-64, ...) or a profile file\n"
     "  --out DIR        where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go\n"

@@ -15,7 +15,7 @@ unsigned DefaultReadThreads() {
     if (*end == '\0' && n >= 1 && n <= kMaxReadThreads) return unsigned(n);
   }
   const unsigned hw = std::thread::hardware_concurrency();
-  return hw < 1 ? 1 : hw > kMaxReadThreads ? kMaxReadThreads : hw;
+  return hw < 1 ? 1 : hw > kDefaultReadThreadsCap ? kDefaultReadThreadsCap : hw;
 }
 
 unsigned ReadThreads(unsigned threads) {

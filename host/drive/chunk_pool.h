@@ -19,11 +19,12 @@
 namespace lpir {
 
 // The worker count a reader uses when none is asked for: std::thread::hardware_concurrency(),
-// at least 1, at most kMaxReadThreads; the environment variable LPIR_READ_THREADS (a whole
-// number from 1 to kMaxReadThreads) replaces it.
-constexpr unsigned kMaxReadThreads = 8;
+// at least 1, at most kDefaultReadThreadsCap (each worker may hold a decompressed chunk); the
+// environment variable LPIR_READ_THREADS (a whole number from 1 to kMaxReadThreads) replaces it.
+constexpr unsigned kDefaultReadThreadsCap = 8;
+constexpr unsigned kMaxReadThreads = 64;
 unsigned DefaultReadThreads();
-// `threads` when it is 1..kMaxReadThreads, DefaultReadThreads() for 0.
+// `threads` when it is 1..kMaxReadThreads, DefaultReadThreads() otherwise (0: none asked for).
 unsigned ReadThreads(unsigned threads);
 
 // Runs work(0) ... work(count - 1) and hands their results out in index order.
