@@ -1,6 +1,6 @@
 """Labels many scans on a Dask cluster: the fleet version of `lpir-gseg segment`.
 
-    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--topic T]
+    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--topic T] [--drive-chunks K]
                                [--scheduler tcp://HOST:PORT | --workers N]
 
 INPUTs are files or folders (a folder: its cloud files in name order), as `segment` takes them.
