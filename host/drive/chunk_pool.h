@@ -44,16 +44,14 @@ class ChunkPool {
     if (workers <= 1) return;
     const size_t threads = std::min<size_t>(workers, count);
     threads_.reserve(threads);
-    for (size_t k = 0; k < threads; ++k) threads_.emplace_back([this] { Work(); });
-  }
-  ~ChunkPool() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
+    try {
+      for (size_t k = 0; k < threads; ++k) threads_.emplace_back([this] { Work(); });
+    } catch (...) {  // a thread that could not start: the started ones stopped, the error passed on
+      Stop();
+      throw;
     }
-    changed_.notify_all();
-    for (std::thread& t : threads_) t.join();
   }
+  ~ChunkPool() { Stop(); }
   ChunkPool(const ChunkPool&) = delete;
   ChunkPool& operator=(const ChunkPool&) = delete;
 
@@ -87,6 +85,16 @@ class ChunkPool {
     std::optional<T> result;
     std::exception_ptr error;
   };
+
+  void Stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    for (std::thread& t : threads_) t.join();
+    threads_.clear();
+  }
 
   // A worker: claims the next index while fewer than ahead_ jobs are in flight or waiting, runs
   // it unlocked, stores its result in the index's slot.
