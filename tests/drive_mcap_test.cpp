@@ -172,6 +172,9 @@ HandFile MakeHandFile() {
 
 // ---- walking a reader ----
 
+struct Walk;
+std::vector<std::string> WalkLines(const Walk& w);
+
 struct Walk {
   std::vector<DriveMessage> messages;
   std::vector<std::string> damages;
@@ -491,6 +494,9 @@ TEST(DriveMcap, HandFileCutAtEveryOffset) {
       continue;
     }
     const Walk walk = WalkTopic(reader.get(), "/points");
+    // Three workers decompressing ahead give the same walk, damage included.
+    EXPECT_EQ(WalkLines(WalkTopic(OpenMcap(path, 3).get(), "/points")), WalkLines(walk))
+        << "cut " << cut;
     // Exactly the messages complete before the cut, in order, then one damage (a cut after the
     // data end record loses no message and is not damage).
     std::vector<std::string> complete;
