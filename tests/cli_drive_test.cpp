@@ -217,6 +217,94 @@ TEST_P(CliDrive, TopicsListsTheTopicItsTypeAndCount) {
   EXPECT_EQ(d, "3");
 }
 
+// index.csv's lines without the ms column (which differs from run to run).
+std::vector<std::string> IndexRowsWithoutMs(const std::string& dir) {
+  std::vector<std::string> rows;
+  for (const std::string& line : Lines(test::ReadFileBytes(dir + "/index.csv"))) {
+    std::vector<std::string> f = Split(line, ',');
+    if (f.size() != 7u) return {"malformed: " + line};
+    f.erase(f.begin() + 5);
+    std::string row;
+    for (const std::string& field : f) row += (row.empty() ? "" : ",") + field;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// `topics --chunks` counts the chunks; `segment --chunks A:B` runs over ranges that cover the
+// drive write together the whole run's .label files, byte for byte, and its index rows (each
+// range's header, then its rows; in sequence order the whole run's), several read threads or one.
+TEST_P(CliDrive, ChunkRangesTogetherWriteTheWholeRun) {
+  const std::string drive = DrivePath(GetParam());
+  std::string log;
+  ASSERT_EQ(test::RunCommand(Cli() + " topics " + drive + " --chunks", &log), 0) << log;
+  const bool db3 = !GetParam().mcap && !GetParam().bag;
+  EXPECT_EQ(log, db3 ? "0\n" : "3\n");
+  const std::string common = " --sensor " + Sensor() + " --backend cpu --quiet --out ";
+  test::ScopedDir whole;
+  ASSERT_EQ(test::RunCommand(Cli() + " segment " + drive + common + whole.path, &log), 0) << log;
+  if (db3) {
+    EXPECT_EQ(
+        test::RunCommand(Cli() + " segment " + drive + " --chunks 1:1" + common + whole.path, &log),
+        4);
+    EXPECT_NE(log.find("no chunks"), std::string::npos) << log;
+    return;
+  }
+  const std::vector<std::string> names = test::LabelFiles(whole.path);
+  ASSERT_EQ(names.size(), kFrames);
+  const std::vector<std::string> rows = IndexRowsWithoutMs(whole.path);
+  for (const char* threads : {"1", "3"}) {
+    for (const std::vector<const char*>& ranges :
+         std::vector<std::vector<const char*>>{{"1:1", "2:2", "3:3"}, {"1:2", "3:3"}}) {
+      test::ScopedDir parts;
+      std::vector<std::string> together = {rows[0]};
+      for (const char* range : ranges) {
+        const std::string out = parts.path + "/" + range;
+        ASSERT_EQ(test::RunCommand(Cli() + " segment " + drive + " --chunks " + range +
+                                       " --read-threads " + threads + common + out,
+                                   &log),
+                  0)
+            << log;
+        std::vector<std::string> part = IndexRowsWithoutMs(out);
+        ASSERT_FALSE(part.empty());
+        EXPECT_EQ(part[0], rows[0]);
+        together.insert(together.end(), part.begin() + 1, part.end());
+        for (const std::string& name : test::LabelFiles(out))
+          EXPECT_EQ(test::ReadFileBytes(out + "/" + name),
+                    test::ReadFileBytes(whole.path + "/" + name))
+              << range << " " << name;
+      }
+      std::sort(
+          together.begin() + 1, together.end(), [](const std::string& a, const std::string& b) {
+            return std::stoull(a.substr(0, a.find(','))) < std::stoull(b.substr(0, b.find(',')));
+          });
+      EXPECT_EQ(together, rows) << threads << " threads";
+      size_t files = 0;
+      for (const char* range : ranges) files += test::LabelFiles(parts.path + "/" + range).size();
+      EXPECT_EQ(files, kFrames);
+    }
+  }
+  EXPECT_EQ(
+      test::RunCommand(Cli() + " segment " + drive + " --chunks 2:4" + common + whole.path, &log),
+      4);
+  EXPECT_NE(log.find("has 3"), std::string::npos) << log;
+  for (const char* bad : {"0:1", "2:1", "1", "a:b", "1:"}) {
+    EXPECT_EQ(test::RunCommand(
+                  Cli() + " segment " + drive + " --chunks " + bad + common + whole.path, &log),
+              2)
+        << bad;
+    EXPECT_NE(log.find("--chunks must be A:B"), std::string::npos) << log;
+  }
+  for (const char* bad : {"0", "65", "1.5"}) {
+    EXPECT_EQ(
+        test::RunCommand(
+            Cli() + " segment " + drive + " --read-threads " + bad + common + whole.path, &log),
+        2)
+        << bad;
+    EXPECT_NE(log.find("--read-threads must be"), std::string::npos) << log;
+  }
+}
+
 // Every message of `topic` in `path`, in order (damage fails the test).
 std::vector<DriveMessage> ReadTopic(const std::string& path, const std::string& topic) {
   std::vector<DriveMessage> messages;

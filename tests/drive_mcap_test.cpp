@@ -172,6 +172,9 @@ HandFile MakeHandFile() {
 
 // ---- walking a reader ----
 
+struct Walk;
+std::vector<std::string> WalkLines(const Walk& w);
+
 struct Walk {
   std::vector<DriveMessage> messages;
   std::vector<std::string> damages;
@@ -491,6 +494,9 @@ TEST(DriveMcap, HandFileCutAtEveryOffset) {
       continue;
     }
     const Walk walk = WalkTopic(reader.get(), "/points");
+    // Three workers decompressing ahead give the same walk, damage included.
+    EXPECT_EQ(WalkLines(WalkTopic(OpenMcap(path, 3).get(), "/points")), WalkLines(walk))
+        << "cut " << cut;
     // Exactly the messages complete before the cut, in order, then one damage (a cut after the
     // data end record loses no message and is not damage).
     std::vector<std::string> complete;
@@ -713,6 +719,168 @@ TEST(DriveMcap, WriterOutputHasTheSpecifiedLayout) {
   EXPECT_NE(PointCloud2Ros2MsgDefinition().find("PointField[] fields"), std::string::npos);
   EXPECT_NE(PointCloud2Ros2MsgDefinition().find("MSG: builtin_interfaces/Time\nint32 sec\n"),
             std::string::npos);
+}
+
+// ---- decompression ahead (several workers) and chunk ranges ----
+
+// The walk as text: a line per message (sequence, log time, data) and per damage (its place and
+// problem).
+std::vector<std::string> WalkLines(const Walk& w) {
+  std::vector<std::string> lines;
+  size_t d = 0;
+  for (size_t i = 0; i <= w.messages.size(); ++i) {
+    for (; d < w.damages.size() && w.damage_after[d] == i; ++d)
+      lines.push_back("damage after " + std::to_string(i) + ": " + w.damages[d]);
+    if (i == w.messages.size()) break;
+    const DriveMessage& m = w.messages[i];
+    lines.push_back(std::to_string(m.sequence) + " " + std::to_string(m.log_time_ns) + " " +
+                    Str(m.data));
+  }
+  return lines;
+}
+
+// A file without summary (scanned): 40 chunks of none, zstd and lz4, four /points messages each
+// out of log-time order, /other messages among them, a /points message outside the chunks every
+// fifth chunk. `damaged`: chunk 21's stored records have a byte flipped.
+std::string ManyChunkFile(bool damaged) {
+  std::string bytes = kMagic + HeaderRec() + SchemaRec(1, "sensor_msgs/msg/PointCloud2") +
+                      ChannelRec(1, 1, "/points") + ChannelRec(2, 1, "/other");
+  const char* kinds[] = {"", "zstd", "lz4"};
+  int n = 0;
+  for (int c = 0; c < 40; ++c) {
+    std::string records;
+    for (uint64_t t : {3, 1, 2, 1}) {
+      records += MessageRec(2, 100 * uint64_t(c) + t, "other");
+      records += MessageRec(1, 100 * uint64_t(c) + t, Payload(n++, 300));
+    }
+    std::string chunk = ChunkRec(records, kinds[c % 3]);
+    if (damaged && c == 20) chunk[chunk.size() - 40] ^= 0x10;
+    bytes += chunk;
+    if (c % 5 == 4) bytes += MessageRec(1, 100 * uint64_t(c) + 50, Payload(n++, 20));
+  }
+  return bytes + DataEndRec() + FooterAndMagic();
+}
+
+TEST(DriveMcap, SeveralWorkersYieldWhatOneYieldsScanned) {
+  for (bool damaged : {false, true}) {
+    SCOPED_TRACE(damaged ? "damaged" : "whole");
+    const std::string path = Make(ManyChunkFile(damaged), "many.mcap");
+    const std::vector<std::string> one = WalkLines(WalkTopic(OpenMcap(path, 1).get(), "/points"));
+    ASSERT_EQ(one.size(), damaged ? 168u - 4 + 1 : 168u);
+    if (damaged) {
+      // after chunks 1..20's 80 messages and the 4 outside them
+      EXPECT_EQ(one[84].rfind("damage after 84: ", 0), 0u) << one[84];
+      EXPECT_NE(one[84].find("chunk 21 at byte"), std::string::npos) << one[84];
+    }
+    for (unsigned workers : {2u, 3u, 8u}) {
+      auto reader = OpenMcap(path, workers);
+      EXPECT_EQ(WalkLines(WalkTopic(reader.get(), "/points")), one) << workers << " workers";
+      EXPECT_EQ(WalkLines(WalkTopic(reader.get(), "/points")), one) << "selected again";
+    }
+  }
+}
+
+TEST_P(DriveMcapCompression, SeveralWorkersYieldWhatOneYieldsIndexed) {
+  std::vector<uint64_t> times;
+  for (int i = 0; i < 40; ++i) times.push_back(1000 + uint64_t(i) * 10);
+  const Written w = WriteDrive(GetParam(), times);  // 7 chunks
+  for (bool damaged : {false, true}) {
+    SCOPED_TRACE(damaged ? "damaged" : "whole");
+    std::string bytes = ReadRaw(w.path);
+    if (damaged) {  // inside chunk 4 (/points 18..23)
+      const size_t at = bytes.find(Noise(0, 20, 700000).substr(0, 64));
+      bytes[GetParam() == McapCompression::kNone ? at + 1000 : bytes.size() / 2] ^= 0x01;
+    }
+    const std::string path = Make(bytes, "many.mcap");
+    const std::vector<std::string> one = WalkLines(WalkTopic(OpenMcap(path, 1).get(), "/points"));
+    EXPECT_EQ(one.size(), damaged ? 35u : 40u);
+    for (unsigned workers : {2u, 4u}) {
+      auto reader = OpenMcap(path, workers);
+      EXPECT_EQ(WalkLines(WalkTopic(reader.get(), "/points")), one) << workers << " workers";
+    }
+  }
+}
+
+// A reader destroyed, or given another topic, in the middle of a drive with workers ahead: no
+// thread is left (the join would hang) and nothing leaks (LeakSanitizer).
+TEST(DriveMcap, DestroyedInTheMiddleWithWorkersAhead) {
+  const std::string path = Make(ManyChunkFile(false), "many.mcap");
+  for (size_t stop : {0u, 1u, 9u, 100u}) {
+    auto reader = OpenMcap(path, 4);
+    reader->SelectTopic("/points");
+    DriveMessage m;
+    std::string problem;
+    for (size_t k = 0; k < stop; ++k) ASSERT_EQ(reader->Next(&m, &problem), DriveStep::kMessage);
+    reader->SelectTopic("/other");
+    ASSERT_EQ(reader->Next(&m, &problem), DriveStep::kMessage);
+    EXPECT_EQ(Str(m.data), "other");
+  }
+}
+
+// Every message of the ranges of `partition` (each its own SelectChunks), as WalkLines' lines.
+std::vector<std::string> RangeLines(DriveReader* reader,
+                                    const std::vector<std::pair<uint64_t, uint64_t>>& partition) {
+  std::vector<std::string> lines;
+  for (const auto& [first, last] : partition) {
+    reader->SelectTopic("/points");
+    reader->SelectChunks(first, last);
+    Walk w;
+    DriveMessage m;
+    std::string problem;
+    for (DriveStep step; (step = reader->Next(&m, &problem)) != DriveStep::kEnd;) {
+      if (step == DriveStep::kMessage) w.messages.push_back(m);
+      if (step == DriveStep::kDamage) {
+        w.damages.push_back(problem);
+        w.damage_after.push_back(w.messages.size());
+      }
+    }
+    for (std::string& line : WalkLines(w)) lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+// The ranges of a partition of the chunks yield together what the whole run yields, sequence
+// numbers included: the hand file (scanned; messages outside chunks go with the chunk before
+// them) and writer-made drives (indexed).
+TEST_P(DriveMcapCompression, ChunkRangesTogetherYieldTheWholeRun) {
+  const Written w = WriteDrive(GetParam());  // 3 chunks
+  const HandFile f = MakeHandFile();         // 4 chunks
+  for (const std::string& path : {w.path, Make(f.bytes, "hand.mcap")}) {
+    SCOPED_TRACE(path);
+    for (unsigned workers : {1u, 3u}) {
+      auto reader = OpenMcap(path, workers);
+      const uint64_t chunks = reader->ChunkCount();
+      EXPECT_EQ(chunks, path == w.path ? 3u : 4u);
+      EXPECT_EQ(reader->ChunksIndexed(), path == w.path);
+      const std::vector<std::string> whole = WalkLines(WalkTopic(reader.get(), "/points"));
+      std::vector<std::vector<std::pair<uint64_t, uint64_t>>> partitions = {{{1, chunks}}};
+      partitions.push_back({});
+      for (uint64_t c = 1; c <= chunks; ++c) partitions.back().push_back({c, c});
+      partitions.push_back({{1, 2}, {3, chunks}});
+      for (const auto& partition : partitions)
+        EXPECT_EQ(RangeLines(reader.get(), partition), whole) << partition.size() << " ranges";
+      EXPECT_TRUE(ThrowsIoError([&] { reader->SelectChunks(1, chunks + 1); }, path, {"has"}));
+      EXPECT_TRUE(ThrowsIoError([&] { reader->SelectChunks(0, 1); }, path, {"from 1"}));
+    }
+  }
+}
+
+// An indexed file's range counts the messages before it from the message indexes, never
+// decompressing those chunks: a damaged chunk 1 is not seen by the range 2..3, whose sequence
+// numbers still start at 6; the range 1..1 reports it.
+TEST_P(DriveMcapCompression, ARangeSkipsTheChunksBeforeItAndOwnsItsDamage) {
+  const Written w = WriteDrive(GetParam());
+  std::string bytes = ReadRaw(w.path);
+  const size_t at = bytes.find(Noise(0, 2, 700000).substr(0, 64));
+  bytes[GetParam() == McapCompression::kNone ? at + 1000 : 3000] ^= 0x01;
+  auto reader = OpenMcap(Make(bytes, "bad1.mcap"), 2);
+  const std::vector<std::string> later = RangeLines(reader.get(), {{2, 3}});
+  ASSERT_EQ(later.size(), 8u);
+  for (size_t i = 0; i < 8; ++i)
+    EXPECT_EQ(later[i].substr(0, later[i].find(' ')), std::to_string(6 + i)) << later[i];
+  const std::vector<std::string> first = RangeLines(reader.get(), {{1, 1}});
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_NE(first[0].find("chunk 1 at byte"), std::string::npos) << first[0];
 }
 
 TEST(DriveMcap, WriterCannotCreateAFileInAMissingFolder) {

@@ -181,6 +181,7 @@ struct Step {
   DriveMessage message;
   std::string problem;
 };
+std::vector<std::string> StepLines(const std::vector<Step>& steps);
 
 // Every step of `topic` up to and including kEnd (at most `limit`, so a loop cannot hang).
 std::vector<Step> ReadAll(DriveReader* reader, const std::string& topic, size_t limit = 10000) {
@@ -407,6 +408,11 @@ TEST_F(Ros1BagTest, TruncatedAtEveryByte) {
           continue;
         }
         ASSERT_EQ(steps.back().kind, DriveStep::kEnd);
+        {  // three workers decompressing ahead give the same steps, damage included
+          auto ahead = OpenRos1Bag(path, 3);
+          ahead->Topics();
+          EXPECT_EQ(StepLines(ReadAll(ahead.get(), "/points")), StepLines(steps));
+        }
         std::vector<std::string> got;
         for (const Step& s : Messages(steps))
           got.emplace_back(s.message.data.begin(), s.message.data.end());
@@ -630,6 +636,175 @@ TEST_F(Ros1BagTest, ReadsAChunkAtATime) {
   });
   EXPECT_EQ(messages, 6u);
   EXPECT_LT(largest, bag.bytes.size() / 3);
+}
+
+// --- decompression ahead (several workers) and chunk ranges ---
+
+// 40 chunks of bz2, lz4 and none, three /points messages each (one of them /imu every other
+// chunk), receipt times that step back across chunk boundaries so that the yield order visits
+// some chunks twice.
+std::vector<ChunkSpec> ManyChunks() {
+  std::vector<ChunkSpec> chunks;
+  const char* kinds[] = {"bz2", "lz4", "none"};
+  uint32_t k = 0;
+  for (uint32_t c = 0; c < 40; ++c) {
+    ChunkSpec spec{kinds[c % 3], {}};
+    for (uint32_t m = 0; m < 3; ++m, ++k) {
+      // times 10c, 10c+4, 10c+11: the last one after the next chunk's first
+      spec.messages.push_back(
+          {m == 1 ? 5u : 0u, 100 + 10 * c + (m == 2 ? 11 : 4 * m), 0, CloudBytes(k % 250)});
+    }
+    if (c % 2) spec.messages.push_back({1, 100 + 10 * c + 1, 0, "imu"});
+    chunks.push_back(spec);
+  }
+  return chunks;
+}
+
+// The steps as text: kind, sequence, time and data (or the problem), one line each.
+std::vector<std::string> StepLines(const std::vector<Step>& steps) {
+  std::vector<std::string> lines;
+  for (const Step& s : steps) {
+    if (s.kind == DriveStep::kMessage)
+      lines.push_back("message " + std::to_string(s.message.sequence) + " " +
+                      std::to_string(s.message.log_time_ns) + " " +
+                      std::string(s.message.data.begin(), s.message.data.end()));
+    else
+      lines.push_back(s.kind == DriveStep::kDamage ? "damage " + s.problem : "end");
+  }
+  return lines;
+}
+
+// Several workers yield exactly the steps one does: every message in order, a damaged chunk in
+// the middle once and at its place (after every message before it), indexed or scanned.
+TEST_F(Ros1BagTest, SeveralWorkersYieldWhatOneYields) {
+  for (bool indexed : {true, false}) {
+    for (bool damaged : {false, true}) {
+      SCOPED_TRACE(std::string(indexed ? "indexed" : "unindexed") + (damaged ? " damaged" : ""));
+      Bag bag = WriteBag(kConns, ManyChunks(), indexed);
+      if (damaged)  // chunk 22 (index 21, bz2) corrupted
+        for (size_t k = 12; k < 30; ++k) bag.bytes[bag.chunk_data_pos[21] + k] ^= 0x5A;
+      const std::string path = Write("many.bag", bag.bytes);
+      const std::vector<std::string> one =
+          StepLines(ReadAll(OpenRos1Bag(path, 1).get(), "/points"));
+      ASSERT_EQ(one.back(), "end");
+      size_t damages = 0;
+      for (const std::string& line : one) damages += line.rfind("damage", 0) == 0;
+      EXPECT_EQ(damages, damaged ? 1u : 0u);
+      EXPECT_EQ(one.size(), damaged ? 120u - 3 + 2 : 121u);
+      if (damaged) {
+        // Indexed, the damage is found when chunk 22's first message (time 310) is due: the 62
+        // messages before it by time (chunk 21's last, at 311, comes after). Scanned, it is placed
+        // after every message lying before it in the file: chunks 1..21's 63.
+        const size_t at =
+            size_t(std::find_if(one.begin(), one.end(),
+                                [](const std::string& l) { return l.rfind("damage", 0) == 0; }) -
+                   one.begin());
+        EXPECT_EQ(at, indexed ? 62u : 63u);
+        EXPECT_NE(one[at].find("chunk 22 at byte " + std::to_string(bag.chunk_pos[21])),
+                  std::string::npos)
+            << one[at];
+      }
+      for (unsigned workers : {2u, 3u, 8u}) {
+        auto reader = OpenRos1Bag(path, workers);
+        EXPECT_EQ(StepLines(ReadAll(reader.get(), "/points")), one) << workers << " workers";
+        EXPECT_EQ(StepLines(ReadAll(reader.get(), "/points")), one) << "selected again";
+      }
+    }
+  }
+}
+
+// A reader destroyed in the middle of a drive, with workers decompressing ahead, leaves no thread
+// behind (the test would hang at the join, or LeakSanitizer name the buffers).
+TEST_F(Ros1BagTest, DestroyedInTheMiddleWithWorkersAhead) {
+  const Bag bag = WriteBag(kConns, ManyChunks(), true);
+  const std::string path = Write("many.bag", bag.bytes);
+  for (size_t stop : {0u, 1u, 7u, 60u}) {
+    auto reader = OpenRos1Bag(path, 4);
+    reader->SelectTopic("/points");
+    DriveMessage m;
+    std::string problem;
+    for (size_t k = 0; k < stop; ++k) ASSERT_EQ(reader->Next(&m, &problem), DriveStep::kMessage);
+    reader->SelectTopic("/imu");  // stops the pool mid-way, starts another
+    ASSERT_EQ(reader->Next(&m, &problem), DriveStep::kMessage);
+    EXPECT_EQ(std::string(m.data.begin(), m.data.end()), "imu");
+  }
+}
+
+// The ranges of a partition of the chunks yield together what the whole run yields, each
+// message with its whole-run sequence: MixedChunks, whose receipt times interleave the chunks.
+TEST_F(Ros1BagTest, ChunkRangesTogetherYieldTheWholeRun) {
+  const std::vector<std::vector<std::pair<uint64_t, uint64_t>>> partitions = {
+      {{1, 1}, {2, 2}, {3, 3}}, {{1, 2}, {3, 3}}, {{1, 1}, {2, 3}}, {{1, 3}}};
+  for (bool indexed : {true, false}) {
+    for (unsigned workers : {1u, 3u}) {
+      SCOPED_TRACE(std::string(indexed ? "indexed " : "unindexed ") + std::to_string(workers));
+      const Bag bag = WriteBag(kConns, MixedChunks("bz2"), indexed);
+      const std::string path = Write("mixed.bag", bag.bytes);
+      auto reader = OpenRos1Bag(path, workers);
+      EXPECT_EQ(reader->ChunkCount(), 3u);
+      EXPECT_EQ(reader->ChunksIndexed(), indexed);
+      std::vector<std::string> whole = StepLines(ReadAll(reader.get(), "/points"));
+      whole.pop_back();  // "end"
+      std::sort(whole.begin(), whole.end());
+      for (const auto& partition : partitions) {
+        std::vector<std::string> together;
+        for (const auto& [first, last] : partition) {
+          reader->SelectTopic("/points");
+          reader->SelectChunks(first, last);
+          DriveMessage m;
+          std::string problem;
+          for (DriveStep step; (step = reader->Next(&m, &problem)) != DriveStep::kEnd;) {
+            ASSERT_EQ(step, DriveStep::kMessage) << problem;
+            const PointCloud2 cloud = ParseRos1PointCloud2("m", m.data.data(), m.data.size());
+            const uint32_t chunk = cloud.seq == 0 || cloud.seq == 1 || cloud.seq == 2 ? 1
+                                   : cloud.seq == 3 || cloud.seq == 4                 ? 2
+                                                                                      : 3;
+            EXPECT_GE(chunk, first);
+            EXPECT_LE(chunk, last);
+            together.push_back(StepLines({Step{step, m, ""}})[0]);
+          }
+        }
+        std::sort(together.begin(), together.end());
+        EXPECT_EQ(together, whole);
+      }
+      EXPECT_TRUE(ThrowsIoError([&] { reader->SelectChunks(2, 4); }, "mixed.bag", {"has 3"}));
+      EXPECT_TRUE(ThrowsIoError([&] { reader->SelectChunks(0, 1); }, "mixed.bag", {"from 1"}));
+      EXPECT_TRUE(ThrowsIoError([&] { reader->SelectChunks(3, 2); }, "mixed.bag", {"3 to 2"}));
+    }
+  }
+}
+
+// An indexed bag's range skips the chunks before it without decompressing them: a corrupt chunk
+// 1 is neither reported nor missed in the sequence numbers of chunks 2..3; the range holding it
+// reports it once.
+TEST_F(Ros1BagTest, ARangeSkipsTheChunksBeforeItAndOwnsItsDamage) {
+  Bag bag = WriteBag(kConns, MixedChunks("bz2"), true);
+  for (size_t k = 20; k < 40; ++k) bag.bytes[bag.chunk_data_pos[0] + k] ^= 0x5A;
+  const std::string path = Write("bad1.bag", bag.bytes);
+  auto reader = OpenRos1Bag(path, 2);
+  reader->SelectTopic("/points");
+  reader->SelectChunks(2, 3);
+  std::vector<uint64_t> sequences;
+  DriveMessage m;
+  std::string problem;
+  for (DriveStep step; (step = reader->Next(&m, &problem)) != DriveStep::kEnd;) {
+    ASSERT_EQ(step, DriveStep::kMessage) << problem;
+    sequences.push_back(m.sequence);
+  }
+  // kPointsOrder = 1 0 2 | 3 4 6 5: chunks 2 and 3 hold sequences 3..6
+  EXPECT_EQ(sequences, (std::vector<uint64_t>{3, 4, 5, 6}));
+  reader->SelectTopic("/points");
+  reader->SelectChunks(1, 1);
+  size_t damages = 0, messages = 0;
+  for (DriveStep step; (step = reader->Next(&m, &problem)) != DriveStep::kEnd;) {
+    damages += step == DriveStep::kDamage;
+    messages += step == DriveStep::kMessage;
+    if (step == DriveStep::kDamage) {
+      EXPECT_NE(problem.find("chunk 1 at byte"), std::string::npos) << problem;
+    }
+  }
+  EXPECT_EQ(damages, 1u);
+  EXPECT_EQ(messages, 0u);
 }
 
 // --- ROS 1 PointCloud2 ---

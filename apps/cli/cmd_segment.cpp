@@ -30,6 +30,7 @@
 #include "apps/cli/timing.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
+#include "host/drive/chunk_pool.h"
 #include "host/drive/drive.h"
 #include "host/io/cloud_file.h"
 #include "host/io/io_error.h"
@@ -52,6 +53,12 @@ const char kHelp[] =
     "                   DIR/index.csv (sequence,stamp_ns,topic,points,ground_fraction,ms,file)\n"
     "  --topic T        the drive's topic (needless when it has one PointCloud2 topic;\n"
     "                   `lpir-gseg topics DRIVE` lists them)\n"
+    "  --chunks A:B     only the messages in the drive's chunks A to B (numbered from 1;\n"
+    "                   `lpir-gseg topics DRIVE --chunks` counts them), named and indexed with\n"
+    "                   the sequence numbers a whole run gives them; chunks before A are skipped\n"
+    "                   without decompressing them when the drive has an index\n"
+    "  --read-threads N threads decompressing a drive's chunks ahead (1 to 64; default: the\n"
+    "                   CPU count, at most 8, or LPIR_READ_THREADS; 1: decompressed in turn)\n"
     "  --sensor NAME    sensor profile (hdl64e, hdl32e, vlp32c, os1-64, ...) or a profile file\n"
     "  --out DIR        where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go\n"
     "  --format F       label (default), pcd or ply: the cloud with a label field instead;\n"
@@ -145,10 +152,31 @@ struct SegmentArgs {
   std::vector<std::string> inputs;
   std::string sensor, out_dir, format, gt, topic, report;
   bool images = false, has_gt = false, quiet = false, verbose = false, timings = false;
-  bool drive = false;  // inputs is one recorded drive
+  bool drive = false;         // inputs is one recorded drive
+  ChunkRange chunks;          // --chunks (first 0: every chunk)
+  unsigned read_threads = 0;  // --read-threads (0: DefaultReadThreads)
   SegmenterOptions options;
   ReadOptions read;
 };
+
+// "A:B" with whole numbers 1 <= A <= B; std::invalid_argument otherwise.
+ChunkRange ParseChunkRange(const std::string& text) {
+  const size_t colon = text.find(':');
+  auto number = [](const std::string& s) -> uint64_t {
+    if (s.empty() || s.size() > 18 || s.find_first_not_of("0123456789") != std::string::npos)
+      return 0;
+    return std::stoull(s);
+  };
+  ChunkRange r;
+  if (colon != std::string::npos) {
+    r.first = number(text.substr(0, colon));
+    r.last = number(text.substr(colon + 1));
+  }
+  if (r.first < 1 || r.last < r.first)
+    throw std::invalid_argument("--chunks must be A:B, chunk numbers from 1 with A <= B, not '" +
+                                text + "'");
+  return r;
+}
 
 // The command line's options, checked; std::invalid_argument names the bad one.
 SegmentArgs ParseSegmentArgs(const Args& args) {
@@ -162,6 +190,17 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   if (!a.drive && args.Has("--topic"))
     throw std::invalid_argument("--topic is for a recorded drive (.mcap, .db3, .bag)");
   a.topic = args.Get("--topic");
+  if (args.Has("--chunks")) {
+    if (!a.drive) throw std::invalid_argument("--chunks is for a recorded drive (.mcap, .bag)");
+    a.chunks = ParseChunkRange(args.Get("--chunks"));
+  }
+  if (args.Has("--read-threads")) {
+    const double n = args.GetNumber("--read-threads", 0);
+    if (!(n >= 1 && n <= kMaxReadThreads) || n != double(unsigned(n)))
+      throw std::invalid_argument("--read-threads must be a whole number from 1 to " +
+                                  std::to_string(kMaxReadThreads));
+    a.read_threads = unsigned(n);
+  }
   a.format = args.Get("--format", "label");
   if (a.format != "label" && a.format != "pcd" && a.format != "ply" && a.format != "mcap")
     throw std::invalid_argument("--format must be label, pcd, ply or mcap, not '" + a.format + "'");
@@ -387,7 +426,7 @@ class SegmentRun {
 std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic) {
   if (!a.drive) return ReadAhead(OpenFileSource(ListInputs(a.inputs), a.read));
   const std::string& drive = a.inputs[0];
-  std::unique_ptr<DriveReader> reader = OpenDrive(drive);
+  std::unique_ptr<DriveReader> reader = OpenDrive(drive, a.read_threads);
   std::vector<DriveTopic> topics;
   try {
     topics = reader->Topics();
@@ -401,10 +440,11 @@ std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic
                    e.what(), a.topic.c_str());
     *topic = a.topic;
   }
-  size_t count = 0;
+  size_t count = 0;  // a range's share is unknown
   for (const DriveTopic& t : topics)
-    if (t.name == *topic) count = size_t(t.messages);
-  return ReadAhead(OpenDriveSource(drive, std::move(reader), *topic, count, a.format == "mcap"));
+    if (t.name == *topic && a.chunks.first == 0) count = size_t(t.messages);
+  return ReadAhead(
+      OpenDriveSource(drive, std::move(reader), *topic, a.chunks, count, a.format == "mcap"));
 }
 
 }  // namespace
@@ -413,7 +453,7 @@ int RunSegment(int argc, char** argv) {
   const Args args(argc, argv,
                   {"--images", "--nuscenes", "--quiet", "--verbose", "--timings", "--help"},
                   {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device",
-                   "--batch", "--topic", "--report"});
+                   "--batch", "--topic", "--report", "--chunks", "--read-threads"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(kExitCodesLine, stdout);

@@ -1,6 +1,8 @@
 // lpir-gseg topics DRIVE: the topics of a recorded drive (.mcap, .db3, .bag) as a table, one line
-// each in the drive's order: topic, message type, message encoding, message count. A drive that
-// cannot be read is an error naming it (exit kExitCannotRun, as main turns an IoError).
+// each in the drive's order: topic, message type, message encoding, message count; with --chunks
+// only the drive's chunk count (DriveReader::ChunkCount), for splitting it into `segment
+// --chunks` runs. A drive that cannot be read is an error naming it (exit kExitCannotRun, as main
+// turns an IoError).
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -16,15 +18,17 @@ namespace lpir {
 namespace {
 
 const char kHelp[] =
-    "usage: lpir-gseg topics DRIVE\n"
+    "usage: lpir-gseg topics DRIVE [--chunks]\n"
     "  DRIVE            a recorded drive: .mcap or .db3 (ROS 2), .bag (ROS 1)\n"
+    "  --chunks         print only the drive's number of chunks (0 for a .db3), numbered from 1\n"
+    "                   as `segment --chunks A:B` and the damage messages number them\n"
     "Prints a line per topic: its name, message type, encoding and message count. `lpir-gseg\n"
     "segment DRIVE --topic T` labels the sensor_msgs/PointCloud2 messages of one of them.\n";
 
 }  // namespace
 
 int RunTopics(int argc, char** argv) {
-  const Args args(argc, argv, {"--help"}, {});
+  const Args args(argc, argv, {"--help", "--chunks"}, {});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(kExitCodesLine, stdout);
@@ -33,7 +37,11 @@ int RunTopics(int argc, char** argv) {
   if (args.positional().size() != 1)
     throw std::invalid_argument("give one DRIVE\n" + std::string(kHelp));
   const std::string& drive = args.positional()[0];
-  const std::vector<DriveTopic> topics = OpenDrive(drive)->Topics();
+  if (args.Has("--chunks")) {
+    std::printf("%llu\n", static_cast<unsigned long long>(OpenDrive(drive, 1)->ChunkCount()));
+    return kExitOk;
+  }
+  const std::vector<DriveTopic> topics = OpenDrive(drive, 1)->Topics();
   const std::string head[] = {"topic", "type", "encoding", "messages"};
   size_t w[3] = {head[0].size(), head[1].size(), head[2].size()};
   for (const DriveTopic& t : topics) {

@@ -64,13 +64,14 @@ class FileSource : public FrameSource {
 class DriveSource : public FrameSource {
  public:
   DriveSource(std::string drive, std::unique_ptr<DriveReader> reader, std::string topic,
-              size_t count, bool keep)
+              ChunkRange chunks, size_t count, bool keep)
       : drive_(std::move(drive)),
         reader_(std::move(reader)),
         topic_(std::move(topic)),
         count_(count),
         keep_(keep) {
     reader_->SelectTopic(topic_);
+    if (chunks.first != 0) reader_->SelectChunks(chunks.first, chunks.last);
   }
   size_t count() const override { return count_; }
   const char* unit() const override { return "message"; }
@@ -217,9 +218,10 @@ std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTo
 
 std::unique_ptr<FrameSource> OpenDriveSource(const std::string& drive,
                                              std::unique_ptr<DriveReader> reader,
-                                             const std::string& topic, size_t count,
-                                             bool keep_messages) {
-  return std::make_unique<DriveSource>(drive, std::move(reader), topic, count, keep_messages);
+                                             const std::string& topic, ChunkRange chunks,
+                                             size_t count, bool keep_messages) {
+  return std::make_unique<DriveSource>(drive, std::move(reader), topic, chunks, count,
+                                       keep_messages);
 }
 
 }  // namespace lpir

@@ -53,14 +53,20 @@ std::unique_ptr<FrameSource> OpenFileSource(std::vector<std::string> files, Read
 std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTopic>& topics,
                              const std::string& topic);
 
-// The PointCloud2 messages of `topic` in `drive`, opened by `reader` (OpenDrive); `count`, the
-// topic's messages (DriveReader::Topics; 0 when unknown), is count(). A damaged part of the drive
-// and a message that does not decode (DecodeDriveCloud's rules) are failures. keep_messages:
-// FrameInput::message and cloud2 are filled (for writing the messages back).
+// Chunks first..last of a drive (DriveReader::SelectChunks); first 0: every chunk.
+struct ChunkRange {
+  uint64_t first = 0, last = 0;
+};
+
+// The PointCloud2 messages of `topic` in `drive`, opened by `reader` (OpenDrive), in `chunks`;
+// `count`, the topic's messages (DriveReader::Topics; 0 when unknown), is count(). A damaged part
+// of the drive and a message that does not decode (DecodeDriveCloud's rules) are failures.
+// keep_messages: FrameInput::message and cloud2 are filled (for writing the messages back).
+// IoError naming the drive for a range it does not have.
 std::unique_ptr<FrameSource> OpenDriveSource(const std::string& drive,
                                              std::unique_ptr<DriveReader> reader,
-                                             const std::string& topic, size_t count,
-                                             bool keep_messages);
+                                             const std::string& topic, ChunkRange chunks,
+                                             size_t count, bool keep_messages);
 
 // `source` read one frame ahead on a second thread: while the caller segments a frame, the next
 // is read and decoded. Frames, failures and their order are `source`'s; at most one frame waits

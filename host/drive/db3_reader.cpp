@@ -280,6 +280,14 @@ class Db3Reader : public DriveReader {
     ended_ = false;
   }
 
+  // SQLite pages are no chunks: a .db3 is read whole.
+  uint64_t ChunkCount() override { return 0; }
+  bool ChunksIndexed() override { return false; }
+  void SelectChunks(uint64_t first, uint64_t last) override {
+    throw IoError(path_, "a .db3 has no chunks: chunks " + std::to_string(first) + " to " +
+                             std::to_string(last) + " cannot be chosen; read it whole");
+  }
+
   DriveStep Next(DriveMessage* message, std::string* problem) override {
     if (!scan_.get()) throw IoError(path_, "Next before SelectTopic");
     if (ended_) return DriveStep::kEnd;

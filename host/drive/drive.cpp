@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "host/drive/chunk_pool.h"
 #include "host/drive/db3_reader.h"
 #include "host/drive/mcap_reader.h"
 #include "host/drive/pointcloud2.h"
@@ -15,11 +16,12 @@ bool IsDriveFile(const std::string& path) {
   return ext == ".mcap" || ext == ".db3" || ext == ".bag";
 }
 
-std::unique_ptr<DriveReader> OpenDrive(const std::string& path) {
+std::unique_ptr<DriveReader> OpenDrive(const std::string& path, unsigned read_threads) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".mcap") return OpenMcap(path);
+  const unsigned threads = ReadThreads(read_threads);
+  if (ext == ".mcap") return OpenMcap(path, threads);
   if (ext == ".db3") return OpenDb3(path);
-  if (ext == ".bag") return OpenRos1Bag(path);
+  if (ext == ".bag") return OpenRos1Bag(path, threads);
   throw IoError(path, "not a recorded drive: the extension must be .mcap, .db3 or .bag");
 }
 

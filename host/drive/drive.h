@@ -50,13 +50,35 @@ class DriveReader {
   // The next message of the selected topic (kMessage, *message filled), a damaged part
   // (kDamage, *problem filled) or the end (kEnd).
   virtual DriveStep Next(DriveMessage* message, std::string* problem) = 0;
+
+  // The drive's chunks, numbered from 1 as the damage problems number them (MCAP: in the order
+  // Next reads them; ROS 1: in file order); 0 for a drive without chunks (.db3). From the summary
+  // or index when the drive has one, else from a walk of the records (an unindexed ROS 1 bag:
+  // the scan of Topics).
+  virtual uint64_t ChunkCount() = 0;
+  // True when SelectChunks finds where a range starts from the drive's index (an MCAP summary
+  // with chunk indexes, a ROS 1 bag's index) without reading the chunks before it; false when it
+  // reads them (or the drive has no chunks).
+  virtual bool ChunksIndexed() = 0;
+  // Restricts the selected topic to the messages in chunks first..last (1 <= first <= last <=
+  // ChunkCount()) and starts from the first of them; call after SelectTopic (which clears the
+  // restriction). A message's sequence counts every message of the topic before it, those of
+  // the chunks outside the range included (from the index or message indexes, without
+  // decompressing those chunks, when the drive has them; else by reading them), so that runs
+  // over ranges that cover an undamaged drive yield together what one run yields. A damaged part
+  // is reported by the range holding its chunk, one between chunks by the range of the chunk
+  // before it (the first range: before every chunk). IoError naming the file for a drive without
+  // chunks or a range outside 1..ChunkCount().
+  virtual void SelectChunks(uint64_t first, uint64_t last) = 0;
 };
 
 // True for the extensions OpenDrive accepts: .mcap, .db3, .bag.
 bool IsDriveFile(const std::string& path);
 // The reader for `path` by its extension. IoError naming the file when it is missing, of an
-// unknown extension, or has no valid header (magic, version, schema).
-std::unique_ptr<DriveReader> OpenDrive(const std::string& path);
+// unknown extension, or has no valid header (magic, version, schema). `read_threads`: the
+// threads that decompress chunks ahead of Next (chunk_pool.h; 1: none, Next decompresses each
+// chunk itself; 0: DefaultReadThreads()).
+std::unique_ptr<DriveReader> OpenDrive(const std::string& path, unsigned read_threads = 0);
 
 // The sensor_msgs/PointCloud2 in `message` as a Cloud (see pointcloud2.h for the rules).
 // IoError naming `where` (file and message) for a malformed message or one whose fields do not

@@ -11,9 +11,11 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 #include <utility>
 
+#include "host/drive/chunk_pool.h"
 #include "host/drive/decompress.h"
 #include "host/drive/mcap_records.h"
 #include "host/io/io_error.h"
@@ -79,10 +81,18 @@ struct Channel {
   std::string topic, encoding;
 };
 
-// Where a chunk lies (from its chunk index) and which channels it holds (empty: unknown).
+// Where a chunk lies (from its chunk index) and which channels it holds (empty: unknown), with
+// the offset of each one's message index record.
 struct ChunkRef {
   uint64_t start_time = 0, offset = 0, length = 0;
   std::set<uint16_t> channels;
+  std::map<uint16_t, uint64_t> message_indexes;  // channel -> message index record's offset
+};
+
+// Where schema and channel records found by a walk go.
+struct Defs {
+  std::map<uint16_t, std::string>* schemas;  // id -> name
+  std::map<uint16_t, Channel>* channels;
 };
 
 // Receives each message record of a walk: channel, log time, data.
@@ -93,13 +103,35 @@ struct Pending {
   std::vector<uint8_t> data;
 };
 
+// One step of the walk of the selected topic: a chunk from the chunk indexes, or a record of the
+// scan (a chunk, schema, channel or message record, or where the scan ends).
+struct Step {
+  uint64_t pos = 0;            // scan: the record's byte
+  uint64_t chunks_before = 0;  // scan: the chunk records before it
+  size_t chunk = 0;            // indexed: its place in chunks_ (its number - 1)
+  uint64_t owner = 0;          // the number of the chunk it is or follows (0: before every chunk)
+  bool is_chunk = false;
+};
+
+// What a step gave: the selected topic's messages in log-time order (equal times in record
+// order), its damage ("" when none), the schemas and channels it defined.
+struct StepResult {
+  std::vector<Pending> messages;
+  std::string damage;
+  std::map<uint16_t, std::string> schemas;
+  std::map<uint16_t, Channel> channels;
+};
+
 // Open: the magic, the header, then the summary when the footer's is usable (ReadSummary). Next
 // walks the chunk indexes in (message_start_time, offset) order when the summary has them, else
-// the records from the header on (ScanStep); each chunk's messages of the chosen topic are
-// queued in log-time order, then its damage, if any.
+// the records from the header on (the steps ListScan finds, each read as ScanStep reads it);
+// each chunk's messages of the chosen topic are queued in log-time order, then its damage, if
+// any. The steps run on a ChunkPool of `threads` workers (RunStep): a step reads only the file
+// and the selection, and its schemas and channels join the reader's when it is taken.
 class McapReader : public DriveReader {
  public:
-  explicit McapReader(const std::string& path) : path_(path), file_(path) {
+  McapReader(const std::string& path, unsigned threads)
+      : path_(path), file_(path), threads_(threads) {
     uint8_t magic[mcap::kMagicSize] = {};
     if (file_.size() < mcap::kMagicSize + mcap::kRecordPrefix) {
       throw IoError(path_, "not an MCAP file: " + std::to_string(file_.size()) +
@@ -175,15 +207,34 @@ class McapReader : public DriveReader {
       throw IoError(path_, "no topic " + topic + " in the drive; it has: " +
                                (names.empty() ? std::string("none") : names));
     }
+    pool_.reset();  // before the selection its jobs read changes
     selected_ = std::move(selected);
     encoding_ = encoding;
     topic_ = topic;
-    pending_.clear();
-    damage_.clear();
-    done_ = false;
-    next_chunk_ = 0;
-    scan_ = Scan{data_start_, 0};
-    sequence_ = 0;
+    first_chunk_ = 1;
+    last_chunk_ = UINT64_MAX;
+    ResetWalk();
+  }
+
+  uint64_t ChunkCount() override {
+    if (indexed_) return chunks_.size();
+    ListScan();
+    return scan_chunk_count_;
+  }
+
+  bool ChunksIndexed() override { return indexed_; }
+
+  void SelectChunks(uint64_t first, uint64_t last) override {
+    if (selected_.empty()) throw IoError(path_, "SelectChunks before SelectTopic");
+    pool_.reset();
+    const uint64_t n = ChunkCount();
+    if (first < 1 || first > last || last > n) {
+      throw IoError(path_, "no chunks " + std::to_string(first) + " to " + std::to_string(last) +
+                               ": the drive has " + std::to_string(n) + " (numbered from 1)");
+    }
+    first_chunk_ = first;
+    last_chunk_ = last;
+    ResetWalk();
   }
 
   DriveStep Next(DriveMessage* message, std::string* problem) override {
@@ -208,6 +259,8 @@ class McapReader : public DriveReader {
       Advance();
     }
   }
+
+  ~McapReader() override { pool_.reset(); }
 
  private:
   enum RecordState { kWhole, kEndOfFile, kCutPrefix, kCutContent };
@@ -294,8 +347,9 @@ class McapReader : public DriveReader {
           const uint32_t n = r.U32("message_index_offsets length");
           In map(r.Take(n, "message_index_offsets"), n);
           while (map.left() > 0) {
-            c.channels.insert(map.U16("channel id"));
-            map.U64("message index offset");
+            const uint16_t id = map.U16("channel id");
+            c.channels.insert(id);
+            c.message_indexes[id] = map.U64("message index offset");
           }
           chunks.push_back(std::move(c));
         }
@@ -316,12 +370,12 @@ class McapReader : public DriveReader {
     chunks_ = std::move(chunks);
   }
 
-  void ParseSchema(In* r, std::map<uint16_t, std::string>* schemas) {
+  static void ParseSchema(In* r, std::map<uint16_t, std::string>* schemas) {
     const uint16_t id = r->U16("schema id");
     std::string name = r->Str("schema name");
     if (id != 0) schemas->emplace(id, std::move(name));  // id 0 is invalid: ignored
   }
-  void ParseChannel(In* r, std::map<uint16_t, Channel>* channels) {
+  static void ParseChannel(In* r, std::map<uint16_t, Channel>* channels) {
     const uint16_t id = r->U16("channel id");
     Channel c;
     c.schema_id = r->U16("channel schema_id");
@@ -339,63 +393,191 @@ class McapReader : public DriveReader {
     const Sink count = [this](uint16_t channel, uint64_t, const uint8_t*, size_t) {
       ++counts_[channel];
     };
-    while (ScanStep(&scan, count, &ignored)) ignored.clear();
+    const Defs defs{&schemas_, &channels_};
+    while (ScanStep(&scan, count, &ignored, defs)) ignored.clear();
     topics_loaded_ = true;
   }
 
-  // Fills pending_ / damage_ / done_ from the next chunk (indexed) or record (scanned).
-  void Advance() {
-    const Sink keep = [this](uint16_t channel, uint64_t time, const uint8_t* data, size_t size) {
-      if (selected_.count(channel)) chunk_messages_.push_back({time, {data, data + size}});
-    };
-    chunk_messages_.clear();
-    if (indexed_) {
-      if (next_chunk_ == chunks_.size()) {
-        done_ = true;
-        return;
-      }
-      const ChunkRef& c = chunks_[next_chunk_++];
-      bool wanted = c.channels.empty();
-      for (uint16_t id : selected_) wanted = wanted || c.channels.count(id) > 0;
-      if (wanted) ReadIndexedChunk(c, next_chunk_, keep);
-    } else {
-      done_ = !ScanStep(&scan_, keep, &damage_);
-    }
-    // Within a chunk, by log time; equal times keep their record order.
-    std::stable_sort(chunk_messages_.begin(), chunk_messages_.end(),
-                     [](const Pending& a, const Pending& b) { return a.log_time < b.log_time; });
-    for (Pending& p : chunk_messages_) pending_.push_back(std::move(p));
-    chunk_messages_.clear();
+  // The walk from the start of the selected range: pending_, damage_ and the steps emptied, the
+  // pool started on the next Advance.
+  void ResetWalk() {
+    pool_.reset();
+    pending_.clear();
+    damage_.clear();
+    done_ = false;
+    sequence_ = 0;
+    steps_.clear();
+    counted_steps_ = 0;
   }
 
-  std::string Where(uint64_t chunk_number, uint64_t offset) const {
+  // The steps of the selected range, and the messages before it counted into sequence_: an
+  // indexed file's chunks holding a selected channel; a scanned file's records, those before the
+  // range first (their messages counted, their damage that of another range).
+  void PlanSteps() {
+    if (indexed_) {
+      for (size_t c = 0; c < chunks_.size(); ++c) {
+        const uint64_t number = c + 1;
+        if (number > last_chunk_) break;
+        bool wanted = chunks_[c].channels.empty();
+        for (uint16_t id : selected_) wanted = wanted || chunks_[c].channels.count(id) > 0;
+        if (!wanted) continue;
+        Step step;
+        step.chunk = c;
+        step.owner = number;
+        step.is_chunk = true;
+        if (number < first_chunk_) {
+          sequence_ += CountIndexedChunk(step);
+          continue;
+        }
+        steps_.push_back(step);
+      }
+      return;
+    }
+    ListScan();
+    for (const Step& step : scan_steps_) {
+      const uint64_t owner = std::max<uint64_t>(step.owner, 1);
+      if (owner > last_chunk_) break;
+      if (owner < first_chunk_) ++counted_steps_;
+      steps_.push_back(step);
+    }
+  }
+
+  // The selected channels' messages in an indexed chunk before the range: the sum of their
+  // message index records' entries when every one of them is intact, else the messages a read
+  // of the chunk gives.
+  uint64_t CountIndexedChunk(const Step& step) {
+    const ChunkRef& c = chunks_[step.chunk];
+    uint64_t count = 0;
+    bool intact = !c.channels.empty();
+    for (uint16_t id : selected_) {
+      if (!intact) break;
+      const auto at = c.message_indexes.find(id);
+      if (at == c.message_indexes.end()) continue;
+      uint8_t op = 0;
+      uint64_t length = 0;
+      if (at->second < data_start_ || at->second > file_.size() ||
+          RecordAt(at->second, &op, &length) != kWhole || op != mcap::kMessageIndex || length < 6) {
+        intact = false;
+        break;
+      }
+      uint8_t head[6];
+      file_.ReadInto(at->second + mcap::kRecordPrefix, head, sizeof(head));
+      In in(head, sizeof(head));
+      const uint16_t channel = in.U16("message index channel_id");
+      const uint32_t bytes = in.U32("message index records length");
+      intact = channel == id && bytes == length - 6 && bytes % 16 == 0;
+      count += bytes / 16;
+    }
+    return intact ? count : RunStep(step).messages.size();
+  }
+
+  // The records of a file without a usable summary, from the header on, as ScanStep walks them:
+  // the chunk, schema, channel and message records, and the record (or end of file) where a scan
+  // stops with damage; the scan ends after it, or at a data end or footer record. Each record's
+  // prefix is read, no chunk's content.
+  void ListScan() {
+    if (listed_) return;
+    listed_ = true;
+    uint64_t chunks = 0;
+    for (uint64_t pos = data_start_;;) {
+      uint8_t op = 0;
+      uint64_t length = 0;
+      const RecordState state = RecordAt(pos, &op, &length);
+      Step step;
+      step.pos = pos;
+      step.chunks_before = chunks;
+      if (state == kEndOfFile || state == kCutPrefix) {
+        step.owner = chunks;
+        scan_steps_.push_back(step);
+        break;
+      }
+      if (op == mcap::kChunk) {
+        step.is_chunk = true;
+        step.owner = ++chunks;
+      } else {
+        step.owner = chunks;
+      }
+      if (state == kCutContent || op == mcap::kChunk || op == mcap::kSchema ||
+          op == mcap::kChannel || op == mcap::kMessage)
+        scan_steps_.push_back(step);
+      if (state == kCutContent || op == mcap::kDataEnd || op == mcap::kFooter) break;
+      pos += mcap::kRecordPrefix + length;
+    }
+    scan_chunk_count_ = chunks;
+  }
+
+  // One step's messages of the selected topic, damage and definitions (ChunkPool's job: reads
+  // the file, selected_, chunks_ and scan_steps_, writes only its result).
+  StepResult RunStep(const Step& step) const {
+    StepResult out;
+    const Sink keep = [this, &out](uint16_t channel, uint64_t time, const uint8_t* data,
+                                   size_t size) {
+      if (selected_.count(channel)) out.messages.push_back({time, {data, data + size}});
+    };
+    const Defs defs{&out.schemas, &out.channels};
+    if (indexed_) {
+      out.damage = ReadIndexedChunk(chunks_[step.chunk], step.chunk + 1, keep, defs);
+    } else {
+      Scan scan{step.pos, step.chunks_before};
+      ScanStep(&scan, keep, &out.damage, defs);
+    }
+    // Within a chunk, by log time; equal times keep their record order.
+    std::stable_sort(out.messages.begin(), out.messages.end(),
+                     [](const Pending& a, const Pending& b) { return a.log_time < b.log_time; });
+    return out;
+  }
+
+  // Fills pending_ / damage_ / done_ from the next step's result (the pool started on the first
+  // call); a step before the range only counts its messages.
+  void Advance() {
+    if (!pool_) {
+      PlanSteps();
+      pool_ = std::make_unique<ChunkPool<StepResult>>(
+          steps_.size(), [this](size_t i) { return RunStep(steps_[i]); }, threads_);
+    }
+    const size_t index = pool_->taken();
+    StepResult r;
+    if (!pool_->Next(&r)) {
+      done_ = true;
+      return;
+    }
+    for (auto& [id, name] : r.schemas) schemas_.emplace(id, std::move(name));
+    for (auto& [id, channel] : r.channels) channels_.emplace(id, std::move(channel));
+    if (index < counted_steps_) {
+      sequence_ += r.messages.size();
+      return;
+    }
+    for (Pending& p : r.messages) pending_.push_back(std::move(p));
+    damage_ = std::move(r.damage);
+  }
+
+  static std::string Where(uint64_t chunk_number, uint64_t offset) {
     return "chunk " + std::to_string(chunk_number) + " at byte " + std::to_string(offset);
   }
 
-  void ReadIndexedChunk(const ChunkRef& c, uint64_t number, const Sink& sink) {
+  // An indexed chunk's messages to `sink`; returns its damage ("" when none).
+  std::string ReadIndexedChunk(const ChunkRef& c, uint64_t number, const Sink& sink,
+                               const Defs& defs) const {
     const std::string where = Where(number, c.offset);
     if (c.offset < data_start_ || c.offset > file_.size() || c.length > file_.size() - c.offset ||
         c.length < mcap::kRecordPrefix) {
-      damage_ = where + ": the chunk index points past the end of the file (" +
-                std::to_string(c.length) + " bytes, the file has " + std::to_string(file_.size()) +
-                ")";
-      return;
+      return where + ": the chunk index points past the end of the file (" +
+             std::to_string(c.length) + " bytes, the file has " + std::to_string(file_.size()) +
+             ")";
     }
     uint8_t op = 0;
     uint64_t length = 0;
     RecordAt(c.offset, &op, &length);
-    if (op != mcap::kChunk || length != c.length - mcap::kRecordPrefix) {
-      damage_ = where + ": the chunk index does not point at a chunk record of its length";
-      return;
-    }
+    if (op != mcap::kChunk || length != c.length - mcap::kRecordPrefix)
+      return where + ": the chunk index does not point at a chunk record of its length";
     const std::vector<uint8_t> bytes = file_.Read(c.offset + mcap::kRecordPrefix, length);
-    damage_ = ReadChunk(where, bytes.data(), bytes.size(), false, sink);
+    return ReadChunk(where, bytes.data(), bytes.size(), false, sink, defs);
   }
 
   // One step of a scan from scan->pos: handles one record and moves past it. Returns false when
   // the scan ends (data end, footer, end of file or a cut record); *damage is set when the step
   // met damage.
-  bool ScanStep(Scan* scan, const Sink& sink, std::string* damage) {
+  bool ScanStep(Scan* scan, const Sink& sink, std::string* damage, const Defs& defs) const {
     uint8_t op = 0;
     uint64_t length = 0;
     const uint64_t pos = scan->pos;
@@ -420,14 +602,14 @@ class McapReader : public DriveReader {
         // messages before the cut are still read.
         const std::vector<uint8_t> bytes =
             file_.Read(content, std::min<uint64_t>(left, kMaxChunkBytes + 4096));
-        std::string problem = ReadChunk(where, bytes.data(), bytes.size(), true, sink);
+        std::string problem = ReadChunk(where, bytes.data(), bytes.size(), true, sink, defs);
         *damage = where + ": the file ends inside the chunk (" + std::to_string(length) +
                   " bytes, " + std::to_string(left) + " left; truncated)" +
                   (problem.empty() ? "" : "; " + problem.substr(where.size() + 2));
         return false;
       }
       const std::vector<uint8_t> bytes = file_.Read(content, length);
-      *damage = ReadChunk(where, bytes.data(), bytes.size(), false, sink);
+      *damage = ReadChunk(where, bytes.data(), bytes.size(), false, sink, defs);
       scan->pos = content + length;
       return true;
     }
@@ -443,7 +625,7 @@ class McapReader : public DriveReader {
     const std::vector<uint8_t> bytes = file_.Read(content, length);
     try {
       In r(bytes.data(), bytes.size());
-      Record(op, &r, sink);
+      Record(op, &r, sink, defs);
     } catch (const Malformed& e) {
       *damage = "byte " + std::to_string(pos) + ": malformed record of opcode " +
                 std::to_string(op) + ": " + e.what();
@@ -451,12 +633,12 @@ class McapReader : public DriveReader {
     return true;
   }
 
-  // A schema, channel or message record (others are skipped).
-  void Record(uint8_t op, In* r, const Sink& sink) {
+  // A schema or channel record into `defs`, a message record to `sink` (others are skipped).
+  static void Record(uint8_t op, In* r, const Sink& sink, const Defs& defs) {
     if (op == mcap::kSchema) {
-      ParseSchema(r, &schemas_);
+      ParseSchema(r, defs.schemas);
     } else if (op == mcap::kChannel) {
-      ParseChannel(r, &channels_);
+      ParseChannel(r, defs.channels);
     } else if (op == mcap::kMessage) {
       const uint16_t channel = r->U16("message channel_id");
       r->U32("message sequence");
@@ -470,8 +652,8 @@ class McapReader : public DriveReader {
   // A chunk record's content: checks, decompresses and walks its records, giving each message to
   // `sink`. `cut`: the content is the part of a chunk before the end of the file. Returns the
   // damage found ("" when none); the messages before a malformed record have been given.
-  std::string ReadChunk(const std::string& where, const uint8_t* data, size_t size, bool cut,
-                        const Sink& sink) {
+  static std::string ReadChunk(const std::string& where, const uint8_t* data, size_t size, bool cut,
+                               const Sink& sink, const Defs& defs) {
     uint64_t uncompressed_size = 0, stored = 0;
     uint32_t crc = 0;
     std::string compression;
@@ -546,7 +728,7 @@ class McapReader : public DriveReader {
       }
       try {
         In r(plain + content, size_t(length));
-        Record(op, &r, sink);
+        Record(op, &r, sink, defs);
       } catch (const Malformed& e) {
         return where + ": malformed record of opcode " + std::to_string(op) + " at chunk byte " +
                std::to_string(pos) + ": " + e.what();
@@ -568,23 +750,29 @@ class McapReader : public DriveReader {
   bool indexed_ = false;  // chunks_ (from the summary) drive Next
   std::vector<ChunkRef> chunks_;
 
-  // The walk of the selected topic.
+  const unsigned threads_;
+  bool listed_ = false;  // scan_steps_ and scan_chunk_count_ hold ListScan's findings
+  std::vector<Step> scan_steps_;
+  uint64_t scan_chunk_count_ = 0;
+
+  // The walk of the selected topic over chunks first_chunk_..last_chunk_.
   std::set<uint16_t> selected_;
   std::string topic_;
   MessageEncoding encoding_ = MessageEncoding::kCdr;
+  uint64_t first_chunk_ = 1, last_chunk_ = UINT64_MAX;
   uint64_t sequence_ = 0;
-  size_t next_chunk_ = 0;
-  Scan scan_;
-  std::vector<Pending> chunk_messages_;
+  std::vector<Step> steps_;   // PlanSteps'
+  size_t counted_steps_ = 0;  // the first steps_, before the range: counted, not yielded
   std::deque<Pending> pending_;
   std::string damage_;
   bool done_ = false;
+  std::unique_ptr<ChunkPool<StepResult>> pool_;  // last: its workers read the members above
 };
 
 }  // namespace
 
-std::unique_ptr<DriveReader> OpenMcap(const std::string& path) {
-  return std::make_unique<McapReader>(path);
+std::unique_ptr<DriveReader> OpenMcap(const std::string& path, unsigned threads) {
+  return std::make_unique<McapReader>(path, threads);
 }
 
 }  // namespace lpir

@@ -17,7 +17,10 @@
 //   3. SelectTopic lists the messages of the topic's connections (from the index data records
 //      after each chunk, or from a scan of that chunk when they are missing or disagree with the
 //      chunk info) and sorts them by receipt time, ties in file order.
-//   4. Next reads each message from its chunk, decompressed a chunk at a time (the last one kept).
+//   4. Next reads each message from its chunk, decompressed a chunk at a time (the last one kept):
+//      the chunks in the order Next needs them are ChunkPool jobs (LoadChunk, which reads only the
+//      file and the catalogue), decompressed ahead on the pool's workers. With SelectChunks, only
+//      the messages of the range's chunks are read; the others only advance the sequence.
 // Damage: a damaged part found by a scan is reported once every message that lies before it in
 // the file has been yielded; a chunk found damaged only when Next loads it (the indexed case) is
 // reported when the first of its messages is due. After damage the reader goes on at the next
@@ -28,8 +31,14 @@
 // only once its lengths are checked against the bytes left in the file.
 #include "host/drive/ros1_bag_reader.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -39,6 +48,7 @@
 #include <utility>
 #include <vector>
 
+#include "host/drive/chunk_pool.h"
 #include "host/drive/decompress.h"
 #include "host/io/io_error.h"
 
@@ -124,36 +134,47 @@ class Fields {
   std::vector<std::pair<std::string, std::string>> fields_;
 };
 
-// The file, read by position; it never holds more than the bytes asked for.
+// The file, read by position (pread: several threads may read at once); it never holds more than
+// the bytes asked for.
 class BagFile {
  public:
   explicit BagFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
     if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
-    file_.reset(std::fopen(path.c_str(), "rb"));
-    if (!file_) throw IoError(path, "cannot open");
-    if (fseeko(file_.get(), 0, SEEK_END) != 0) throw IoError(path, "cannot seek");
-    const off_t end = ftello(file_.get());
-    if (end < 0) throw IoError(path, "cannot tell its size");
-    size_ = uint64_t(end);
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+      ::close(fd_);
+      throw IoError(path, "not a regular file");
+    }
+    size_ = uint64_t(st.st_size);
   }
+  ~BagFile() { ::close(fd_); }
+  BagFile(const BagFile&) = delete;
+  BagFile& operator=(const BagFile&) = delete;
   uint64_t size() const { return size_; }
   // `n` bytes at `pos`, which the caller has checked lie inside the file.
-  void Read(uint64_t pos, size_t n, uint8_t* out) {
-    if (n == 0) return;
-    if (fseeko(file_.get(), off_t(pos), SEEK_SET) != 0 || std::fread(out, 1, n, file_.get()) != n)
-      throw Broken("byte " + std::to_string(pos) + ": read of " + std::to_string(n) +
-                   " bytes failed");
+  void Read(uint64_t pos, size_t n, uint8_t* out) const {
+    size_t done = 0;
+    while (done < n) {
+      const ssize_t r = ::pread(fd_, out + done, n - done, off_t(pos + done));
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0)
+        throw Broken("byte " + std::to_string(pos) + ": read of " + std::to_string(n) +
+                     " bytes failed");
+      done += size_t(r);
+    }
   }
-  std::vector<uint8_t> Bytes(uint64_t pos, size_t n) {
+  std::vector<uint8_t> Bytes(uint64_t pos, size_t n) const {
     std::vector<uint8_t> out(n);
     Read(pos, n, out.data());
     return out;
   }
 
  private:
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_{nullptr, std::fclose};
+  int fd_ = -1;
   uint64_t size_ = 0;
 };
 
@@ -193,7 +214,7 @@ struct LoadedChunk {
 
 class Ros1Bag : public DriveReader {
  public:
-  explicit Ros1Bag(const std::string& path) : path_(path), file_(path) {
+  Ros1Bag(const std::string& path, unsigned threads) : path_(path), file_(path), threads_(threads) {
     ReadMagic();
     try {
       const Record r = ReadRecordAt(kMagicSize);
@@ -222,7 +243,34 @@ class Ros1Bag : public DriveReader {
     return out;
   }
 
+  ~Ros1Bag() override { pool_.reset(); }
+
+  uint64_t ChunkCount() override {
+    EnsureCatalogue();
+    return chunks_.size();
+  }
+
+  bool ChunksIndexed() override {
+    if (!catalogued_ && index_pos_ == 0) return false;  // no index to try: no scan for this
+    EnsureCatalogue();
+    return indexed_;
+  }
+
+  void SelectChunks(uint64_t first, uint64_t last) override {
+    if (topic_.empty()) throw IoError(path_, "SelectChunks before SelectTopic");
+    pool_.reset();
+    const uint64_t n = ChunkCount();
+    if (first < 1 || first > last || last > n) {
+      throw IoError(path_, "no chunks " + std::to_string(first) + " to " + std::to_string(last) +
+                               ": the bag has " + std::to_string(n) + " (numbered from 1)");
+    }
+    first_chunk_ = uint32_t(first - 1);
+    last_chunk_ = uint32_t(last - 1);
+    Restart();
+  }
+
   void SelectTopic(const std::string& topic) override {
+    pool_.reset();  // before the catalogue its jobs read changes
     EnsureCatalogue();
     std::set<uint32_t> conns;
     std::string names;
@@ -281,19 +329,28 @@ class Ros1Bag : public DriveReader {
       return std::tie(a.time_ns, a.chunk, a.offset) < std::tie(b.time_ns, b.chunk, b.offset);
     });
     PlaceDamages(damages);
-    next_entry_ = next_damage_ = 0;
-    sequence_ = 0;
+    first_chunk_ = 0;
+    last_chunk_ = UINT32_MAX;
+    Restart();
   }
 
   DriveStep Next(DriveMessage* message, std::string* problem) override {
+    if (!pool_) StartPool();
     for (;;) {
-      if (next_damage_ < damages_.size() && damages_[next_damage_].first <= next_entry_) {
-        return Damaged(damages_[next_damage_++].second, problem);
+      while (next_damage_ < damages_.size() && damages_[next_damage_].before <= next_entry_) {
+        const PlacedDamage& d = damages_[next_damage_++];
+        if (InRange(d.chunk)) return Damaged(d.problem, problem);
       }
       if (next_entry_ == entries_.size()) return DriveStep::kEnd;
       const Entry& e = entries_[next_entry_];
+      if (!InRange(e.chunk)) {  // another range's: counted as one yielded there
+        ++next_entry_;
+        ++sequence_;
+        continue;
+      }
       if (cached_chunk_ != e.chunk) {
-        cached_ = LoadChunk(e.chunk);
+        if (!pool_->Next(&cached_) || loads_[pool_->taken() - 1] != e.chunk)
+          throw IoError(path_, "internal: the chunk decompressed ahead is not the one needed");
         cached_chunk_ = e.chunk;
       }
       if (!cached_.damage.empty() && !damage_known_[e.chunk]) {
@@ -312,6 +369,31 @@ class Ros1Bag : public DriveReader {
   }
 
  private:
+  bool InRange(uint32_t chunk) const { return chunk >= first_chunk_ && chunk <= last_chunk_; }
+
+  // The walk from the first message of the range, the pool started again on the next Next.
+  void Restart() {
+    pool_.reset();
+    next_entry_ = next_damage_ = 0;
+    sequence_ = 0;
+    cached_chunk_ = UINT32_MAX;
+    cached_ = LoadedChunk{};
+  }
+
+  // loads_: the chunks in the order Next needs them (each run of the range's entries in one
+  // chunk one load), then the pool that decompresses them.
+  void StartPool() {
+    loads_.clear();
+    uint32_t last = UINT32_MAX;
+    for (const Entry& e : entries_) {
+      if (!InRange(e.chunk) || e.chunk == last) continue;
+      loads_.push_back(e.chunk);
+      last = e.chunk;
+    }
+    pool_ = std::make_unique<ChunkPool<LoadedChunk>>(
+        loads_.size(), [this](size_t k) { return LoadChunk(loads_[k]); }, threads_);
+  }
+
   // kDamage with `what` and how many of the topic's messages came before it.
   DriveStep Damaged(const std::string& what, std::string* problem) const {
     *problem = what + " (after " + std::to_string(sequence_) +
@@ -344,7 +426,7 @@ class Ros1Bag : public DriveReader {
 
   // The record at `pos`: its lengths checked against the file. Broken when the file ends inside
   // header_len, the header or data_len; a data_len past the end sets data_truncated.
-  Record ReadRecordAt(uint64_t pos) {
+  Record ReadRecordAt(uint64_t pos) const {
     const uint64_t size = file_.size();
     const std::string at = "byte " + std::to_string(pos);
     uint8_t len[4];
@@ -362,7 +444,7 @@ class Ros1Bag : public DriveReader {
     r.data_truncated = r.data_len > size - r.data_pos;
     return r;
   }
-  Fields ReadFields(const Record& r, const std::string& at) {
+  Fields ReadFields(const Record& r, const std::string& at) const {
     const uint32_t header_len = uint32_t(r.data_pos - r.pos - 8);
     const std::vector<uint8_t> header = file_.Bytes(r.pos + 4, header_len);
     return Fields(at, header.data(), header.size());
@@ -604,7 +686,7 @@ class Ros1Bag : public DriveReader {
   }
 
   // Chunk `c` decompressed (step 4, and the scans of steps 2 and 3).
-  LoadedChunk LoadChunk(uint32_t c) {
+  LoadedChunk LoadChunk(uint32_t c) const {
     LoadedChunk out;
     const std::string where = ChunkWhere(c);
     try {
@@ -709,7 +791,7 @@ class Ros1Bag : public DriveReader {
   }
 
   // damages_: each damage with the number of sorted entries to yield before it, so that every
-  // message lying before it in the file has been yielded by then.
+  // message lying before it in the file has been yielded by then, and the chunk it belongs to.
   void PlaceDamages(const std::vector<Damage>& damages) {
     damages_.clear();
     // The entries in file order, each with its place in the yield order.
@@ -733,11 +815,26 @@ class Ros1Bag : public DriveReader {
       return std::tie(std::get<0>(a), std::get<1>(a), std::get<2>(a)) <
              std::tie(std::get<0>(b), std::get<1>(b), std::get<2>(b));
     });
-    for (auto& p : placed) damages_.emplace_back(std::get<0>(p), std::move(std::get<3>(p)));
+    for (auto& p : placed) {
+      // its chunk: the last one starting at or before it (the first one: before every chunk)
+      const size_t after =
+          std::upper_bound(chunks_.begin(), chunks_.end(), std::get<1>(p)) - chunks_.begin();
+      damages_.push_back(PlacedDamage{std::get<0>(p), uint32_t(after == 0 ? 0 : after - 1),
+                                      std::move(std::get<3>(p))});
+    }
   }
+
+  // A damage in the yield order: reported once `before` entries are past, by the range holding
+  // `chunk`.
+  struct PlacedDamage {
+    size_t before;
+    uint32_t chunk;
+    std::string problem;
+  };
 
   std::string path_;
   BagFile file_;
+  const unsigned threads_;
   uint64_t index_pos_ = 0, first_record_ = 0;
   uint32_t conn_count_ = 0, chunk_count_ = 0;
 
@@ -753,19 +850,22 @@ class Ros1Bag : public DriveReader {
 
   // The selected topic.
   std::string topic_;
-  std::vector<Entry> entries_;                           // in yield order
-  std::vector<std::pair<size_t, std::string>> damages_;  // (entries yielded before, problem)
-  std::vector<bool> damage_known_;                       // per chunk: its damage is reported
+  std::vector<Entry> entries_;  // in yield order
+  std::vector<PlacedDamage> damages_;
+  std::vector<bool> damage_known_;                      // per chunk: its damage is reported
+  uint32_t first_chunk_ = 0, last_chunk_ = UINT32_MAX;  // the range, as indexes into chunks_
   size_t next_entry_ = 0, next_damage_ = 0;
   uint64_t sequence_ = 0;
   uint32_t cached_chunk_ = UINT32_MAX;
   LoadedChunk cached_;
+  std::vector<uint32_t> loads_;                   // StartPool's
+  std::unique_ptr<ChunkPool<LoadedChunk>> pool_;  // last: its workers read the members above
 };
 
 }  // namespace
 
-std::unique_ptr<DriveReader> OpenRos1Bag(const std::string& path) {
-  return std::make_unique<Ros1Bag>(path);
+std::unique_ptr<DriveReader> OpenRos1Bag(const std::string& path, unsigned threads) {
+  return std::make_unique<Ros1Bag>(path, threads);
 }
 
 }  // namespace lpir

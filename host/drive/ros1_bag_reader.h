@@ -9,6 +9,7 @@
 
 namespace lpir {
 
-std::unique_ptr<DriveReader> OpenRos1Bag(const std::string& path);
+// `threads`: the chunk decompression's workers (ChunkPool; 1: Next decompresses itself).
+std::unique_ptr<DriveReader> OpenRos1Bag(const std::string& path, unsigned threads = 1);
 
 }  // namespace lpir

@@ -1,13 +1,16 @@
 """Labels many scans on a Dask cluster: the fleet version of `lpir-gseg segment`.
 
-    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--topic T]
+    python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--topic T] [--drive-chunks K]
                                [--scheduler tcp://HOST:PORT | --workers N]
 
 INPUTs are files or folders (a folder: its cloud files in name order), as `segment` takes them.
 Each file becomes DIR/<stem>.label, byte for byte what `lpir-gseg segment` writes. A recorded
 drive (.mcap, .db3, .bag) is one task: its topic's messages (--topic, else its only PointCloud2
 topic) become DIR/<drive stem>/<sequence, 6 digits>_<header stamp in ns>.label, the files
-`lpir-gseg segment DRIVE --out DIR/<drive stem>` writes, with an index.csv beside them. Without
+`lpir-gseg segment DRIVE --out DIR/<drive stem>` writes, with an index.csv beside them. A drive
+of more than --drive-chunks K chunks (default 64) whose index says where each chunk lies (an MCAP
+with a summary, an indexed ROS 1 bag) is split into tasks of K chunks each (`segment --chunks`),
+the same files written and their index.csv rows merged into one, in sequence order. Without
 --scheduler a LocalCluster of N worker processes (one thread each) starts on 127.0.0.1. Every
 worker process keeps one Segmenter for all its tasks. A file that cannot be read or segmented is
 named in the report and every other file is still written; the exit code is then 1 and the last
@@ -83,6 +86,7 @@ class FileResult:
     worker: str = ""  # host:pid of the worker process
     segmenters_made: int = 0  # by that process so far
     messages: int = 0  # a drive's: the messages labelled and written
+    index_rows: Optional[List[Tuple[int, str]]] = None  # a chunk range's (sequence, index line)
 
 
 def _error_text(path: str, error: BaseException) -> str:
@@ -154,28 +158,34 @@ def _write_labels(path: str, labels) -> None:
     os.replace(part, path)
 
 
-def segment_drive(drive: str, out: str, topic: Optional[str],
-                  config: SegmenterConfig) -> List[FileResult]:
+INDEX_HEADER = "sequence,stamp_ns,topic,points,ground_fraction,ms,file\n"
+
+
+def segment_drive(drive: str, out: str, topic: Optional[str], config: SegmenterConfig,
+                  chunks: Optional[Tuple[int, int]] = None) -> List[FileResult]:
     """The task for a recorded drive: every message of its topic read, segmented and written in
     log order as out/<sequence %06>_<header stamp ns>.label, listed in out/index.csv (sequence,
-    stamp_ns, topic, points, ground_fraction, ms, file). Damaged parts and messages that do not
-    decode, and failed writes, are the result's error (each named); every other message is
-    written."""
+    stamp_ns, topic, points, ground_fraction, ms, file). `chunks` (first, last): only the
+    messages of those chunks (numbered from 1), with the sequence numbers a whole run gives them;
+    their index lines are then the result's index_rows, not written. Damaged parts and messages
+    that do not decode, and failed writes, are the result's error (each named); every other
+    message is written."""
     segmenter = _worker_segmenter(config)
     result = FileResult(path=drive, worker=f"{socket.gethostname()}:{os.getpid()}")
     problems: List[str] = []
     try:
         reader = lpir_gseg._core._Drive(drive)
         chosen = lpir_gseg.drive.cloud_topic(reader, topic)
-        reader.select(chosen)
+        reader.select(chosen, *(chunks or (0, 0)))
         os.makedirs(out, exist_ok=True)
     except Exception as error:  # noqa: BLE001 (the drive's failure, reported)
         result.error = _error_text(drive, error)
         result.segmenters_made = _segmenters_made
         return [result]
+    rows: List[Tuple[int, str]] = []
     index_part = os.path.join(out, f"index.csv.part{os.getpid()}")
-    with open(index_part, "w") as index:
-        index.write("sequence,stamp_ns,topic,points,ground_fraction,ms,file\n")
+    with open(index_part if chunks is None else os.devnull, "w") as index:
+        index.write(INDEX_HEADER)
         for kind, *rest in iter(reader.next, ("end",)):
             if kind != "message":
                 problems.append(rest[0])
@@ -192,16 +202,45 @@ def segment_drive(drive: str, out: str, topic: Optional[str],
                 continue
             ground = int(labels.sum())
             fraction = ground / len(labels) if len(labels) else 0.0
-            index.write(f"{sequence},{stamp_ns},{chosen},{len(labels)},{fraction:.6f},{ms:.3f},"
-                        f"{name}\n")
+            line = f"{sequence},{stamp_ns},{chosen},{len(labels)},{fraction:.6f},{ms:.3f},{name}\n"
+            index.write(line)
+            rows.append((sequence, line))
             result.messages += 1
             result.points += len(labels)
             result.ground += ground
-    os.replace(index_part, os.path.join(out, "index.csv"))
+    if chunks is None:
+        os.replace(index_part, os.path.join(out, "index.csv"))
+    else:
+        result.index_rows = rows
     if problems:
         result.error = _error_text(drive, RuntimeError("; ".join(problems)))
     result.segmenters_made = _segmenters_made
     return [result]
+
+
+def drive_ranges(drive: str, per_task: int) -> List[Optional[Tuple[int, int]]]:
+    """The tasks of a drive: [None] (the whole drive, one task) unless it has more than
+    `per_task` chunks and an index that says where they lie, then (first, last) ranges of
+    `per_task` chunks each, in order. A drive that cannot be opened is one task (which names
+    the problem)."""
+    try:
+        reader = lpir_gseg._core._Drive(drive, read_threads=1)
+        count = reader.chunk_count() if reader.chunks_indexed() else 0
+    except Exception:  # noqa: BLE001 (the task reports it)
+        return [None]
+    if count <= per_task:
+        return [None]
+    return [(first, min(first + per_task - 1, count)) for first in range(1, count + 1, per_task)]
+
+
+def write_index(folder: str, rows: List[Tuple[int, str]]) -> None:
+    """folder/index.csv from the chunk ranges' rows, in sequence order (as one run writes it)."""
+    part = os.path.join(folder, f"index.csv.part{os.getpid()}")
+    with open(part, "w") as index:
+        index.write(INDEX_HEADER)
+        for _, line in sorted(rows, key=lambda row: row[0]):
+            index.write(line)
+    os.replace(part, os.path.join(folder, "index.csv"))
 
 
 def list_inputs(inputs: Sequence[str]) -> List[str]:
@@ -299,18 +338,22 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
         workers: int = 1, backend: str = "auto", device: Optional[str] = None,
         max_points: Optional[int] = None, nuscenes: Optional[bool] = None,
         chunk: Optional[int] = None, progress: bool = True, log=None,
-        topic: Optional[str] = None) -> RunStats:
+        topic: Optional[str] = None, drive_chunks: int = 64) -> RunStats:
     """Labels every input on the cluster at `scheduler`, or on a LocalCluster of `workers`
     processes; writes out/<stem>.label, and for a drive out/<drive stem>/ (segment_drive; its
     `topic`, None: its only PointCloud2 topic), one task per drive. `chunk` cloud files make one
     task (None: about four tasks a worker, at most 32 files each, so that a task's scheduling
-    costs little beside its frames even at some 15 ms a frame on the CPU). Returns the counts
-    and times (a drive counts as one file); a failed file or damaged drive is in
-    RunStats.failures (and printed on `log`, stderr by default), never an exception. Raises
+    costs little beside its frames even at some 15 ms a frame on the CPU). An indexed drive of
+    more than `drive_chunks` chunks becomes tasks of that many chunks each (drive_ranges), whose
+    index rows are merged into one index.csv. Returns the counts and times (a drive counts as
+    one file); a failed file or damaged drive is in RunStats.failures (and printed on `log`,
+    stderr by default), never an exception. Raises
     ValueError for bad arguments, RuntimeError when the segmenters cannot be made."""
     log = log or sys.stderr
     if chunk is not None and chunk < 1:
         raise ValueError("chunk must be at least 1")
+    if drive_chunks < 1:
+        raise ValueError("drive_chunks must be at least 1")
     if scheduler is None and workers < 1:
         raise ValueError("workers must be at least 1")
     files = list_inputs(inputs)
@@ -362,9 +405,16 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
             chunks = [jobs[i:i + size] for i in range(0, len(jobs), size)]
             futures = {client.submit(segment_files, part, config, pure=False): part
                        for part in chunks}
+            # A split drive's ranges: how many are left, and their results so far.
+            ranges_left: Dict[str, int] = {}
+            range_results: Dict[str, List[FileResult]] = {}
             for drive, folder in drive_jobs:
-                futures[client.submit(segment_drive, drive, folder, topic, config,
-                                      pure=False)] = [(drive, folder)]
+                ranges = drive_ranges(drive, drive_chunks)
+                if ranges != [None]:
+                    ranges_left[drive], range_results[drive] = len(ranges), []
+                for chunks in ranges:
+                    futures[client.submit(segment_drive, drive, folder, topic, config, chunks,
+                                          pure=False)] = [(drive, folder)]
             failures: List[Tuple[str, str]] = []
             segmenters: Dict[str, int] = {}
             written = 0
@@ -375,6 +425,13 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
                 except Exception as error:  # noqa: BLE001: the task itself died (its worker)
                     results = [FileResult(path=src, error=_error_text(src, error))
                                for src, _ in part]
+                drive = part[0][0]
+                if drive in ranges_left:  # one range of a split drive: the drive once all are in
+                    range_results[drive].extend(results)
+                    ranges_left[drive] -= 1
+                    if ranges_left[drive]:
+                        continue
+                    results = [_merge_ranges(drive, part[0][1], range_results[drive])]
                 failed = 0
                 for result in results:
                     if result.worker:
@@ -399,6 +456,29 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
     failures.sort(key=lambda f: order.get(f[0], len(order)))
     return RunStats(files=len(files), written=written, failures=failures, seconds=seconds,
                     workers=n_workers, segmenters=segmenters)
+
+
+def _merge_ranges(drive: str, folder: str, parts: List[FileResult]) -> FileResult:
+    """A split drive's one result from its ranges' (index.csv written from their rows)."""
+    merged = FileResult(path=drive)
+    rows: List[Tuple[int, str]] = []
+    errors = []
+    for part in parts:
+        rows.extend(part.index_rows or [])
+        merged.points += part.points
+        merged.ground += part.ground
+        merged.messages += part.messages
+        merged.worker = merged.worker or part.worker
+        merged.segmenters_made = max(merged.segmenters_made, part.segmenters_made)
+        if part.error is not None:
+            errors.append(part.error)
+    try:
+        os.makedirs(folder, exist_ok=True)
+        write_index(folder, rows)
+    except OSError as error:
+        errors.append(_error_text(os.path.join(folder, "index.csv"), error))
+    merged.error = "; ".join(errors) if errors else None
+    return merged
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -431,13 +511,17 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--chunk", type=int, metavar="K",
                         help="files per task (default: about four tasks a worker, at most 32 "
                              "files each; a GPU worker keeps a task's frames in flight)")
+    parser.add_argument("--drive-chunks", type=int, metavar="K", default=64,
+                        help="an indexed drive of more than K chunks is split into tasks of K "
+                             "chunks each (default 64)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     try:
         stats = run(args.inputs, args.sensor, args.out, scheduler=args.scheduler,
                     workers=args.workers or os.cpu_count() or 1, backend=args.backend,
                     device=args.device, max_points=args.max_points, nuscenes=args.nuscenes,
-                    chunk=args.chunk, progress=not args.quiet, topic=args.topic)
+                    chunk=args.chunk, progress=not args.quiet, topic=args.topic,
+                    drive_chunks=args.drive_chunks)
     except (ValueError, RuntimeError, OSError) as error:
         print(f"lpir_gseg.fleet: error: {error}", file=sys.stderr)
         return 2

@@ -19,9 +19,9 @@ namespace {
 
 class PyDrive {
  public:
-  explicit PyDrive(py::handle path_arg) : path_(PathArg(path_arg)) {
+  PyDrive(py::handle path_arg, unsigned read_threads) : path_(PathArg(path_arg)) {
     py::gil_scoped_release nogil;
-    reader_ = OpenDrive(path_);
+    reader_ = OpenDrive(path_, read_threads);
   }
 
   const std::string& path() const { return path_; }
@@ -39,9 +39,20 @@ class PyDrive {
     return out;
   }
 
-  void Select(const std::string& topic) {
+  uint64_t ChunkCount() {
+    py::gil_scoped_release nogil;
+    return reader_->ChunkCount();
+  }
+  bool ChunksIndexed() {
+    py::gil_scoped_release nogil;
+    return reader_->ChunksIndexed();
+  }
+
+  // `topic`, restricted to chunks first..last when first is not 0 (DriveReader::SelectChunks).
+  void Select(const std::string& topic, uint64_t first, uint64_t last) {
     py::gil_scoped_release nogil;
     reader_->SelectTopic(topic);
+    if (first != 0) reader_->SelectChunks(first, last);
   }
 
   // ("message", sequence, header stamp in ns, points, ring or None), ("damage", problem) or
@@ -90,15 +101,25 @@ class PyDrive {
 
 void BindDrive(py::module_& m) {
   py::class_<PyDrive>(m, "_Drive",
-                      "_Drive(path)\n--\n\nA recorded drive opened by its extension (.mcap, "
-                      ".db3, .bag); lpir_gseg.read_drive is the public way in.")
-      .def(py::init<py::handle>(), py::arg("path"))
+                      "_Drive(path, read_threads=0)\n--\n\nA recorded drive opened by its "
+                      "extension (.mcap, .db3, .bag), its chunks decompressed ahead on "
+                      "read_threads threads (0: the default); lpir_gseg.read_drive is the "
+                      "public way in.")
+      .def(py::init<py::handle, unsigned>(), py::arg("path"), py::arg("read_threads") = 0)
       .def_property_readonly("path", &PyDrive::path)
       .def("topics", &PyDrive::Topics,
            "topics()\n--\n\n(name, type, encoding, messages) for every topic of the drive.")
-      .def("select", &PyDrive::Select, py::arg("topic"),
-           "select(topic)\n--\n\nReads `topic` from its first message on (OSError when the "
-           "drive has no such topic).")
+      .def("chunk_count", &PyDrive::ChunkCount,
+           "chunk_count()\n--\n\nThe drive's chunks, numbered from 1 (0 for a .db3).")
+      .def("chunks_indexed", &PyDrive::ChunksIndexed,
+           "chunks_indexed()\n--\n\nWhether select finds a range's start from the drive's "
+           "index, without reading the chunks before it.")
+      .def("select", &PyDrive::Select, py::arg("topic"), py::arg("first_chunk") = 0,
+           py::arg("last_chunk") = 0,
+           "select(topic, first_chunk=0, last_chunk=0)\n--\n\nReads `topic` from its first "
+           "message on, only those of chunks first_chunk..last_chunk (numbered from 1) when "
+           "first_chunk is not 0, each with the sequence a whole reading gives it (OSError when "
+           "the drive has no such topic or chunks).")
       .def("next", &PyDrive::Next,
            "next()\n--\n\n('message', sequence, stamp_ns, points, ring), ('damage', problem) "
            "or ('end',).");

@@ -168,3 +168,52 @@ def test_the_fleet_writes_what_segment_writes_for_a_drive(cli, tmp_path):
     for name in names:
         assert (tmp_path / "fleet" / "vlp16_lz4" / name).read_bytes() == \
             (tmp_path / "cli" / name).read_bytes(), name
+
+
+@pytest.mark.parametrize("name", DRIVE_FILES)
+def test_chunk_ranges_and_the_fleet_split_give_the_whole_drives_files(tmp_path, name):
+    """Each fixture chunk on its own (select with a range, then the fleet with one chunk a task)
+    yields the whole run's messages with their sequences; the fleet's split run writes the same
+    .label files and index rows (but the ms column) as its whole-drive task."""
+    pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
+    from lpir_gseg import fleet
+
+    drive = lpir_gseg._core._Drive(DRIVES / name)
+    count, indexed = drive.chunk_count(), drive.chunks_indexed()
+    assert (count, indexed) == ((0, False) if name.endswith(".db3") else (3, True))
+    whole = []
+    drive.select(TOPIC)
+    for kind, *rest in iter(drive.next, ("end",)):
+        assert kind == "message"
+        whole.append((rest[0], rest[1], rest[2].tobytes()))
+    ranged = []
+    for c in range(1, count + 1):
+        drive.select(TOPIC, c, c)
+        for kind, *rest in iter(drive.next, ("end",)):
+            ranged.append((rest[0], rest[1], rest[2].tobytes()))
+    if count:
+        assert ranged == whole
+        with pytest.raises(OSError, match="has 3"):
+            drive.select(TOPIC, 2, 4)
+    else:
+        with pytest.raises(OSError, match="no chunks"):
+            drive.select(TOPIC, 1, 1)
+    assert fleet.drive_ranges(str(DRIVES / name), 1) == \
+        ([None] if count == 0 else [(1, 1), (2, 2), (3, 3)])
+    assert fleet.drive_ranges(str(DRIVES / name), 3) == [None]
+
+    outputs = {}
+    for split in (64, 1):
+        out = tmp_path / f"split{split}"
+        stats = fleet.run([str(DRIVES / name)], "vlp16", str(out), workers=2, backend="cpu",
+                          progress=False, topic=TOPIC, drive_chunks=split)
+        assert stats.files == 1 and stats.written == 1 and not stats.failures
+        folder = out / Path(name).stem
+        assert not [p for p in folder.iterdir() if ".part" in p.name]
+        index = (folder / "index.csv").read_text().splitlines()
+        labels = {p.name: p.read_bytes() for p in folder.iterdir() if p.suffix == ".label"}
+        rows = [line.rsplit(",", 2)[0] + "," + line.rsplit(",", 1)[1] for line in index]
+        outputs[split] = (labels, rows)
+    assert len(outputs[1][0]) == 3 and len(outputs[1][1]) == 4
+    assert outputs[1] == outputs[64]
+    assert [row.split(",")[0] for row in outputs[1][1][1:]] == ["0", "1", "2"]
