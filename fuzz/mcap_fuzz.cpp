@@ -2,12 +2,14 @@
 // open, Topics or SelectTopic) or give a reader whose walk of every topic keeps the DriveReader
 // contract: it ends (kEnd within a bound, and stays ended), sequences count 0, 1, 2, ..., every
 // message carries the topic chosen, every damage names the file. Any other exception, a sanitizer
-// report, a leak or a failed check is a finding.
+// report, a leak or a failed check is a finding. Read again with one worker and with three
+// decompressing ahead, the file yields the same steps (fuzz/drive_transcript.h).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "fuzz/drive_transcript.h"
 #include "fuzz/fuzz_file.h"
 #include "host/drive/mcap_reader.h"
 #include "host/io/io_error.h"
@@ -49,5 +51,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
   } catch (const lpir::IoError&) {
   }
+  // The same file read with three workers decompressing ahead yields the same steps.
+  const auto open = [&](unsigned threads) { return lpir::OpenMcap(in.path(), threads); };
+  LPIR_FUZZ_CHECK(lpir::fuzz::TranscriptOf(open, 1, 4, size_t(1) << 20) ==
+                  lpir::fuzz::TranscriptOf(open, 3, 4, size_t(1) << 20));
   return 0;
 }

@@ -4,13 +4,15 @@
 // which the messages are numbered 0, 1, ... in receipt-time order, carry the topic, number the
 // topic's count from Topics() when no damage was reported, and every damage names the file. A
 // message that parses as a PointCloud2 serializes back to the same bytes. Any other exception,
-// a sanitizer report, a leak or a failed check is a finding.
+// a sanitizer report, a leak or a failed check is a finding. Read again with one worker and with
+// three decompressing ahead, the file yields the same steps (fuzz/drive_transcript.h).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "fuzz/drive_transcript.h"
 #include "fuzz/fuzz_file.h"
 #include "host/drive/pointcloud2.h"
 #include "host/drive/ros1_bag_reader.h"
@@ -57,5 +59,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     LPIR_FUZZ_CHECK(reader->Next(&message, &problem) == lpir::DriveStep::kEnd);
     LPIR_FUZZ_CHECK(damages > 0 || messages == topics[t].messages);
   }
+  // The same file read with three workers decompressing ahead yields the same steps.
+  const auto open = [&](unsigned threads) { return lpir::OpenRos1Bag(file.path(), threads); };
+  LPIR_FUZZ_CHECK(lpir::fuzz::TranscriptOf(open, 1, 8, size_t(1) << 20) ==
+                  lpir::fuzz::TranscriptOf(open, 3, 8, size_t(1) << 20));
   return 0;
 }
