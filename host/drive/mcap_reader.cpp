@@ -1,11 +1,6 @@
 #include "host/drive/mcap_reader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -18,6 +13,7 @@
 #include "host/drive/chunk_pool.h"
 #include "host/drive/decompress.h"
 #include "host/drive/mcap_records.h"
+#include "host/drive/read_only_file.h"
 #include "host/io/io_error.h"
 
 namespace lpir {
@@ -31,50 +27,6 @@ using mcap::Malformed;
 constexpr uint64_t kMaxChunkBytes = uint64_t(1) << 30;
 // The summary's CRC is computed over the file in blocks of this size.
 constexpr size_t kCrcBlock = size_t(1) << 20;
-
-// A read-only file read by offset (pread): only the bytes asked for are ever in memory.
-class File {
- public:
-  explicit File(const std::string& path) : path_(path) {
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd_ < 0) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
-      ::close(fd_);
-      throw IoError(path, "not a regular file");
-    }
-    size_ = uint64_t(st.st_size);
-  }
-  ~File() { ::close(fd_); }
-  File(const File&) = delete;
-  File& operator=(const File&) = delete;
-
-  uint64_t size() const { return size_; }
-  // Bytes [offset, offset + n); the caller has checked that they lie inside the file.
-  std::vector<uint8_t> Read(uint64_t offset, uint64_t n) const {
-    std::vector<uint8_t> out(n);
-    ReadInto(offset, out.data(), n);
-    return out;
-  }
-  void ReadInto(uint64_t offset, uint8_t* out, uint64_t n) const {
-    uint64_t done = 0;
-    while (done < n) {
-      const ssize_t r = ::pread(fd_, out + done, size_t(n - done), off_t(offset + done));
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) {
-        throw IoError(
-            path_, "cannot read " + std::to_string(n) + " bytes at byte " + std::to_string(offset) +
-                       (r < 0 ? ": " + std::string(std::strerror(errno)) : ": the file shrank"));
-      }
-      done += uint64_t(r);
-    }
-  }
-
- private:
-  std::string path_;
-  int fd_ = -1;
-  uint64_t size_ = 0;
-};
 
 struct Channel {
   uint16_t schema_id = 0;
@@ -147,8 +99,8 @@ class McapReader : public DriveReader {
       throw IoError(path_, "no intact header record after the magic");
     }
     // Its two strings; a header past 1 MiB is read no further than that.
-    const std::vector<uint8_t> header = file_.Read(mcap::kMagicSize + mcap::kRecordPrefix,
-                                                   std::min<uint64_t>(length, uint64_t(1) << 20));
+    const std::vector<uint8_t> header = file_.Bytes(mcap::kMagicSize + mcap::kRecordPrefix,
+                                                    std::min<uint64_t>(length, uint64_t(1) << 20));
     try {
       In in(header.data(), header.size());
       profile_ = in.Str("header profile");
@@ -287,7 +239,7 @@ class McapReader : public DriveReader {
     const uint64_t tail = mcap::kRecordPrefix + mcap::kFooterContent + mcap::kMagicSize;
     if (file_.size() < data_start_ + tail) return;
     const uint64_t footer_pos = file_.size() - tail;
-    const std::vector<uint8_t> footer = file_.Read(footer_pos, tail);
+    const std::vector<uint8_t> footer = file_.Bytes(footer_pos, tail);
     if (std::memcmp(footer.data() + tail - mcap::kMagicSize, mcap::kMagic, mcap::kMagicSize) != 0)
       return;
     In in(footer.data(), footer.size());
@@ -301,7 +253,7 @@ class McapReader : public DriveReader {
       std::vector<uint8_t> block;
       const uint64_t end = footer_pos + mcap::kFooterCrcSpan;
       for (uint64_t at = summary_start; at < end; at += block.size()) {
-        block = file_.Read(at, std::min<uint64_t>(kCrcBlock, end - at));
+        block = file_.Bytes(at, std::min<uint64_t>(kCrcBlock, end - at));
         crc = Crc32(block.data(), block.size(), crc);
       }
       if (crc != summary_crc) return;
@@ -323,7 +275,7 @@ class McapReader : public DriveReader {
         if (op != mcap::kSchema && op != mcap::kChannel && op != mcap::kChunkIndex &&
             op != mcap::kStatistics)
           continue;
-        const std::vector<uint8_t> bytes = file_.Read(content, length);
+        const std::vector<uint8_t> bytes = file_.Bytes(content, length);
         In r(bytes.data(), bytes.size());
         if (op == mcap::kSchema) {
           ParseSchema(&r, &schemas);
@@ -570,7 +522,7 @@ class McapReader : public DriveReader {
     RecordAt(c.offset, &op, &length);
     if (op != mcap::kChunk || length != c.length - mcap::kRecordPrefix)
       return where + ": the chunk index does not point at a chunk record of its length";
-    const std::vector<uint8_t> bytes = file_.Read(c.offset + mcap::kRecordPrefix, length);
+    const std::vector<uint8_t> bytes = file_.Bytes(c.offset + mcap::kRecordPrefix, length);
     return ReadChunk(where, bytes.data(), bytes.size(), false, sink, defs);
   }
 
@@ -601,14 +553,14 @@ class McapReader : public DriveReader {
         // The bytes there are, bounded by the chunk limit: an uncompressed chunk's complete
         // messages before the cut are still read.
         const std::vector<uint8_t> bytes =
-            file_.Read(content, std::min<uint64_t>(left, kMaxChunkBytes + 4096));
+            file_.Bytes(content, std::min<uint64_t>(left, kMaxChunkBytes + 4096));
         std::string problem = ReadChunk(where, bytes.data(), bytes.size(), true, sink, defs);
         *damage = where + ": the file ends inside the chunk (" + std::to_string(length) +
                   " bytes, " + std::to_string(left) + " left; truncated)" +
                   (problem.empty() ? "" : "; " + problem.substr(where.size() + 2));
         return false;
       }
-      const std::vector<uint8_t> bytes = file_.Read(content, length);
+      const std::vector<uint8_t> bytes = file_.Bytes(content, length);
       *damage = ReadChunk(where, bytes.data(), bytes.size(), false, sink, defs);
       scan->pos = content + length;
       return true;
@@ -622,7 +574,7 @@ class McapReader : public DriveReader {
     scan->pos = content + length;
     if (op == mcap::kDataEnd || op == mcap::kFooter) return false;
     if (op != mcap::kSchema && op != mcap::kChannel && op != mcap::kMessage) return true;
-    const std::vector<uint8_t> bytes = file_.Read(content, length);
+    const std::vector<uint8_t> bytes = file_.Bytes(content, length);
     try {
       In r(bytes.data(), bytes.size());
       Record(op, &r, sink, defs);
@@ -739,7 +691,7 @@ class McapReader : public DriveReader {
   }
 
   const std::string path_;
-  File file_;
+  ReadOnlyFile file_;
   std::string profile_;
   uint64_t data_start_ = 0;  // the first byte after the header record
 

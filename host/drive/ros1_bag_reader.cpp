@@ -31,15 +31,8 @@
 // only once its lengths are checked against the bytes left in the file.
 #include "host/drive/ros1_bag_reader.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <set>
@@ -50,6 +43,7 @@
 
 #include "host/drive/chunk_pool.h"
 #include "host/drive/decompress.h"
+#include "host/drive/read_only_file.h"
 #include "host/io/io_error.h"
 
 namespace lpir {
@@ -132,50 +126,6 @@ class Fields {
 
   std::string at_;
   std::vector<std::pair<std::string, std::string>> fields_;
-};
-
-// The file, read by position (pread: several threads may read at once); it never holds more than
-// the bytes asked for.
-class BagFile {
- public:
-  explicit BagFile(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
-    if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
-    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd_ < 0) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
-      ::close(fd_);
-      throw IoError(path, "not a regular file");
-    }
-    size_ = uint64_t(st.st_size);
-  }
-  ~BagFile() { ::close(fd_); }
-  BagFile(const BagFile&) = delete;
-  BagFile& operator=(const BagFile&) = delete;
-  uint64_t size() const { return size_; }
-  // `n` bytes at `pos`, which the caller has checked lie inside the file.
-  void Read(uint64_t pos, size_t n, uint8_t* out) const {
-    size_t done = 0;
-    while (done < n) {
-      const ssize_t r = ::pread(fd_, out + done, n - done, off_t(pos + done));
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0)
-        throw Broken("byte " + std::to_string(pos) + ": read of " + std::to_string(n) +
-                     " bytes failed");
-      done += size_t(r);
-    }
-  }
-  std::vector<uint8_t> Bytes(uint64_t pos, size_t n) const {
-    std::vector<uint8_t> out(n);
-    Read(pos, n, out.data());
-    return out;
-  }
-
- private:
-  int fd_ = -1;
-  uint64_t size_ = 0;
 };
 
 // A record's place in the file and its header.
@@ -405,7 +355,7 @@ class Ros1Bag : public DriveReader {
     uint8_t head[kMagicSize] = {};
     const size_t n = size_t(std::min<uint64_t>(kMagicSize, file_.size()));
     try {
-      file_.Read(0, n, head);
+      file_.ReadInto(0, head, n);
     } catch (const Broken& e) {
       throw IoError(path_, e.what());
     }
@@ -431,14 +381,14 @@ class Ros1Bag : public DriveReader {
     const std::string at = "byte " + std::to_string(pos);
     uint8_t len[4];
     if (pos > size || size - pos < 4) throw Broken(at + ": the file ends inside a record");
-    file_.Read(pos, 4, len);
+    file_.ReadInto(pos, len, 4);
     const uint32_t header_len = LeU32(len);
     if (header_len > size - pos - 4 || size - pos - 4 - header_len < 4)
       throw Broken(at + ": the file ends inside a record header (" + std::to_string(header_len) +
                    " bytes claimed, " + std::to_string(size - pos - 4) + " left)");
     Record r;
     r.pos = pos;
-    file_.Read(pos + 4 + header_len, 4, len);
+    file_.ReadInto(pos + 4 + header_len, len, 4);
     r.data_pos = pos + 8 + header_len;
     r.data_len = LeU32(len);
     r.data_truncated = r.data_len > size - r.data_pos;
@@ -833,7 +783,7 @@ class Ros1Bag : public DriveReader {
   };
 
   std::string path_;
-  BagFile file_;
+  ReadOnlyFile file_;
   const unsigned threads_;
   uint64_t index_pos_ = 0, first_record_ = 0;
   uint32_t conn_count_ = 0, chunk_count_ = 0;
