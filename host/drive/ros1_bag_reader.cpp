@@ -128,6 +128,28 @@ class Fields {
   std::vector<std::pair<std::string, std::string>> fields_;
 };
 
+// A record inside decompressed chunk data: its header's fields and where its data lies.
+struct ChunkRecord {
+  Fields fields;
+  size_t data_pos = 0;
+  uint32_t data_len = 0;
+};
+
+// The record of chunk data `d` at `pos` (at most d.size()), its lengths checked against the
+// chunk, in this order: Broken(`at` + the problem) when the chunk ends inside its lengths or its
+// header, when the header is malformed (Fields), or when the chunk ends inside its data.
+ChunkRecord RecordInChunk(const std::vector<uint8_t>& d, size_t pos, const std::string& at) {
+  if (d.size() - pos < 4) throw Broken(at + ": the chunk ends inside a record");
+  const uint32_t header_len = LeU32(&d[pos]);
+  if (header_len > d.size() - pos - 4 || d.size() - pos - 4 - header_len < 4)
+    throw Broken(at + ": the chunk ends inside a record header");
+  Fields fields(at, &d[pos + 4], header_len);
+  const size_t data_pos = pos + 8 + header_len;
+  const uint32_t data_len = LeU32(&d[data_pos - 4]);
+  if (data_len > d.size() - data_pos) throw Broken(at + ": the chunk ends inside a record's data");
+  return ChunkRecord{std::move(fields), data_pos, data_len};
+}
+
 // A record's place in the file and its header.
 struct Record {
   uint64_t pos = 0;       // of header_len
@@ -685,15 +707,10 @@ class Ros1Bag : public DriveReader {
     try {
       while (pos < d.size()) {
         const std::string at = ChunkWhere(c) + ", offset " + std::to_string(pos);
-        if (d.size() - pos < 4) throw Broken(at + ": the chunk ends inside a record");
-        const uint32_t header_len = LeU32(&d[pos]);
-        if (header_len > d.size() - pos - 4 || d.size() - pos - 4 - header_len < 4)
-          throw Broken(at + ": the chunk ends inside a record header");
-        const Fields f(at, &d[pos + 4], header_len);
-        const size_t data_pos = pos + 8 + header_len;
-        const uint32_t data_len = LeU32(&d[data_pos - 4]);
-        if (data_len > d.size() - data_pos)
-          throw Broken(at + ": the chunk ends inside a record's data");
+        const ChunkRecord r = RecordInChunk(d, pos, at);
+        const Fields& f = r.fields;
+        const size_t data_pos = r.data_pos;
+        const uint32_t data_len = r.data_len;
         const uint8_t op = f.Op();
         if (op == kOpMessage) {
           entries->push_back(Entry{f.Time("time"), c, uint32_t(pos), f.U32("conn")});
@@ -721,15 +738,11 @@ class Ros1Bag : public DriveReader {
   void ReadMessage(const Entry& e, DriveMessage* message) {
     const std::vector<uint8_t>& d = cached_.data;
     const std::string at = ChunkWhere(e.chunk) + ", offset " + std::to_string(e.offset);
-    size_t pos = e.offset;
-    if (pos > d.size() || d.size() - pos < 4) throw Broken(at + ": no message record there");
-    const uint32_t header_len = LeU32(&d[pos]);
-    if (header_len > d.size() - pos - 4 || d.size() - pos - 4 - header_len < 4)
-      throw Broken(at + ": the chunk ends inside the message's header");
-    const Fields f(at, &d[pos + 4], header_len);
-    const size_t data_pos = pos + 8 + header_len;
-    const uint32_t data_len = LeU32(&d[data_pos - 4]);
-    if (data_len > d.size() - data_pos) throw Broken(at + ": the chunk ends inside the message");
+    if (e.offset > d.size()) throw Broken(at + ": no message record there");
+    const ChunkRecord r = RecordInChunk(d, e.offset, at);
+    const Fields& f = r.fields;
+    const size_t data_pos = r.data_pos;
+    const uint32_t data_len = r.data_len;
     if (f.Op() != kOpMessage || f.U32("conn") != e.conn)
       f.Fail("the index names a message of connection " + std::to_string(e.conn) +
              ", the record there is not one");
