@@ -4,7 +4,6 @@
 // .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand; ROS 1 bags indexed
 // or not, of each chunk compression, truncated), one folder per target.
 // Usage: make_corpus OUT_DIR  (fuzz/corpus/ holds its output, checked by ctest: fuzz.corpus).
-#include <bzlib.h>
 #include <sqlite3.h>
 
 #include <cmath>
@@ -28,6 +27,7 @@
 #include "host/io/pcd.h"
 #include "host/io/ply.h"
 #include "host/io/sensor_profile.h"
+#include "tests/ros1_bag_bytes.h"
 
 namespace fs = std::filesystem;
 
@@ -425,25 +425,6 @@ void Mcap(const std::string& dir) {
 
 // --- ROS 1 bags (bag format 2.0), written record by record ---
 
-std::string BagU32(uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
-std::string BagU64(uint64_t v) { return std::string(reinterpret_cast<const char*>(&v), 8); }
-std::string BagField(const std::string& name, const std::string& value) {
-  return BagU32(uint32_t(name.size() + 1 + value.size())) + name + "=" + value;
-}
-std::string BagRecord(const std::string& header, const std::string& data) {
-  return BagU32(uint32_t(header.size())) + header + BagU32(uint32_t(data.size())) + data;
-}
-std::string BagOp(uint8_t op) { return BagField("op", std::string(1, char(op))); }
-
-std::string Bz2(const std::string& in) {
-  std::vector<char> out(in.size() + in.size() / 100 + 600);
-  unsigned n = unsigned(out.size());
-  if (BZ2_bzBuffToBuffCompress(out.data(), &n, const_cast<char*>(in.data()), unsigned(in.size()), 9,
-                               0, 30) != BZ_OK)
-    throw std::runtime_error("bz2 compression failed");
-  return std::string(out.data(), n);
-}
-
 // A PointCloud2 of two points (x, y, z float32, intensity uint8, ring uint16).
 std::string Ros1Cloud(uint32_t seq) {
   PointCloud2 c;
@@ -481,11 +462,13 @@ std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
   auto connection = [&](uint32_t id) {
     const std::string& topic = topics.at(id);
     const std::string type = topic == "/imu" ? "sensor_msgs/Imu" : "sensor_msgs/PointCloud2";
-    return BagRecord(BagOp(7) + BagField("conn", BagU32(id)) + BagField("topic", topic),
-                     BagField("topic", topic) + BagField("type", type) +
-                         BagField("md5sum", "1158d486dd51d683ce2f1be655c3c181") +
-                         BagField("message_definition", "Header header") +
-                         BagField("callerid", "/velodyne") + BagField("latching", "0"));
+    return bag_bytes::Record(bag_bytes::Op(7) + bag_bytes::Field("conn", bag_bytes::U32(id)) +
+                                 bag_bytes::Field("topic", topic),
+                             bag_bytes::Field("topic", topic) + bag_bytes::Field("type", type) +
+                                 bag_bytes::Field("md5sum", "1158d486dd51d683ce2f1be655c3c181") +
+                                 bag_bytes::Field("message_definition", "Header header") +
+                                 bag_bytes::Field("callerid", "/velodyne") +
+                                 bag_bytes::Field("latching", "0"));
   };
   struct Msg {
     uint32_t conn, sec, nsec;
@@ -498,10 +481,11 @@ std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
   std::map<uint32_t, bool> written;
   const std::string magic = "#ROSBAG V2.0\n";
   auto header = [&](uint64_t index_pos) {
-    const std::string h = BagOp(3) + BagField("index_pos", BagU64(index_pos)) +
-                          BagField("conn_count", BagU32(indexed ? 3 : 0)) +
-                          BagField("chunk_count", BagU32(indexed ? 2 : 0));
-    return BagRecord(h, padded ? std::string(4096 - 8 - h.size(), ' ') : "");
+    const std::string h = bag_bytes::Op(3) +
+                          bag_bytes::Field("index_pos", bag_bytes::U64(index_pos)) +
+                          bag_bytes::Field("conn_count", bag_bytes::U32(indexed ? 3 : 0)) +
+                          bag_bytes::Field("chunk_count", bag_bytes::U32(indexed ? 2 : 0));
+    return bag_bytes::Record(h, padded ? std::string(4096 - 8 - h.size(), ' ') : "");
   };
   const size_t header_size = header(0).size();
   for (const auto& chunk : chunks) {
@@ -511,13 +495,15 @@ std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
     for (const Msg& m : chunk) {
       if (!written[m.conn]) inner += connection(m.conn);
       written[m.conn] = true;
-      index[m.conn] += BagU32(m.sec) + BagU32(m.nsec) + BagU32(uint32_t(inner.size()));
+      index[m.conn] +=
+          bag_bytes::U32(m.sec) + bag_bytes::U32(m.nsec) + bag_bytes::U32(uint32_t(inner.size()));
       ++counts[m.conn];
-      inner += BagRecord(BagOp(2) + BagField("conn", BagU32(m.conn)) +
-                             BagField("time", BagU32(m.sec) + BagU32(m.nsec)),
-                         m.data);
+      inner += bag_bytes::Record(
+          bag_bytes::Op(2) + bag_bytes::Field("conn", bag_bytes::U32(m.conn)) +
+              bag_bytes::Field("time", bag_bytes::U32(m.sec) + bag_bytes::U32(m.nsec)),
+          m.data);
     }
-    const std::string data = compression == "bz2"   ? Bz2(inner)
+    const std::string data = compression == "bz2"   ? bag_bytes::Bz2(inner)
                              : compression == "lz4" ? [&] {
                                  const auto v = CompressLz4Frame(
                                      reinterpret_cast<const uint8_t*>(inner.data()), inner.size());
@@ -525,22 +511,24 @@ std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
                                }()
                                                     : inner;
     const uint64_t chunk_pos = magic.size() + header_size + body.size();
-    body += BagRecord(BagOp(5) + BagField("compression", compression) +
-                          BagField("size", BagU32(uint32_t(inner.size()))),
-                      data);
+    body += bag_bytes::Record(bag_bytes::Op(5) + bag_bytes::Field("compression", compression) +
+                                  bag_bytes::Field("size", bag_bytes::U32(uint32_t(inner.size()))),
+                              data);
     std::string info;
     for (const auto& [conn, entries] : index) {
-      body += BagRecord(BagOp(4) + BagField("ver", BagU32(1)) + BagField("conn", BagU32(conn)) +
-                            BagField("count", BagU32(counts[conn])),
-                        entries);
-      info += BagU32(conn) + BagU32(counts[conn]);
+      body += bag_bytes::Record(bag_bytes::Op(4) + bag_bytes::Field("ver", bag_bytes::U32(1)) +
+                                    bag_bytes::Field("conn", bag_bytes::U32(conn)) +
+                                    bag_bytes::Field("count", bag_bytes::U32(counts[conn])),
+                                entries);
+      info += bag_bytes::U32(conn) + bag_bytes::U32(counts[conn]);
     }
-    infos +=
-        BagRecord(BagOp(6) + BagField("ver", BagU32(1)) + BagField("chunk_pos", BagU64(chunk_pos)) +
-                      BagField("start_time", BagU32(chunk.front().sec) + BagU32(0)) +
-                      BagField("end_time", BagU32(chunk.back().sec) + BagU32(0)) +
-                      BagField("count", BagU32(uint32_t(counts.size()))),
-                  info);
+    infos += bag_bytes::Record(
+        bag_bytes::Op(6) + bag_bytes::Field("ver", bag_bytes::U32(1)) +
+            bag_bytes::Field("chunk_pos", bag_bytes::U64(chunk_pos)) +
+            bag_bytes::Field("start_time", bag_bytes::U32(chunk.front().sec) + bag_bytes::U32(0)) +
+            bag_bytes::Field("end_time", bag_bytes::U32(chunk.back().sec) + bag_bytes::U32(0)) +
+            bag_bytes::Field("count", bag_bytes::U32(uint32_t(counts.size()))),
+        info);
   }
   const uint64_t index_pos = magic.size() + header_size + body.size();
   std::string bag = magic + header(indexed ? index_pos : 0) + body;

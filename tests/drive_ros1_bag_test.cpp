@@ -2,7 +2,6 @@
 // PointCloud2 (host/drive/pointcloud2.h), on bags written here record by record (uncompressed,
 // bz2 and lz4 chunks, indexed and as a recorder that died leaves them), then damaged: truncated
 // at every byte, an unknown compression, corrupt bz2, huge lengths, a bad magic or version.
-#include <bzlib.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -21,6 +20,7 @@
 #include "host/io/io_error.h"
 #include "tests/io_alloc_tracker.h"
 #include "tests/io_test_helpers.h"
+#include "tests/ros1_bag_bytes.h"
 
 namespace lpir {
 namespace {
@@ -29,25 +29,13 @@ namespace fs = std::filesystem;
 using test::ThrowsIoError;
 using test::WriteRaw;
 
-std::string U32(uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
-std::string U64(uint64_t v) { return std::string(reinterpret_cast<const char*>(&v), 8); }
+using bag_bytes::Bz2;
+using bag_bytes::Field;
+using bag_bytes::Op;
+using bag_bytes::Record;
+using bag_bytes::U32;
+using bag_bytes::U64;
 std::string Time(uint32_t sec, uint32_t nsec) { return U32(sec) + U32(nsec); }
-std::string Field(const std::string& name, const std::string& value) {
-  return U32(uint32_t(name.size() + 1 + value.size())) + name + "=" + value;
-}
-std::string Record(const std::string& header, const std::string& data) {
-  return U32(uint32_t(header.size())) + header + U32(uint32_t(data.size())) + data;
-}
-std::string Op(uint8_t op) { return Field("op", std::string(1, char(op))); }
-
-std::string Bz2(const std::string& in) {
-  std::vector<char> out(in.size() + in.size() / 100 + 600);
-  unsigned n = unsigned(out.size());
-  EXPECT_EQ(BZ2_bzBuffToBuffCompress(out.data(), &n, const_cast<char*>(in.data()),
-                                     unsigned(in.size()), 9, 0, 30),
-            BZ_OK);
-  return std::string(out.data(), n);
-}
 std::string Lz4(const std::string& in) {
   const auto out = CompressLz4Frame(reinterpret_cast<const uint8_t*>(in.data()), in.size());
   return std::string(out.begin(), out.end());
