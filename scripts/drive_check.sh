@@ -31,15 +31,9 @@ die() { say "error: $*" >&2; exit 1; }
 
 [[ "${frames}" =~ ^[1-9][0-9]*$ ]] || die "N must be a positive integer, got '${frames}'"
 [[ -x "${cli}" ]] || die "no lpir-gseg at ${cli} (build it, or set LPIR_CLI)"
-{ command -v node && command -v npm; } > /dev/null ||
-  die "needs Node.js and npm for tools/drive_fixtures (Debian: apt-get install nodejs npm)"
-"${python}" -c 'import rosbag, roslz4, sensor_msgs.msg' 2> /dev/null ||
-  die "needs ${python} with python3-rosbag, python3-roslz4 and python3-sensor-msgs" \
-    "(scripts/install_deps.sh installs them)"
-if [[ ! -d "${tools}/node_modules" ]]; then
-  say "npm ci in ${tools}"
-  (cd "${tools}" && npm ci --no-audit --no-fund)
-fi
+# shellcheck source=tools/drive_fixtures/writers.sh
+source "${tools}/writers.sh"
+require_writers
 if [[ -n "${LPIR_DRIVE_CHECK_DIR:-}" ]]; then
   work="${LPIR_DRIVE_CHECK_DIR}"
   mkdir -p "${work}"
@@ -61,22 +55,11 @@ for ((i = 0; i < frames; ++i)); do
 done
 
 say "writing the six drives"
-for compression in zstd lz4 none; do
-  node "${tools}/write_mcap.mjs" --out "${work}/drives/drive_${compression}.mcap" \
-    --compression "${compression}" --topic "${topic}" "${bins[@]}"
-done
-node "${tools}/write_cdr.mjs" --out-dir "${work}/cdr" "${bins[@]}"
-"${python}" "${tools}/write_db3.py" --cdr-dir "${work}/cdr" --out "${work}/drives/drive_db3.db3" \
-  --topic "${topic}"
-rm -rf "${work}/cdr"
-for compression in bz2 lz4; do
-  "${python}" "${tools}/write_bag.py" --out "${work}/drives/drive_${compression}.bag" \
-    --compression "${compression}" --topic "${topic}" "${bins[@]}"
-done
+write_drives "${work}/drives" drive "${topic}" "${work}/cdr" 0 "${bins[@]}"
 drive_path() {  # kind -> file
   local kind="$1"
   case "${kind}" in
-    db3) echo "${work}/drives/drive_db3.db3" ;;
+    db3) echo "${work}/drives/drive.db3" ;;
     *) echo "${work}/drives/drive_${kind}" ;;
   esac
 }

@@ -28,15 +28,9 @@ say() { echo "[make_drive_fixtures] $*"; }
 die() { say "error: $*" >&2; exit 1; }
 
 [[ -x "${cli}" ]] || die "no lpir-gseg at ${cli} (build it, or set LPIR_CLI)"
-{ command -v node && command -v npm; } > /dev/null ||
-  die "needs Node.js and npm for tools/drive_fixtures (Debian: apt-get install nodejs npm)"
-"${python}" -c 'import rosbag, roslz4, sensor_msgs.msg' 2> /dev/null ||
-  die "needs ${python} with python3-rosbag, python3-roslz4 and python3-sensor-msgs" \
-    "(scripts/install_deps.sh installs them)"
-if [[ ! -d "${tools}/node_modules" ]]; then
-  say "npm ci in ${tools}"
-  (cd "${tools}" && npm ci --no-audit --no-fund)
-fi
+# shellcheck source=tools/drive_fixtures/writers.sh
+source "${tools}/writers.sh"
+require_writers
 
 tmp="$(mktemp -d)"
 trap 'rm -rf "${tmp}"' EXIT
@@ -62,14 +56,5 @@ PY
   frames+=("${out}/frames/${name}.bin")
 done
 
-for compression in zstd lz4 none; do
-  node "${tools}/write_mcap.mjs" --out "${out}/vlp16_${compression}.mcap" \
-    --compression "${compression}" --topic "${topic}" --chunk-size 1 "${frames[@]}"
-done
-node "${tools}/write_cdr.mjs" --out-dir "${tmp}/cdr" "${frames[@]}"
-"${python}" "${tools}/write_db3.py" --cdr-dir "${tmp}/cdr" --out "${out}/vlp16.db3" --topic "${topic}"
-for compression in bz2 lz4; do
-  "${python}" "${tools}/write_bag.py" --out "${out}/vlp16_${compression}.bag" \
-    --compression "${compression}" --topic "${topic}" --chunk-threshold 1 "${frames[@]}"
-done
+write_drives "${out}" vlp16 "${topic}" "${tmp}/cdr" 1 "${frames[@]}"
 say "done: $(du -sh "${out}" | cut -f1) in ${out}"

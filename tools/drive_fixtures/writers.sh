@@ -1,0 +1,43 @@
+# Sourced by scripts/make_drive_fixtures.sh and scripts/drive_check.sh: the independent drive
+# writers of this folder, checked and driven the same way for both. Needs `tools` (this folder),
+# `python` (an interpreter that sees python3-rosbag) and `die` set by the caller.
+
+# Fails (die) unless Node.js, npm and python3-rosbag are there; runs `npm ci` here when
+# node_modules is missing.
+require_writers() {
+  { command -v node && command -v npm; } > /dev/null ||
+    die "needs Node.js and npm for tools/drive_fixtures (Debian: apt-get install nodejs npm)"
+  "${python}" -c 'import rosbag, roslz4, sensor_msgs.msg' 2> /dev/null ||
+    die "needs ${python} with python3-rosbag, python3-roslz4 and python3-sensor-msgs" \
+      "(scripts/install_deps.sh installs them)"
+  if [[ ! -d "${tools}/node_modules" ]]; then
+    echo "npm ci in ${tools}"
+    (cd "${tools}" && npm ci --no-audit --no-fund)
+  fi
+}
+
+# write_drives DIR STEM TOPIC SCRATCH PER_CHUNK FRAME.bin...: the frames as one message each on
+# TOPIC in DIR/STEM_{zstd,lz4,none}.mcap, DIR/STEM.db3 and DIR/STEM_{bz2,lz4}.bag. PER_CHUNK 1:
+# one message per chunk (the fixtures), 0: the writers' default chunk sizes. SCRATCH holds the CDR
+# messages the .db3 is made from, removed after.
+write_drives() {
+  local dir="$1" stem="$2" topic="$3" scratch="$4" per_chunk="$5"
+  shift 5
+  local mcap_chunk=() bag_chunk=() compression
+  if [[ "${per_chunk}" == 1 ]]; then
+    mcap_chunk=(--chunk-size 1)
+    bag_chunk=(--chunk-threshold 1)
+  fi
+  for compression in zstd lz4 none; do
+    node "${tools}/write_mcap.mjs" --out "${dir}/${stem}_${compression}.mcap" \
+      --compression "${compression}" --topic "${topic}" "${mcap_chunk[@]}" "$@"
+  done
+  node "${tools}/write_cdr.mjs" --out-dir "${scratch}" "$@"
+  "${python}" "${tools}/write_db3.py" --cdr-dir "${scratch}" --out "${dir}/${stem}.db3" \
+    --topic "${topic}"
+  rm -rf "${scratch}"
+  for compression in bz2 lz4; do
+    "${python}" "${tools}/write_bag.py" --out "${dir}/${stem}_${compression}.bag" \
+      --compression "${compression}" --topic "${topic}" "${bag_chunk[@]}" "$@"
+  done
+}
