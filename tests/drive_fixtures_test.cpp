@@ -197,6 +197,16 @@ std::string DamagedCopy(const test::ScopedDir& dir, const Fixture& f,
   return path;
 }
 
+// A copy of fixture `f` (one message per chunk) with a byte flipped in the middle of its second
+// chunk's payload.
+std::string SecondChunkFlipped(const test::ScopedDir& dir, const Fixture& f) {
+  return DamagedCopy(dir, f, [&](std::string* b) {
+    const std::vector<ChunkSpan> chunks = Chunks(f, *b);
+    ASSERT_EQ(chunks.size(), kFrames);
+    (*b)[chunks[1].data + chunks[1].data_size / 2] ^= 0x10;
+  });
+}
+
 class DriveFixture : public ::testing::TestWithParam<Fixture> {
  protected:
   void SetUp() override {
@@ -329,11 +339,7 @@ using McapDrive = DriveFixture;  // the MCAP fixtures: their chunks carry a CRC
 TEST_P(McapDrive, AFlippedByteInAChunkIsDamageAndTheReadGoesOnPastIt) {
   const Fixture& f = GetParam();
   test::ScopedDir dir;
-  const std::string path = DamagedCopy(dir, f, [&](std::string* b) {
-    const std::vector<ChunkSpan> chunks = Chunks(f, *b);
-    ASSERT_EQ(chunks.size(), kFrames);
-    (*b)[chunks[1].data + chunks[1].data_size / 2] ^= 0x10;
-  });
+  const std::string path = SecondChunkFlipped(dir, f);
   const ReadOut out = ReadAll(path, kTopic);
   ASSERT_EQ(out.error, "");
   ASSERT_EQ(out.steps.size(), 4u);
@@ -357,11 +363,7 @@ TEST(DriveBag, AFlippedByteInABz2ChunkIsDamage) {
   const Fixture& f = kFixtures[4];
   ASSERT_EQ(std::string(f.compression), "bz2");
   test::ScopedDir dir;
-  const std::string path = DamagedCopy(dir, f, [&](std::string* b) {
-    const std::vector<ChunkSpan> chunks = Chunks(f, *b);
-    ASSERT_EQ(chunks.size(), kFrames);
-    (*b)[chunks[1].data + chunks[1].data_size / 2] ^= 0x10;
-  });
+  const std::string path = SecondChunkFlipped(dir, f);
   const ReadOut out = ReadAll(path, kTopic);
   ASSERT_EQ(out.error, "");
   ASSERT_GE(out.steps.size(), 3u);
