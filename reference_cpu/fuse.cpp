@@ -7,8 +7,11 @@
 // for growing. A hole-filled pixel has no point, hence no coarse opinion: it is unknown (it may
 // still be grown through). Comparisons only.
 // Occlusion veto (our addition): a pixel with an occluder among the occ_rows pixels above it in its
-// column (nearer than its range + occ_margin and higher by more than occ_rise) is non-ground, for
-// good: it is the foot of an object or lies under an overhang (a hedge, a car body). The reach is
+// column (nearer than its range + occ_margin and higher by more than occ_rise) is vetoed
+// (kPixVetoed) where the rule below would make it ground or unknown: it is the foot of an object
+// or lies under an overhang (a hedge, a car body), and never grows; stage 8 makes it ground only
+// when the pixel above it ends ground (what rose above it was ground: docs/decisions/grow.md). The
+// reach is
 // range + occ_margin + occ_grade * range^2 (flat ground's step between beams grows with range^2),
 // and at most range + occ_front for a pixel whose own class is ground: an object standing farther
 // behind a flat, smooth pixel leaves it ground (it lies in front of the object, not on its face).
@@ -134,7 +137,8 @@ void Opinions(const uint32_t* __restrict point, const uint32_t* __restrict coars
 // The rule of the contract for one row, given each pixel's occlusion mark and coarse opinion
 // (kPixGround, kPixNonGround or kNoOpinion); selects only, so that the loop vectorises. Where the
 // class is unknown the vote is the opinion when ground; elsewhere it is the class when the
-// opinion agrees; else unknown (always so without an opinion).
+// opinion agrees; else unknown (always so without an opinion). An occluded pixel whose vote is
+// ground or unknown is kPixVetoed; one whose vote is non-ground stays non-ground.
 void Decide(const uint32_t* __restrict cls, const uint32_t* __restrict occluded,
             const uint32_t* __restrict opinion, uint32_t w, uint32_t* __restrict fused) {
   for (uint32_t u = 0; u < w; ++u) {
@@ -142,7 +146,8 @@ void Decide(const uint32_t* __restrict cls, const uint32_t* __restrict occluded,
     const uint32_t agree =
         uint32_t(c == o) | (uint32_t(c == kPixUnknown) & uint32_t(o == kPixGround));
     const uint32_t vote = agree ? o : kPixUnknown;
-    const uint32_t kept = occluded[u] ? kPixNonGround : vote;
+    const uint32_t vetoed = vote == kPixNonGround ? kPixNonGround : kPixVetoed;
+    const uint32_t kept = occluded[u] ? vetoed : vote;
     fused[u] = c == kPixEmpty ? kPixEmpty : kept;
   }
 }

@@ -17,6 +17,14 @@
 // comp_seed_share * its size (one rounded float product; counts are exact in float below 2^24):
 // ground that the coarse segmentation vouches for, cut off from the rest (a sidewalk between
 // parked cars), not an object's flat top grown from a few seeds (docs/decisions/grow.md).
+// Lifting the veto (our addition), after the component test, each vetoed pixel (kPixVetoed, kept
+// so in pixel_grown) judged on the labels before any lift: it is ground when its two row
+// neighbours (columns wrap) are ground and the step from each to it is allowed, or when the pixel
+// above it is ground and its ray did not pass under that pixel (not: d = Ftz0(range above - r) <
+// 0 and Ftz0(z * d) >= Ftz0(occ_pass * r)); else non-ground. Why: ground goes on around it, so
+// what the veto saw above it was ground rising (a curb's top, a bank) or a thing one pixel wide
+// (a pole, a post), not an object's foot; the pass test keeps reflection noise, seen under the
+// road, vetoed (docs/decisions/grow.md).
 // pixel_label: kPixGround / kPixNonGround, kPixEmpty where no pixel was measured or filled.
 #include <algorithm>
 #include <cmath>
@@ -49,7 +57,7 @@ thread_local std::vector<uint8_t> state;
 thread_local std::vector<Pixel> stack;
 thread_local std::vector<Run> runs;
 thread_local std::vector<uint32_t> row_runs;  // beams + 1 offsets into runs
-thread_local std::vector<uint32_t> parent, comp_size, comp_seeds;
+thread_local std::vector<uint32_t> parent, comp_size, comp_seeds, lifted;
 
 // Eight bytes of the state (any alignment).
 inline uint64_t Word(const uint8_t* s) {
@@ -306,6 +314,36 @@ void LabelComponents(const Params& p, Frame& f) {
   }
 }
 
+// The veto's lift over labels after the component test, every vetoed pixel decided on the labels
+// before any lift: one that stays is written non-ground at once (its neighbours read it as not
+// ground either way), the lifted ones are collected and written ground after the scan.
+void LiftVetoed(const Params& p, const float* __restrict inten, const float* __restrict range,
+                const float* __restrict height, uint32_t* __restrict label) {
+  const uint32_t w = p.width, h = p.beams;
+  lifted.clear();
+  for (uint32_t v = 0; v < h; ++v) {
+    for (uint32_t u = 0; u < w; ++u) {
+      const uint32_t x = v * w + u;
+      if (label[x] != kPixVetoed) continue;
+      const uint32_t left = u == 0 ? x + w - 1 : x - 1, right = u + 1 == w ? x + 1 - w : x + 1;
+      auto joins = [&](uint32_t q) {
+        return label[q] == kPixGround &&
+               StepAllowed(p, inten[q], height[q], range[q], inten[x], height[x], range[x], true);
+      };
+      bool lift = joins(left) && joins(right);
+      if (!lift && v > 0 && label[x - w] == kPixGround) {
+        const float r = range[x], d = exact::Ftz0(range[x - w] - r);
+        lift = !(d < 0.0f && exact::Ftz0(height[x] * d) >= exact::Ftz0(p.occ_pass * r));
+      }
+      if (lift)
+        lifted.push_back(x);
+      else
+        label[x] = kPixNonGround;
+    }
+  }
+  for (uint32_t x : lifted) label[x] = kPixGround;
+}
+
 }  // namespace
 
 void Grow(const Params& p, Frame& f) {
@@ -322,6 +360,7 @@ void Grow(const Params& p, Frame& f) {
   WriteOutputs(f.pixel_fused.data(), s, pixels, f.pixel_grown.data(), f.pixel_label.data(),
                f.pixel_comp.data());
   LabelComponents(p, f);
+  LiftVetoed(p, f.f_inten.data(), f.f_range.data(), f.f_height.data(), f.pixel_label.data());
 }
 
 }  // namespace lpir

@@ -27,7 +27,12 @@
 //             non-ground where the component is removed: size < min_component and not (size >=
 //             comp_seed_min and float(seeds) >= comp_seed_share * float(size), one rounded
 //             product), size = grow_sizes[pixel_comp[x]], seeds = grow_sizes[count +
-//             pixel_comp[x]].
+//             pixel_comp[x]]; a vetoed x -> ground where lifted, else non-ground.
+// The veto's lift (the reference's LiftVetoed), judged on the pass-4 ground of the pixels around
+// x ("ends ground": grown and its component kept): the two row neighbours (columns wrap) end
+// ground and the step from each to x is allowed; or, x not on row 0, the pixel above ends ground
+// and x's ray did not pass under it: not (d = Ftz0(range above - r) < 0 and Ftz0(z * d) >=
+// Ftz0(occ_pass * r)).
 // Step test from pixel a to pixel b (the reference's StepAllowed, each op rounded: `precise`):
 // di = |ib - ia|, dz = |zb - za|, step = |rb - ra|, + min(ra, rb) * column_arc when the column
 // changes; allowed = grow_dz + grow_grade * step; di <= grow_di && dz <= allowed. Every term is
@@ -63,6 +68,7 @@ const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const uint kPixNonGround = 0u;
 const uint kPixGround = 1u;
 const uint kPixUnknown = 2u;
+const uint kPixVetoed = 4u;
 const uint kSeed = 0u;  // grow_reach's virtual node: the root of every component holding a seed
 
 const uint kInit = 0u, kReach = 1u, kJoin = 2u, kCount = 3u, kFinish = 4u;
@@ -141,6 +147,33 @@ uint Forward(uint x, uint v, uint u, uint k, out uint col) {
   return x - u + w + col;
 }
 
+// Finish pass: is grown pixel q ground after the component test (its component kept)? Reads
+// only what earlier passes wrote (pixel_grown, pixel_comp of grown pixels, grow_sizes).
+bool EndsGround(uint q) {
+  if (pixel_grown[q] != kPixGround) return false;
+  uint root = pixel_comp[q];
+  uint size = grow_sizes[root], seeds = grow_sizes[pc.count + root];
+  precise float need = p.comp_seed_share * float(size);
+  bool kept = size >= p.comp_seed_min && float(seeds) >= need;
+  return size >= p.min_component || kept;
+}
+
+// Finish pass: the veto's lift of vetoed pixel x (row v, column u), on labels before any lift.
+bool Lifted(uint x, uint v, uint u) {
+  uint w = p.width;
+  uint cl = u == 0u ? w - 1u : u - 1u, cr = u + 1u == w ? 0u : u + 1u;
+  uint left = x - u + cl, right = x - u + cr;
+  if (EndsGround(left) && EndsGround(right) && StepAllowed(left, x, cl, u) &&
+      StepAllowed(right, x, cr, u))
+    return true;
+  if (v == 0u || !EndsGround(x - w)) return false;
+  float r = f_range[x];
+  precise float d = exact_Ftz0(f_range[x - w] - r);
+  precise float clearance = exact_Ftz0(f_height[x] * d);
+  precise float pass = exact_Ftz0(p.occ_pass * r);
+  return !(d < 0.0 && clearance >= pass);
+}
+
 void main() {
   const uint pass = kPass;
   uint x = gl_GlobalInvocationID.x;
@@ -190,16 +223,11 @@ void main() {
   }
   if (pass == kFinish) {
     uint g = pixel_grown[x];
-    if (g != kPixGround) {
-      pixel_comp[x] = kNone;
-      pixel_label[x] = g;
+    if (g == kPixGround) {
+      pixel_label[x] = EndsGround(x) ? kPixGround : kPixNonGround;
       return;
     }
-    uint root = pixel_comp[x];
-    uint size = grow_sizes[root], seeds = grow_sizes[pc.count + root];
-    precise float need = p.comp_seed_share * float(size);
-    bool kept = size >= p.comp_seed_min && float(seeds) >= need;
-    bool removed = size < p.min_component && !kept;
-    pixel_label[x] = removed ? kPixNonGround : kPixGround;
+    pixel_comp[x] = kNone;
+    pixel_label[x] = g != kPixVetoed ? g : Lifted(x, v, u) ? kPixGround : kPixNonGround;
   }
 }

@@ -18,6 +18,8 @@ const char* Name(uint32_t c) {
       return "ground";
     case kPixUnknown:
       return "unknown";
+    case kPixVetoed:
+      return "vetoed";
     default:
       return "empty";
   }
@@ -139,10 +141,10 @@ TEST_F(FuseVeto, NearerAndHigherPixelJustAboveVetoesGround) {
   Ground(4);
   im.Fill(v - 1, 4, kPixNonGround, r, z + 1.0f);
   Fuse(im.p, im.f);
-  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
-  EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
-  EXPECT_EQ(im.Fused(v, 3), kPixNonGround);
-  EXPECT_EQ(im.Fused(v, 4), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 0), kPixVetoed);
+  EXPECT_EQ(im.Fused(v, 2), kPixVetoed);
+  EXPECT_EQ(im.Fused(v, 3), kPixVetoed);
+  EXPECT_EQ(im.Fused(v, 4), kPixVetoed);
 }
 
 // An object standing at least occ_front behind a pixel of class ground leaves that pixel ground
@@ -158,7 +160,7 @@ TEST_F(FuseVeto, AnObjectBehindAGroundPixelLeavesItGround) {
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixGround);
   EXPECT_EQ(im.Fused(v, 1), kPixGround);
-  EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 2), kPixVetoed);
 }
 
 // A step in the ground spares an occluded pixel: the column above climbs no higher than occ_step
@@ -191,10 +193,10 @@ TEST_F(FuseVeto, AStepOntoGroundSparesTheFootOfACurb) {
   im.Measure(v - 2, 4, kPixGround, true, r + 0.5f, curb);
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixGround);
-  for (uint32_t u = 1; u <= 4; ++u) EXPECT_EQ(im.Fused(v, u), kPixNonGround) << "column " << u;
+  for (uint32_t u = 1; u <= 4; ++u) EXPECT_EQ(im.Fused(v, u), kPixVetoed) << "column " << u;
   im.p.occ_step_rows = 0;  // no rows looked at: the curb's foot is vetoed too
   Fuse(im.p, im.f);
-  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 0), kPixVetoed);
 }
 
 // A pixel of class ground whose ray passed the occluder's range with at least occ_pass of clearance
@@ -215,19 +217,31 @@ TEST_F(FuseVeto, GroundSeenUnderAnObjectIsNotItsFoot) {
   im.Measure(v - 2, 3, kPixNonGround, false, r, high);
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixGround);
-  EXPECT_EQ(im.Fused(v, 1), kPixNonGround);
-  EXPECT_EQ(im.Fused(v, 2), kPixNonGround);
-  EXPECT_EQ(im.Fused(v, 3), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 1), kPixVetoed);
+  EXPECT_EQ(im.Fused(v, 2), kPixVetoed);
+  EXPECT_EQ(im.Fused(v, 3), kPixVetoed);
   im.p.occ_pass = 1000.0f;  // no ray passes that high: the veto holds
   Fuse(im.p, im.f);
-  EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 0), kPixVetoed);
 }
 
 TEST_F(FuseVeto, VetoOverridesAnUnknownCoarseGroundSeed) {
   im.Measure(v, 0, kPixUnknown, true, r, z);  // would become ground without the veto
   im.Measure(v - 1, 0, kPixNonGround, false, r, z + 1.0f);
   Fuse(im.p, im.f);
+  EXPECT_EQ(im.Fused(v, 0), kPixVetoed);
+}
+
+// The veto takes only what the vote would make ground or unknown: a pixel that class and coarse
+// label both call non-ground stays non-ground under an occluder (stage 8 never lifts it).
+TEST_F(FuseVeto, AnOccludedNonGroundVoteStaysNonGround) {
+  im.Measure(v, 0, kPixNonGround, false, r, z);
+  im.Measure(v - 1, 0, kPixNonGround, false, r, z + 1.0f);
+  im.Measure(v, 1, kPixNonGround, true, r, z);  // they disagree: unknown, so vetoed
+  im.Measure(v - 1, 1, kPixNonGround, false, r, z + 1.0f);
+  Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 1), kPixVetoed);
 }
 
 TEST_F(FuseVeto, LowerOrFartherPixelsDoNotVeto) {
@@ -259,7 +273,7 @@ TEST_F(FuseVeto, TopRowsHaveNothingAboveAndZeroRowsDisablesIt) {
   im.Measure(v - 1, 1, kPixNonGround, false, r - 1.0f, z + 1.0f);  // an occluder ...
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(0, 0), kPixGround);
-  EXPECT_EQ(im.Fused(v, 1), kPixNonGround);
+  EXPECT_EQ(im.Fused(v, 1), kPixVetoed);
   im.p.occ_rows = 0;  // ... ignored once the veto is off
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 1), kPixGround);

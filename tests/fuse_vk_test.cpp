@@ -335,7 +335,7 @@ std::pair<size_t, size_t> ExpectVerdicts(const Image& im, uint32_t v,
   Fuse(im.p, cpu);
   size_t vetoes = 0, spared = 0;
   for (const auto& [col, veto] : expect) {
-    EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixNonGround : kPixGround)
+    EXPECT_EQ(cpu.pixel_fused[im.Pix(v, col)], veto ? kPixVetoed : kPixGround)
         << "reference, " << what << ", column " << col;
     vetoes += veto, spared += !veto;
   }

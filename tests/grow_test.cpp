@@ -374,5 +374,53 @@ TEST(Grow, ComponentLabelsAreTheLowestIndexOnRandomImages) {
   }
 }
 
+// The veto's lift: a vetoed pixel ends ground when the pixel above it ends ground (its ray not
+// passed under that pixel) or when both row neighbours end ground with allowed steps to it; one
+// step, judged on the labels before any lift; pixel_grown keeps kPixVetoed.
+TEST(Grow, AVetoedPixelIsLiftedWhereTheGroundGoesOnAroundIt) {
+  Image im(32, 8);
+  im.p.min_component = 4;
+  im.p.comp_seed_share = 2.0f;  // no component kept for its seeds
+  const float z = -1.7f, r = 10.0f;
+  for (uint32_t u = 0; u < 32; ++u) im.Set(2, u, kPixGround, z, 0.3f, r + 1.0f);  // ground above
+  // A curb's foot: vetoed under ground that ends ground, farther away.
+  im.Set(3, 1, kPixVetoed, z - 0.15f, 0.3f, r);
+  // Two vetoed pixels stacked: the upper one is lifted, the lower one reads it unlifted.
+  im.Set(3, 4, kPixVetoed, z - 0.1f, 0.3f, r);
+  im.Set(4, 4, kPixVetoed, z - 0.2f, 0.3f, r - 0.5f);
+  // Seen under the ground pixel above (reflection noise under the road): not lifted.
+  const float under = r * (1.0f + 4.0f * im.p.occ_pass / (z - 1.0f));  // nearer, cleared by 4x
+  im.Set(2, 7, kPixGround, z, 0.3f, under);
+  im.Set(3, 7, kPixVetoed, z - 1.0f, 0.3f, r);
+  // Row 0 has nothing above; no ground beside it either.
+  im.Set(0, 10, kPixVetoed, z, 0.3f, r);
+  // Ground on both sides, steps allowed: lifted (a pole's foot). Row 5, columns 12..14 and a
+  // component of at least min_component pixels on each side.
+  for (uint32_t u = 9; u <= 17; ++u) im.Set(5, u, kPixGround, z, 0.3f, r);
+  im.Set(5, 13, kPixVetoed, z, 0.3f, r);
+  // Ground on both sides but one step too high: not lifted.
+  for (uint32_t u = 19; u <= 29; ++u) im.Set(6, u, kPixGround, z, 0.3f, r);
+  im.Set(6, 24, kPixVetoed, z + 2.0f * im.p.grow_dz, 0.3f, r);
+  // Above a ground pixel whose component is removed (one pixel): not lifted.
+  im.Set(6, 2, kPixGround, z, 0.3f, r + 1.0f);
+  im.Set(7, 2, kPixVetoed, z - 0.1f, 0.3f, r);
+  im.Run();
+  auto label = [&](uint32_t v, uint32_t u) { return im.f.pixel_label[im.Pix(v, u)]; };
+  EXPECT_EQ(label(3, 1), kPixGround);
+  EXPECT_EQ(label(3, 4), kPixGround);
+  EXPECT_EQ(label(4, 4), kPixNonGround) << "one step only";
+  EXPECT_EQ(label(3, 7), kPixNonGround) << "seen under the pixel above";
+  EXPECT_EQ(label(0, 10), kPixNonGround);
+  EXPECT_EQ(label(5, 13), kPixGround);
+  EXPECT_EQ(label(6, 24), kPixNonGround) << "a step the growing would not take";
+  EXPECT_EQ(label(6, 2), kPixNonGround) << "a removed component";
+  EXPECT_EQ(label(7, 2), kPixNonGround);
+  for (uint32_t pix = 0; pix < 32 * 8; ++pix)
+    if (im.f.pixel_fused[pix] == kPixVetoed) {
+      EXPECT_EQ(im.f.pixel_grown[pix], kPixVetoed) << "pixel " << pix;
+      EXPECT_EQ(im.f.pixel_comp[pix], kNone) << "pixel " << pix;
+    }
+}
+
 }  // namespace
 }  // namespace lpir

@@ -38,6 +38,7 @@ std::string ValueText(uint32_t u) {
 
 struct Counts {
   uint64_t compared = 0, mismatches = 0;
+  uint64_t lifted = 0, kept_vetoed = 0;  // vetoed pixels the reference lifted / left non-ground
 };
 Counts g_total;
 
@@ -69,6 +70,11 @@ void Compare(const Params& p, const Frame& in, const Frame& gpu, const std::stri
   Frame cpu = in;
   Grow(p, cpu);
   const size_t pixels = size_t(p.width) * p.beams;
+  for (size_t i = 0; i < pixels; ++i)
+    if (in.pixel_fused[i] == kPixVetoed) {
+      g_total.lifted += cpu.pixel_label[i] == kPixGround;
+      g_total.kept_vetoed += cpu.pixel_label[i] == kPixNonGround;
+    }
   size_t bad = CompareBuffer("pixel_grown", cpu.pixel_grown, gpu.pixel_grown, p, what);
   bad += CompareBuffer("pixel_comp", cpu.pixel_comp, gpu.pixel_comp, p, what);
   bad += CompareBuffer("pixel_label", cpu.pixel_label, gpu.pixel_label, p, what);
@@ -231,9 +237,10 @@ Image RandomImage(uint32_t seed, float grow_grade, uint32_t max_width, uint32_t 
   im.p.min_component = rng() % 16;
   im.p.grow_grade = grow_grade;
   SeedShare(rng, im.p);
-  std::discrete_distribution<int> cls({3, 2, 12, 1, 0.2});  // ground, non-ground, unknown, empty, 7
+  // ground, non-ground, unknown, empty, vetoed, 7
+  std::discrete_distribution<int> cls({3, 2, 12, 1, 2, 0.2});
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-  const uint32_t classes[5] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, 7u};
+  const uint32_t classes[6] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed, 7u};
   const float di = im.p.grow_di;
   const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
   for (uint32_t v = 0; v < im.p.beams; ++v)
@@ -260,10 +267,10 @@ Image MixedImage(std::mt19937& rng, uint32_t max_width, uint32_t max_beams) {
   im.p.min_component = rng() % 40;
   im.p.grow_grade = uni(rng) < 0.5f ? 0.0f : 0.05f;
   SeedShare(rng, im.p);
-  const double weights[5] = {1.0 + 10 * uni(rng), 1.0 + 10 * uni(rng), 1.0 + 20 * uni(rng),
-                             5 * uni(rng), 0.3 * uni(rng)};
-  std::discrete_distribution<int> cls(weights, weights + 5);
-  const uint32_t classes[5] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, 7u};
+  const double weights[6] = {1.0 + 10 * uni(rng), 1.0 + 10 * uni(rng), 1.0 + 20 * uni(rng),
+                             5 * uni(rng),        5 * uni(rng),        0.3 * uni(rng)};
+  std::discrete_distribution<int> cls(weights, weights + 6);
+  const uint32_t classes[6] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed, 7u};
   const float allowed = im.p.grow_dz + im.p.grow_grade * (1.0f + 20.0f * im.p.column_arc);
   const float step_share = 0.5f + 1.5f * uni(rng);  // heights spread over this many allowances
   for (uint32_t pix = 0; pix < im.p.width * im.p.beams; ++pix) {
@@ -280,6 +287,7 @@ TEST_F(GrowVk, ThousandRandomImages) {
   GrowRunner runner(context().device());
   runner.Build();
   std::mt19937 rng(20261202);
+  const Counts before = g_total;
   for (uint32_t k = 0; k < 1000; ++k) {
     const Image im = k < 30 ? RandomImage(k, k % 2 ? 0.05f : 0.0f, 48, 16)
                             : MixedImage(rng, k % 10 == 0 ? 700 : 96, k % 10 == 0 ? 70 : 24);
@@ -287,6 +295,8 @@ TEST_F(GrowVk, ThousandRandomImages) {
     if (HasFailure()) break;
   }
   EXPECT_EQ(runner.images(), 1000u);
+  EXPECT_GT(g_total.lifted, before.lifted) << "no image exercised the veto's lift";
+  EXPECT_GT(g_total.kept_vetoed, before.kept_vetoed) << "no image kept a vetoed pixel non-ground";
 }
 
 // The adversarial images: each one run with its seed at the first and at the last pixel of its
@@ -454,9 +464,13 @@ TEST_F(GrowVk, KittiUnknownFrame56) {
 class TotalPrinter : public ::testing::Environment {
  public:
   void TearDown() override {
-    std::printf("[grow] total: %llu values compared, %llu mismatches\n",
-                static_cast<unsigned long long>(g_total.compared),
-                static_cast<unsigned long long>(g_total.mismatches));
+    std::printf(
+        "[grow] total: %llu values compared, %llu mismatches; vetoed pixels %llu lifted, "
+        "%llu kept\n",
+        static_cast<unsigned long long>(g_total.compared),
+        static_cast<unsigned long long>(g_total.mismatches),
+        static_cast<unsigned long long>(g_total.lifted),
+        static_cast<unsigned long long>(g_total.kept_vetoed));
   }
 };
 ::testing::Environment* const kTotal = ::testing::AddGlobalTestEnvironment(new TotalPrinter);

@@ -33,7 +33,7 @@ const char kUsage[] =
     "  prepare:invalid, prepare:noise   stage 1 marked the point invalid or reflection noise\n"
     "  back-project   the point's label differs from its pixel's final label (stage 9 gates)\n"
     "  component      FN: the pixel was grown ground, its component too small (stage 8)\n"
-    "  veto           FN: the occlusion veto made the pixel non-ground (stage 7)\n"
+    "  veto           FN: the occlusion veto made the pixel non-ground (stage 7), not lifted\n"
     "  class+coarse   FN: pixel class and coarse label both non-ground\n"
     "  grow:<why>     FN: fuse left the pixel unknown and growing did not reach it; it was\n"
     "                 unknown because: class-ng (class non-ground, coarse ground), coarse-ng\n"
@@ -41,6 +41,7 @@ const char kUsage[] =
     "  seed:both      FP: a seed, class and coarse label both ground\n"
     "  seed:coarse    FP: a seed, class unknown and coarse label ground\n"
     "  grow           FP: an unknown pixel reached by growing\n"
+    "  lift           FP: a vetoed pixel lifted by the ground around it (stage 8)\n"
     "--param overrides one parameter of the profile (as a profile's override line would).\n";
 
 struct Args {
@@ -99,7 +100,6 @@ Counts AddScan(const Args& a, const Params& p, const Tables& tables, const std::
   const std::vector<uint32_t> gt = ReadLabelFile(label_path, cloud.size());
   Frame f;
   RunReference(cloud, p, tables, f);
-  const std::vector<uint32_t> without_veto = FusedWithoutVeto(p, f);
   const Protocol protocol = a.ontology == Ontology::kRellis3d ? Protocol::kRellis : Protocol::kDG;
   Counts c;
   for (uint32_t i = 0; i < f.n; ++i) {
@@ -116,7 +116,7 @@ Counts AddScan(const Args& a, const Params& p, const Tables& tables, const std::
     const size_t band = RangeBand(std::hypot(cloud.x(i), cloud.y(i)));
     if (truth) ++t.band_ground[band];
     if (o == Outcome::kTP || o == Outcome::kTN) continue;
-    const int who = static_cast<int>(Attribute(f, without_veto, i, truth));
+    const int who = static_cast<int>(Attribute(f, i, truth));
     if (truth) {
       ++t.fn_by[who], ++t.band_fn[band], ++t.fn_class[cls];
     } else {

@@ -182,6 +182,8 @@ cv::Vec3b ClassColor(uint32_t pixel_class) {
       return kYellow;
     case kPixEmpty:
       return kBlack;
+    case kPixVetoed:
+      return kMagenta;
     default:
       return kWhite;  // not a class: a bug upstream, make it visible
   }
@@ -200,11 +202,8 @@ cv::Mat ClassLegend(int width, const std::string& title) {
   const struct {
     cv::Vec3b color;
     const char* name;
-  } entries[] = {{kGreen, "ground"},
-                 {kRed, "non-ground"},
-                 {kYellow, "unknown"},
-                 {kBlack, "empty"},
-                 {kWhite, "invalid class value"}};
+  } entries[] = {{kGreen, "ground"}, {kRed, "non-ground"}, {kYellow, "unknown"},
+                 {kBlack, "empty"},  {kMagenta, "vetoed"}, {kWhite, "invalid class value"}};
   for (const auto& e : entries)
     x = PutText(legend, e.name, PutSwatch(legend, e.color, x, kTextBaseline), kTextBaseline) + 16;
   return legend;

@@ -36,7 +36,7 @@ bool BevPixel(float x, float y, int* row, int* col);
 //       hole filled by morphology, white = not a finite number.
 //   _classes, _fused, _labels
 //       pixel_class, pixel_fused, pixel_label: ground green, non-ground red, unknown yellow,
-//       empty black.
+//       empty black, vetoed magenta (pixel_fused only).
 //   _bev, _coarse_bev
 //       bird's-eye views of frame.label and of frame.coarse. Without truth: ground green,
 //       non-ground red, reflection noise magenta. With truth (one entry per point: 1 ground,

@@ -1,12 +1,10 @@
 // Which stage decided a wrongly labelled point: for every missed ground point (FN) and every false
 // ground point (FP), the first rule below that holds, read from the Frame the CPU reference
-// fills (every stage's buffers) and from the fuse stage run again without the occlusion veto.
+// fills (every stage's buffers).
 #pragma once
 #include <cstdint>
-#include <vector>
 
 #include "reference_cpu/frame.h"
-#include "reference_cpu/params.h"
 
 namespace lpir {
 
@@ -15,7 +13,7 @@ enum class Decider {
   kPrepareNoise,    // the point is reflection noise (stage 1)
   kBackProject,     // its label differs from its pixel's final label (stage 9 gates)
   kComponent,       // FN: the pixel was grown ground, its component was too small (stage 8)
-  kVeto,            // FN: the occlusion veto made the pixel non-ground (stage 7)
+  kVeto,            // FN: the occlusion veto made the pixel non-ground (stage 7), not lifted
   kClassAndCoarse,  // FN: pixel class and coarse label both non-ground (stages 4 and 6)
   kGrowClassNg,     // FN: unknown (class non-ground, coarse ground) and not grown into
   kGrowCoarseNg,    // FN: unknown (class ground or unknown, coarse non-ground), not grown into
@@ -23,20 +21,16 @@ enum class Decider {
   kSeedBoth,        // FP: a seed whose class and coarse label both said ground
   kSeedCoarse,      // FP: a seed of unknown class that the coarse label made ground
   kGrow,            // FP: an unknown pixel reached by growing
+  kLift,            // FP: a vetoed pixel that the ground around it lifted (stage 8)
 };
-constexpr int kDeciderCount = 12;
+constexpr int kDeciderCount = 13;
 
 // "prepare:invalid", "prepare:noise", "back-project", "component", "veto", "class+coarse",
-// "grow:class-ng", "grow:coarse-ng", "grow:hole", "seed:both", "seed:coarse", "grow".
+// "grow:class-ng", "grow:coarse-ng", "grow:hole", "seed:both", "seed:coarse", "grow", "lift".
 const char* DeciderName(Decider d);
 
-// pixel_fused as stage 7 writes it with the occlusion veto off (occ_rows 0), the rest of `f`
-// unchanged: what Attribute compares with to see the veto's hand.
-std::vector<uint32_t> FusedWithoutVeto(const Params& p, const Frame& f);
-
 // The decider of point i of `f`, whose final label is wrong: `truth` true for a missed ground
-// point (FN), false for a false ground point (FP). `without_veto`: FusedWithoutVeto(p, f).
-Decider Attribute(const Frame& f, const std::vector<uint32_t>& without_veto, uint32_t i,
-                  bool truth);
+// point (FN), false for a false ground point (FP).
+Decider Attribute(const Frame& f, uint32_t i, bool truth);
 
 }  // namespace lpir
