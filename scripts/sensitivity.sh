@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# scripts/sensitivity.sh: the DG F1 change (summed over the five labelled KITTI frames) when each
-# main threshold of the hdl64e profile is set 25 % below and 25 % above its default (whole-number
-# ones rounded down), one at a time, as a markdown table (docs/accuracy.md, "No knife edge").
+# scripts/sensitivity.sh: the DG F1 change, PP F1 and the share of car points labelled ground
+# (summed over the five labelled KITTI frames) when each main threshold of the hdl64e profile is
+# set 25 % below and 25 % above its default (whole-number ones rounded down), one at a time, as a
+# markdown table (docs/accuracy.md, "No knife edge").
 # Needs build/attribute (scripts/build.sh attribute) and ../shared/data (or LPIR_DATA_DIR).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,10 +14,10 @@ for f in "${frames[@]}"; do
   scans+=("$data/kitti/${f%/*}/velodyne/${f#*/}.bin" "$data/kitti/${f%/*}/labels/${f#*/}.label")
 done
 
-# F1 (percent, two decimals) of the summed line, with the given extra arguments.
-f1() {
+# "DG-F1 PP-F1 car-%" of the summed line, with the given extra arguments.
+scores() {
   "$tool" --sensor hdl64e "$@" "${scans[@]}" |
-    sed -n 's/^summed: P [0-9.]* R [0-9.]* F1 \([0-9.]*\).*/\1/p'
+    sed -n 's/^summed: P [0-9.]* R [0-9.]* F1 \([0-9.]*\) | PP F1 \([0-9.]*\) | car points labelled ground \([0-9.]*\).*/\1 \2 \3/p'
 }
 
 # name default: the defaults of reference_cpu/params.cpp that the hdl64e profile keeps.
@@ -29,17 +30,18 @@ params=(
   "occ_grade 0.0002" "occ_front 0.1" "occ_pass 0.15" "occ_step_rows 10" "occ_step 0.15" "occ_step_grade 0.1"
   "occ_step_reach 3" "comp_seed_min 10" "comp_seed_share 0.8")
 
-base=$(f1)
-echo "Defaults: DG F1 $base (summed over ${frames[*]})."
+read -r base base_pp base_car <<<"$(scores)"
+echo "Defaults: DG F1 $base, PP F1 $base_pp, car points labelled ground $base_car % (summed over ${frames[*]})."
 echo
-echo "| parameter | default | F1 at -25 % | F1 at +25 % | change -25 % / +25 % |"
-echo "|---|---|---|---|---|"
+echo "| parameter | default | DG F1 at -25 % | DG F1 at +25 % | change -25 % / +25 % | PP F1 -25 % / +25 % | car % -25 % / +25 % |"
+echo "|---|---|---|---|---|---|---|"
 for entry in "${params[@]}"; do
   read -r name value <<<"$entry"
   lo=$(awk -v v="$value" -v n="$name" 'BEGIN { x = v * 0.75; if (n ~ /^(min_component|occ_step_rows|comp_seed_min)$/) x = int(x); print x }')
   hi=$(awk -v v="$value" -v n="$name" 'BEGIN { x = v * 1.25; if (n ~ /^(min_component|occ_step_rows|comp_seed_min)$/) x = int(x); print x }')
-  a=$(f1 --param "$name" "$lo")
-  b=$(f1 --param "$name" "$hi")
-  awk -v n="$name" -v v="$value" -v a="$a" -v b="$b" -v base="$base" \
-    'BEGIN { printf "| %s | %s | %.2f | %.2f | %+.2f / %+.2f |\n", n, v, a, b, a - base, b - base }'
+  read -r a a_pp a_car <<<"$(scores --param "$name" "$lo")"
+  read -r b b_pp b_car <<<"$(scores --param "$name" "$hi")"
+  awk -v n="$name" -v v="$value" -v a="$a" -v b="$b" -v base="$base" -v ap="$a_pp" -v bp="$b_pp" \
+    -v ac="$a_car" -v bc="$b_car" \
+    'BEGIN { printf "| %s | %s | %.2f | %.2f | %+.2f / %+.2f | %.2f / %.2f | %.2f / %.2f |\n", n, v, a, b, a - base, b - base, ap, bp, ac, bc }'
 done
