@@ -21,7 +21,7 @@ constexpr uint32_t kPixGround = 1u;
 constexpr uint32_t kPixUnknown = 2u;
 constexpr uint32_t kPixEmpty = 3u;
 // pixel_fused and pixel_grown only: a pixel the occlusion veto (stage 7) took from ground or
-// unknown; stage 8 makes it ground when the pixel above it ends ground, else non-ground.
+// unknown; in pixel_label stage 8 makes it ground where it lifts the veto, else non-ground.
 constexpr uint32_t kPixVetoed = 4u;
 
 // Why a point got its final label (for tools and pictures).

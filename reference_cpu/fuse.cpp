@@ -9,9 +9,8 @@
 // Occlusion veto (our addition): a pixel with an occluder among the occ_rows pixels above it in its
 // column (nearer than its range + occ_margin and higher by more than occ_rise) is vetoed
 // (kPixVetoed) where the rule below would make it ground or unknown: it is the foot of an object
-// or lies under an overhang (a hedge, a car body), and never grows; stage 8 makes it ground only
-// when the pixel above it ends ground (what rose above it was ground: docs/decisions/grow.md). The
-// reach is
+// or lies under an overhang (a hedge, a car body), and never grows; stage 8 lifts it to ground only
+// where the ground goes on around it (reference_cpu/grow.cpp). The reach is
 // range + occ_margin + occ_grade * range^2 (flat ground's step between beams grows with range^2),
 // and at most range + occ_front for a pixel whose own class is ground: an object standing farther
 // behind a flat, smooth pixel leaves it ground (it lies in front of the object, not on its face).
