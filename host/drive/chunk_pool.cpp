@@ -1,9 +1,11 @@
-// The readers' default worker count (see chunk_pool.h).
+// The readers' default worker count and chunk range check (see chunk_pool.h).
 #include "host/drive/chunk_pool.h"
 
 #include <cstdlib>
 #include <string>
 #include <thread>
+
+#include "host/io/io_error.h"
 
 namespace lpir {
 
@@ -20,6 +22,15 @@ unsigned DefaultReadThreads() {
 
 unsigned ReadThreads(unsigned threads) {
   return threads >= 1 && threads <= kMaxReadThreads ? threads : DefaultReadThreads();
+}
+
+void CheckChunkRange(const std::string& path, const char* kind, uint64_t first, uint64_t last,
+                     uint64_t count) {
+  if (first < 1 || first > last || last > count) {
+    throw IoError(path, "no chunks " + std::to_string(first) + " to " + std::to_string(last) +
+                            ": the " + kind + " has " + std::to_string(count) +
+                            " (numbered from 1)");
+  }
 }
 
 }  // namespace lpir

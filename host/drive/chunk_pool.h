@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <exception>
 #include <functional>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -26,6 +28,11 @@ constexpr unsigned kMaxReadThreads = 64;
 unsigned DefaultReadThreads();
 // `threads` when it is 1..kMaxReadThreads, DefaultReadThreads() otherwise (0: none asked for).
 unsigned ReadThreads(unsigned threads);
+
+// SelectChunks' range check, one text for every reader: IoError naming `path` unless 1 <= first
+// <= last <= count; `kind` names the file in the message ("drive", "bag").
+void CheckChunkRange(const std::string& path, const char* kind, uint64_t first, uint64_t last,
+                     uint64_t count);
 
 // Runs work(0) ... work(count - 1) and hands their results out in index order.
 //   - workers <= 1: no thread; Next runs work(i) itself (a one-thread reader, exactly).

@@ -179,11 +179,7 @@ class McapReader : public DriveReader {
   void SelectChunks(uint64_t first, uint64_t last) override {
     if (selected_.empty()) throw IoError(path_, "SelectChunks before SelectTopic");
     pool_.reset();
-    const uint64_t n = ChunkCount();
-    if (first < 1 || first > last || last > n) {
-      throw IoError(path_, "no chunks " + std::to_string(first) + " to " + std::to_string(last) +
-                               ": the drive has " + std::to_string(n) + " (numbered from 1)");
-    }
+    CheckChunkRange(path_, "drive", first, last, ChunkCount());
     first_chunk_ = first;
     last_chunk_ = last;
     ResetWalk();

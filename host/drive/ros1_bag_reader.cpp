@@ -231,11 +231,7 @@ class Ros1Bag : public DriveReader {
   void SelectChunks(uint64_t first, uint64_t last) override {
     if (topic_.empty()) throw IoError(path_, "SelectChunks before SelectTopic");
     pool_.reset();
-    const uint64_t n = ChunkCount();
-    if (first < 1 || first > last || last > n) {
-      throw IoError(path_, "no chunks " + std::to_string(first) + " to " + std::to_string(last) +
-                               ": the bag has " + std::to_string(n) + " (numbered from 1)");
-    }
+    CheckChunkRange(path_, "bag", first, last, ChunkCount());
     first_chunk_ = uint32_t(first - 1);
     last_chunk_ = uint32_t(last - 1);
     Restart();
