@@ -141,12 +141,10 @@ void SensorProfiles(const std::string& dir) {
   calibrated.b_x = 1.734f;
   calibrated.b_y = 1.729f;
   WriteSensorProfile(dir + "/calibration.txt", calibrated);
-  // The extremes the reader accepts (tilt 45 degrees, 1000 m) and a scale that makes any
-  // intensity huge: every stage must still be defined (issue 6 found overflows with both).
+  // The extremes the reader accepts (tilt 45 degrees, 1000 m): every stage must still be defined.
   SensorProfile extreme = small;
   extreme.name = "extreme";
   extreme.overrides.clear();
-  extreme.intensity_scale = 1e30f;
   extreme.k_xz = 1.0f;
   extreme.k_yz = -1.0f;
   extreme.max_range = 1000.0f;
@@ -155,7 +153,7 @@ void SensorProfiles(const std::string& dir) {
   Text(dir + "/by_hand.txt",
        "# a hand-made profile\nname\thand   # trailing comment\nbeams 4\nwidth 64\n"
        "elevation_deg +2.5 1e0\n# between the lines\n\n  -.5 -9.0e+1\nring_zero_is_top 1\n"
-       "intensity_scale 0.00392156863\nsensor_height 1.73\nmin_range 0\nmax_range 1e3\n"
+       "sensor_height 1.73\nmin_range 0\nmax_range 1e3\n"
        "param rings_near 4\nparam min_component 0\nparam h_noise -3\n");
 }
 

@@ -60,7 +60,6 @@ bool SameProfile(const lpir::SensorProfile& a, const lpir::SensorProfile& b) {
   return a.name == b.name && a.beams == b.beams && a.width == b.width &&
          a.max_points == b.max_points && SameBits(a.elevation_deg, b.elevation_deg) &&
          SameBits(a.beam_origin_z, b.beam_origin_z) && a.ring_zero_is_top == b.ring_zero_is_top &&
-         SameBits(a.intensity_scale, b.intensity_scale) &&
          SameBits(a.sensor_height, b.sensor_height) && SameBits(a.min_range, b.min_range) &&
          SameBits(a.max_range, b.max_range) && SameBits(a.k_xz, b.k_xz) &&
          SameBits(a.k_yz, b.k_yz) && SameBits(a.b_x, b.b_x) && SameBits(a.b_y, b.b_y);

@@ -1,14 +1,23 @@
 // Stage 6, classify pixels (paper eqs. 8-12).
-// In: pixel_filled, f_edge_l/r, f_slope, f_varz, f_vari. Out: pixel_class (kPix*).
-// f_edge = edge_l >= t_edge || edge_r >= t_edge (eq. 8); f_slope, f_stdz, f_stdi in {-1, 0, 1}
-// by their low/high thresholds (eqs. 9-11; an undefined slope, -1, votes 0). Eq. 12 completed as
-// SPEC section 2 says, with s = f_slope + f_stdz + f_stdi:
+// In: pixel_filled, f_edge_l/r, f_slope, f_varz. Out: pixel_class (kPix*).
+// f_edge = edge_l >= t_edge || edge_r >= t_edge (eq. 8); f_slope, f_stdz in {-1, 0, 1} by their
+// low/high thresholds (eqs. 9-10; an undefined slope, -1, votes 0). Eq. 11's intensity vote is
+// taken as -1, uniform intensity: it was -1 on nearly every pixel of every labelled scan and bought
+// 0.01 F1 points, while its thresholds tied the result to the intensity's unit
+// (docs/decisions/intensity.md). Eq. 12 completed as SPEC section 2 says, with
+// s = f_slope + f_stdz - 1:
 //   edge 0: s < 0 ground, s > 0 non-ground, s = 0 unknown;  edge 1: s > 0 non-ground, else unknown.
-// Empty pixels are kPixEmpty. Comparisons only.
+// A non-ground pixel is a bank (kPixBank, our addition) when f_slope < bank_slope and f_varz <
+// bank_rough: a smooth surface rising at up to ~39 degrees (a grassed embankment) that eq. 9's
+// slope vote calls an object; stage 7 decides it with the coarse label (docs/decisions/grow.md,
+// Banks). Empty pixels are kPixEmpty. Comparisons only.
 #include "reference_cpu/stages.h"
 
 namespace lpir {
 namespace {
+
+// Eq. 11's vote for every pixel: uniform intensity.
+constexpr int kIntensityVote = -1;
 
 inline int Vote(float value, float low, float high) {
   if (value <= low) return -1;
@@ -27,7 +36,6 @@ void ClassifyPixels(const Params& p, Frame& f) {
   const float* __restrict edge_r = f.f_edge_r.data();
   const float* __restrict slope_map = f.f_slope.data();
   const float* __restrict varz = f.f_varz.data();
-  const float* __restrict vari = f.f_vari.data();
   uint32_t* __restrict out = f.pixel_class.data();
   const Params q = p;  // thresholds in registers
   for (uint32_t pix = 0; pix < pixels; ++pix) {
@@ -35,10 +43,10 @@ void ClassifyPixels(const Params& p, Frame& f) {
     const float slope = slope_map[pix];
     const int s = (slope < 0.0f ? 0 : Vote(slope, q.t_slope_low, q.t_slope_high)) +  // eq. 9
                   Vote(varz[pix], q.t_stdz_low, q.t_stdz_high) +                     // eq. 10
-                  Vote(vari[pix], q.t_stdi_low, q.t_stdi_high);                      // eq. 11
+                  kIntensityVote;                                                    // eq. 11
     uint32_t c;                                                                      // eq. 12
     if (s > 0)
-      c = kPixNonGround;
+      c = slope < q.bank_slope && varz[pix] < q.bank_rough ? kPixBank : kPixNonGround;
     else if (!edge && s < 0)
       c = kPixGround;
     else

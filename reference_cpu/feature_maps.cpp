@@ -1,8 +1,7 @@
 // Stage 5, feature maps (paper III-D.1, Fig. 6 and 10).
-// In: pixel_point, r2, zt, inten. Out per pixel: pixel_filled, f_range, f_inten, f_height, f_slope,
-// f_edge_l, f_edge_r, f_varz, f_vari.
-// Measured pixel (its winning point): range = Sqrt(r2) (planar, d_i of eq. 1), intensity,
-// height z_t.
+// In: pixel_point, r2, zt. Out per pixel: pixel_filled, f_range, f_height, f_slope, f_edge_l,
+// f_edge_r, f_varz.
+// Measured pixel (its winning point): range = Sqrt(r2) (planar, d_i of eq. 1), height z_t.
 // Hole filling (the morphology of Fig. 10): an empty pixel whose left and right neighbours are
 // measured and whose ranges differ by at most hole_gap takes their average (x 0.5, exact); only
 // measured pixels feed the filling, so the result does not depend on the order.
@@ -11,21 +10,29 @@
 //            rings), Div; -1 when that neighbour is empty or the ranges are equal (no evidence).
 //            v+1, not the paper's u+1 (docs/decisions/feature_maps.md).
 //   edge_l = |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when the neighbour is empty);
-//   var_z, var_i = variance over the filled pixels of the 3x3 window, from exact integer moments:
-//            heights quantised to 0.1 mm and intensities to 1e-4 (ToFixed), n, sum q and sum q^2 in
-//            int64 (associative, so window sums are shared: three-column row sums, then three
-//            rows), var = I64ToFloat(n * sum q^2 - (sum q)^2) / n^2 (Div), times the squared
-//            quantum. Order-independent by construction, and unlike a float two-pass sum free of
-//            rounding in the sums (docs/decisions/feature_maps.md).
+//   var_z  = variance of height over the filled pixels of the 3x3 window about its line in
+//            range: the variance of z - b r, b the least-squares slope of z on r clamped to
+//            [-1, 1], so that a smooth slope (a road's camber, a bank) reads as smooth as flat
+//            ground and a wall (r constant, or b beyond 45 degrees) as rough as before
+//            (docs/decisions/feature_maps.md, Variance about the line). From exact integer
+//            moments: heights and ranges quantised to 0.1 mm (ToFixed); n, sum z, sum z^2, sum r,
+//            sum r^2, sum r z in int64 (associative, so window sums are shared: three-column row
+//            sums, then three rows); Vz = n sum z^2 - (sum z)^2, Vr = n sum r^2 - (sum r)^2,
+//            C = n sum r z - sum r sum z (int64, exact: |q| <= 1e7 at the profile's 1000 m bound);
+//            then in float, each op rounded: vz, vr, c = I64ToFloat of them; b = Div(c, vr) when
+//            vr > 0, else 0, clamped to [-1, 1]; bc = b * c; res = (vz - (bc + bc)) + (b * b) * vr,
+//            at least 0; var = Div(res, n^2) * quantum^2. Order-independent by construction; no
+//            result can be subnormal (every non-zero operand is an integer of at least 1, or b of
+//            at least 2^-53).
 // Results that can be subnormal go through exact::Ftz0 (subnormals and -0 to +0), so that a device
-// that flushes agrees: the filled intensity and height (sum and product), the edges.
+// that flushes agrees: the filled height (sum and product), the edges.
 // Float operations, each rounded on its own, in this order: fill (l + r) * 0.5; slope
-// dz = |z(v+1) - z|, dr = |r(v+1) - r|, Div(dz, dr); edges as above; variance I64ToFloat, Div by
-// float(n * n) (exact), * quantum^2.
+// dz = |z(v+1) - z|, dr = |r(v+1) - r|, Div(dz, dr); edges as above; variance as above.
 // CPU implementation (the bits do not depend on it): row by row, each row measured and filled
 // just before the row above it needs it; columns wrap without %; slope and edges without branches
 // (every quotient computed on a non-zero divisor, then the defined value selected) so that those
 // loops vectorise.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -38,15 +45,13 @@ namespace lpir {
 
 namespace {
 
-constexpr float kHeightScale = 10000.0f;     // m -> 0.1 mm
-constexpr float kIntensityScale = 10000.0f;  // intensity -> 1e-4
-constexpr float kHeightQuantum2 = 1e-8f;     // (0.1 mm)^2 in m^2
-constexpr float kIntensityQuantum2 = 1e-8f;  // (1e-4)^2
+constexpr float kHeightScale = 10000.0f;  // m -> 0.1 mm
+constexpr float kHeightQuantum2 = 1e-8f;  // (0.1 mm)^2 in m^2
 
-// Three-column sums of one pixel of an image row (columns wrap): count, sum and sum of squares of
-// the quantised height and intensity.
+// Three-column sums of one pixel of an image row (columns wrap): count, and the moments of the
+// quantised height and range.
 struct Sums {
-  int64_t z, zz, i, ii, n;
+  int64_t z, zz, n, r, rr, rz;
 };
 
 // Scratch reused from frame to frame (the reference is single-threaded): the sums of three image
@@ -68,29 +73,25 @@ inline float Select(bool c, float a, float b) {
 struct Row {
   uint32_t* filled;
   float* range;
-  float* inten;
   float* height;
 };
 
 // The measured pixels of one row, then its one-pixel holes.
 void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
-                const float* __restrict zt, const float* __restrict inten, float hole_gap,
-                uint32_t w, const Row& row) {
+                const float* __restrict zt, float hole_gap, uint32_t w, const Row& row) {
   uint32_t* __restrict filled = row.filled;
   float* __restrict range = row.range;
-  float* __restrict inten_map = row.inten;
   float* __restrict height = row.height;
   bool holes = false;
   for (uint32_t u = 0; u < w; ++u) {
     const uint32_t i = point[u];
     if (i == kNone) {
-      filled[u] = 0u, range[u] = 0.0f, inten_map[u] = 0.0f, height[u] = 0.0f;
+      filled[u] = 0u, range[u] = 0.0f, height[u] = 0.0f;
       holes = true;
       continue;
     }
     filled[u] = 1u;
     range[u] = exact::Sqrt(r2[i]);
-    inten_map[u] = inten[i];
     height[u] = zt[i];
   }
   if (!holes) return;
@@ -101,7 +102,6 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
     if (!(gap <= hole_gap)) return;
     filled[u] = 2u;
     range[u] = (range[l] + range[r]) * 0.5f;
-    inten_map[u] = exact::Ftz0(exact::Ftz0(inten_map[l] + inten_map[r]) * 0.5f);
     height[u] = exact::Ftz0(exact::Ftz0(height[l] + height[r]) * 0.5f);
   };
   fill(0, w - 1, w > 1 ? 1 : 0);
@@ -109,11 +109,11 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
   if (w > 1) fill(w - 1, w - 2, 0);
 }
 
-// Three-column sums of one finished row: count, height, then intensity moments (two passes keep
-// the sliding values in registers). Empty pixels hold height and intensity 0, which quantise to
+// Three-column sums of one finished row: count, height moments, then range moments (two passes
+// keep the sliding values in registers). Empty pixels hold height and range 0, which quantise to
 // 0, so only the count needs their flag.
 void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
-             const float* __restrict inten, uint32_t w, Sums* __restrict out) {
+             const float* __restrict range, uint32_t w, Sums* __restrict out) {
   {
     auto load = [&](uint32_t u, int64_t& n, int64_t& q, int64_t& qq) {
       n = filled[u] != 0u;
@@ -134,23 +134,38 @@ void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
     }
   }
   {
-    auto load = [&](uint32_t u, int64_t& q, int64_t& qq) {
-      q = exact::ToFixed(inten[u], kIntensityScale);
+    auto load = [&](uint32_t u, int64_t& q, int64_t& qq, int64_t& qz) {
+      q = exact::ToFixed(range[u], kHeightScale);
       qq = q * q;
+      qz = q * exact::ToFixed(height[u], kHeightScale);
     };
-    int64_t q0, qq0, q1, qq1, q2, qq2;
-    load(w - 1, q0, qq0);
-    load(0, q1, qq1);
-    const int64_t qf = q1, qqf = qq1;
+    int64_t q0, qq0, qz0, q1, qq1, qz1, q2, qq2, qz2;
+    load(w - 1, q0, qq0, qz0);
+    load(0, q1, qq1, qz1);
+    const int64_t qf = q1, qqf = qq1, qzf = qz1;
     for (uint32_t u = 0; u < w; ++u) {
       if (u + 1 < w)
-        load(u + 1, q2, qq2);
+        load(u + 1, q2, qq2, qz2);
       else
-        q2 = qf, qq2 = qqf;
-      out[u].i = q0 + q1 + q2, out[u].ii = qq0 + qq1 + qq2;
-      q0 = q1, qq0 = qq1, q1 = q2, qq1 = qq2;
+        q2 = qf, qq2 = qqf, qz2 = qzf;
+      out[u].r = q0 + q1 + q2, out[u].rr = qq0 + qq1 + qq2, out[u].rz = qz0 + qz1 + qz2;
+      q0 = q1, qq0 = qq1, qz0 = qz1, q1 = q2, qq1 = qq2, qz1 = qz2;
     }
   }
+}
+
+// The variance of z about the window's line in range (the contract above) from its moments.
+inline float VarianceAboutLine(int64_t n, int64_t sz, int64_t szz, int64_t sr, int64_t srr,
+                               int64_t srz) {
+  const float vz = exact::I64ToFloat(n * szz - sz * sz);
+  const float vr = exact::I64ToFloat(n * srr - sr * sr);
+  const float c = exact::I64ToFloat(n * srz - sr * sz);
+  const float fitted = vr > 0.0f ? exact::Div(c, vr) : 0.0f;
+  const float b = std::min(std::max(fitted, -1.0f), 1.0f);
+  const float bc = b * c;
+  const float res = (vz - (bc + bc)) + (b * b) * vr;
+  const float den = float(n * n);  // <= 81: exact
+  return exact::Div(std::max(res, 0.0f), den) * kHeightQuantum2;
 }
 
 // Slope and edges of one row, given the row below (empty below the last row). Branch-free, so
@@ -191,13 +206,11 @@ void FeatureMaps(const Params& p, Frame& f) {
   const uint32_t w = p.width, h = p.beams, pixels = w * h;
   f.pixel_filled.resize(pixels);
   f.f_range.resize(pixels);
-  f.f_inten.resize(pixels);
   f.f_height.resize(pixels);
   f.f_slope.resize(pixels);
   f.f_edge_l.resize(pixels);
   f.f_edge_r.resize(pixels);
   f.f_varz.resize(pixels);
-  f.f_vari.resize(pixels);
   if (pixels == 0) return;
   Scratch& s = scratch;
   for (std::vector<Sums>& row : s.sums) row.resize(w);
@@ -205,32 +218,29 @@ void FeatureMaps(const Params& p, Frame& f) {
   s.empty_value.assign(w, 0.0f);
 
   auto row_of = [&](uint32_t v) {
-    if (v >= h)
-      return Row{s.empty_filled.data(), s.empty_value.data(), s.empty_value.data(),
-                 s.empty_value.data()};
+    if (v >= h) return Row{s.empty_filled.data(), s.empty_value.data(), s.empty_value.data()};
     const size_t o = size_t(v) * w;
-    return Row{f.pixel_filled.data() + o, f.f_range.data() + o, f.f_inten.data() + o,
-               f.f_height.data() + o};
+    return Row{f.pixel_filled.data() + o, f.f_range.data() + o, f.f_height.data() + o};
   };
   auto measure = [&](uint32_t v) {
-    MeasureRow(f.pixel_point.data() + size_t(v) * w, f.r2.data(), f.zt.data(), f.inten.data(),
-               p.hole_gap, w, row_of(v));
+    MeasureRow(f.pixel_point.data() + size_t(v) * w, f.r2.data(), f.zt.data(), p.hole_gap, w,
+               row_of(v));
   };
 
   // The rows' three-column sums: above (zero above the first row), here and below.
   Sums* above = s.sums[0].data();
   Sums* here = s.sums[1].data();
   Sums* below = s.sums[2].data();
-  for (uint32_t u = 0; u < w; ++u) above[u] = Sums{0, 0, 0, 0, 0};
+  for (uint32_t u = 0; u < w; ++u) above[u] = Sums{0, 0, 0, 0, 0, 0};
   measure(0);
   {
     const Row r = row_of(0);
-    RowSums(r.filled, r.height, r.inten, w, here);
+    RowSums(r.filled, r.height, r.range, w, here);
   }
   if (h > 1) measure(1);
   for (uint32_t v = 0; v < h; ++v) {
     const Row row = row_of(v), next = row_of(v + 1);
-    RowSums(next.filled, next.height, next.inten, w, below);
+    RowSums(next.filled, next.height, next.range, w, below);
     const size_t o = size_t(v) * w;
     SlopeEdges(row, next, w, f.f_slope.data() + o, f.f_edge_l.data() + o, f.f_edge_r.data() + o);
     const uint32_t* __restrict filled = row.filled;
@@ -238,10 +248,9 @@ void FeatureMaps(const Params& p, Frame& f) {
     const Sums* __restrict sb = here;
     const Sums* __restrict sc = below;
     float* __restrict varz = f.f_varz.data() + o;
-    float* __restrict vari = f.f_vari.data() + o;
     for (uint32_t u = 0; u < w; ++u) {
       if (!filled[u]) {
-        varz[u] = 0.0f, vari[u] = 0.0f;
+        varz[u] = 0.0f;
         continue;
       }
       // The 3x3 window: this row's sums and those of the rows above and below.
@@ -249,11 +258,8 @@ void FeatureMaps(const Params& p, Frame& f) {
       const Sums& b = sb[u];
       const Sums& c = sc[u];
       const int64_t n = a.n + b.n + c.n;
-      const int64_t sz = a.z + b.z + c.z, szz = a.zz + b.zz + c.zz;
-      const int64_t si = a.i + b.i + c.i, sii = a.ii + b.ii + c.ii;
-      const float den = float(n * n);  // <= 81: exact
-      varz[u] = exact::Div(exact::I64ToFloat(n * szz - sz * sz), den) * kHeightQuantum2;
-      vari[u] = exact::Div(exact::I64ToFloat(n * sii - si * si), den) * kIntensityQuantum2;
+      varz[u] = VarianceAboutLine(n, a.z + b.z + c.z, a.zz + b.zz + c.zz, a.r + b.r + c.r,
+                                  a.rr + b.rr + c.rr, a.rz + b.rz + c.rz);
     }
     Sums* spare = above;
     above = here, here = below, below = spare;

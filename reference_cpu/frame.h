@@ -23,6 +23,12 @@ constexpr uint32_t kPixEmpty = 3u;
 // pixel_fused and pixel_grown only: a pixel the occlusion veto (stage 7) took from ground or
 // unknown; in pixel_label stage 8 makes it ground where it lifts the veto, else non-ground.
 constexpr uint32_t kPixVetoed = 4u;
+// pixel_class only: non-ground by eq. 12, but a smooth slope (f_slope < bank_slope, f_varz <
+// bank_rough): a bank, which stage 7 leaves unknown where the coarse label is non-ground.
+constexpr uint32_t kPixBank = 5u;
+// pixel_fused only: unknown where the coarse segmentation saw no ground (its label of the pixel's
+// point non-ground, or no point: a filled hole); stage 8 may climb to it up a bank's grade.
+constexpr uint32_t kPixUnknownOff = 6u;
 
 // Why a point got its final label (for tools and pictures).
 constexpr uint8_t kWhyNonGround = 0, kWhyGround = 1, kWhyInvalid = 2, kWhyNoise = 3;

@@ -5,7 +5,11 @@
 // the coarse label decides ground ("the ground-classified points from
 // both the rough and the regional segmentation are seeds"); a coarse non-ground there stays unknown
 // for growing. A hole-filled pixel has no point, hence no coarse opinion: it is unknown (it may
-// still be grown through). Comparisons only.
+// still be grown through). A bank (kPixBank, a smooth slope the class calls non-ground) is
+// non-ground as a class, but unknown where the coarse label is non-ground too: terrain rising
+// beyond what the coarse planes allow, which growing may climb (our addition, docs/decisions/
+// grow.md, Banks). An unknown pixel whose coarse label is not ground (non-ground, or no point) is
+// kPixUnknownOff, the others kPixUnknown. Comparisons only.
 // Occlusion veto (our addition): a pixel with an occluder among the occ_rows pixels above it in its
 // column (nearer than its range + occ_margin and higher by more than occ_rise) is vetoed
 // (kPixVetoed) where the rule below would make it ground or unknown: it is the foot of an object
@@ -136,7 +140,8 @@ void Opinions(const uint32_t* __restrict point, const uint32_t* __restrict coars
 // The rule of the contract for one row, given each pixel's occlusion mark and coarse opinion
 // (kPixGround, kPixNonGround or kNoOpinion); selects only, so that the loop vectorises. Where the
 // class is unknown the vote is the opinion when ground; elsewhere it is the class when the
-// opinion agrees; else unknown (always so without an opinion). An occluded pixel whose vote is
+// opinion agrees (a bank agrees with no opinion); else unknown (always so without an opinion):
+// kPixUnknown when the opinion is ground, else kPixUnknownOff. An occluded pixel whose vote is
 // ground or unknown is kPixVetoed; one whose vote is non-ground stays non-ground.
 void Decide(const uint32_t* __restrict cls, const uint32_t* __restrict occluded,
             const uint32_t* __restrict opinion, uint32_t w, uint32_t* __restrict fused) {
@@ -144,7 +149,8 @@ void Decide(const uint32_t* __restrict cls, const uint32_t* __restrict occluded,
     const uint32_t c = cls[u], o = opinion[u];
     const uint32_t agree =
         uint32_t(c == o) | (uint32_t(c == kPixUnknown) & uint32_t(o == kPixGround));
-    const uint32_t vote = agree ? o : kPixUnknown;
+    const uint32_t unknown = o == kPixGround ? kPixUnknown : kPixUnknownOff;
+    const uint32_t vote = agree & uint32_t(o != kNoOpinion) ? o : unknown;
     const uint32_t vetoed = vote == kPixNonGround ? kPixNonGround : kPixVetoed;
     const uint32_t kept = occluded[u] ? vetoed : vote;
     fused[u] = c == kPixEmpty ? kPixEmpty : kept;

@@ -1,11 +1,17 @@
 // Stage 8, grow (paper Alg. 1 and the ground connectivity constraint of IV-A).
-// In: pixel_fused, f_inten, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
+// In: pixel_fused, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
 // Growing: ground pixels are the seeds; an unknown pixel becomes ground when one of its 8
-// neighbours (columns wrap around) is ground and the step between them is allowed: intensity
-// changes by at most grow_di and height by at most grow_dz + grow_grade * step, where step = |dr|
+// neighbours (columns wrap around) is ground and the step between them is allowed: height
+// changes by at most grow_dz + grow_grade * step, where step = |dr|
 // (+ min(r_a, r_b) * column_arc when the column changes) approximates the planar distance
 // between the two points (a wall's vertically adjacent pixels are close in height but not in
-// distance). The test is symmetric in the two pixels, so the grown set is exactly the unknown
+// distance). A bank's step (our addition) is allowed too: between a pixel and the one above it in
+// its column, either of them kPixUnknownOff (its coarse label not ground), when the upper one lies
+// farther and no lower and rises at most grow_dz + bank_slope * (its range - the lower one's): a
+// grassed embankment climbs away from the sensor, while an object's face comes nearer or keeps
+// its range, and ground seen past an object's top lies lower (BankStep; docs/decisions/grow.md,
+// Banks). Unknown pixels are kPixUnknown and kPixUnknownOff alike otherwise.
+// The test is symmetric in the two pixels, so the grown set is exactly the unknown
 // pixels whose component of the allowed-step graph (ground and unknown pixels, allowed steps
 // between 8-neighbours) holds a seed: what the shader computes with union-find in a fixed number
 // of passes, and what the depth-first search below reaches from the unknown pixels. Unknown
@@ -66,16 +72,26 @@ inline uint64_t Word(const uint8_t* s) {
   return x;
 }
 
-// The step test of the contract between pixels q and r (features i, z, r): symmetric in them,
-// each result through Ftz0 as the shader does (a device may flush a subnormal one).
-inline bool StepAllowed(const Params& p, float iq, float zq, float rq, float ir, float zr, float rr,
+// The step test of the contract between pixels q and r (features z, r): symmetric in them, each
+// result through Ftz0 as the shader does (a device may flush a subnormal one).
+inline bool StepAllowed(const Params& p, float zq, float rq, float zr, float rr,
                         bool column_changes) {
-  const float di = exact::Ftz0(std::fabs(ir - iq));
   const float dz = exact::Ftz0(std::fabs(zr - zq));
   float step = exact::Ftz0(std::fabs(rr - rq));
   if (column_changes) step = exact::Ftz0(step + exact::Ftz0(std::min(rq, rr) * p.column_arc));
   const float allowed = exact::Ftz0(p.grow_dz + exact::Ftz0(p.grow_grade * step));
-  return di <= p.grow_di && dz <= allowed;
+  return dz <= allowed;
+}
+
+// The bank's step of the contract (our addition) from pixel lo up its column to pixel up, the row
+// above: allowed when up lies farther and no lower, rising at most grow_dz + bank_slope * (its
+// range - lo's range); each result through Ftz0 as the shader does. Asked only where either pixel
+// is kPixUnknownOff (its coarse label not ground): a bank rises beyond the coarse planes.
+inline bool BankStep(const Params& p, float z_up, float r_up, float z_lo, float r_lo) {
+  const float d = exact::Ftz0(r_up - r_lo);
+  const float rise = exact::Ftz0(z_up - z_lo);
+  const float allowed = exact::Ftz0(p.grow_dz + exact::Ftz0(p.bank_slope * d));
+  return d > 0.0f && rise >= 0.0f && rise <= allowed;
 }
 
 uint32_t Find(uint32_t* __restrict up, uint32_t x) {
@@ -97,7 +113,8 @@ inline void Union(uint32_t* __restrict up, uint32_t a, uint32_t b) {
 void ToState(const uint32_t* __restrict fused, uint8_t* __restrict s, uint32_t pixels) {
   for (uint32_t pix = 0; pix < pixels; ++pix) {
     const uint32_t c = fused[pix];
-    s[pix] = uint8_t((c == kPixGround) | (c == kPixUnknown) << 1);  // kGround, kUnknown
+    const bool unknown = (c == kPixUnknown) | (c == kPixUnknownOff);
+    s[pix] = uint8_t((c == kPixGround) | unknown << 1);  // kGround, kUnknown
   }
 }
 
@@ -127,9 +144,9 @@ class Growing {
       : p_(p),
         w_(p.width),
         h_(p.beams),
-        inten_(f.f_inten.data()),
         height_(f.f_height.data()),
         range_(f.f_range.data()),
+        fused_(f.pixel_fused.data()),
         s_(s) {}
 
   // Visits every unknown pixel in scan order (eight at a time where a word holds none).
@@ -156,19 +173,21 @@ class Growing {
     const uint32_t at = v * w, r = at + u;
     const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
     const bool left = ul != u, right = ur != u;
-    const float ir = inten_[r], zr = height_[r], rr = range_[r];
+    const float zr = height_[r], rr = range_[r];
     auto from = [&](uint32_t q, bool moved) {
       if (s[q] != kGround) return false;
-      return StepAllowed(p_, inten_[q], height_[q], range_[q], ir, zr, rr, moved);
+      return StepAllowed(p_, height_[q], range_[q], zr, rr, moved);
     };
     bool grows = from(at + ul, left) || from(at + ur, right);
     if (!grows && v > 0) {
       const uint32_t above = at - w;
-      grows = from(above + ul, left) || from(above + u, false) || from(above + ur, right);
+      grows = from(above + ul, left) || from(above + u, false) || from(above + ur, right) ||
+              (s[above + u] == kGround && Climbs(above + u, r));
     }
     if (!grows && v + 1 < h) {
       const uint32_t below = at + w;
-      grows = from(below + ul, left) || from(below + u, false) || from(below + ur, right);
+      grows = from(below + ul, left) || from(below + u, false) || from(below + ur, right) ||
+              (s[below + u] == kGround && Climbs(r, below + u));
     }
     if (grows) {
       s_[r] = kGround;
@@ -187,31 +206,40 @@ class Growing {
       const uint32_t v = q.v, at = v * w, u = q.pix - at;
       const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
       const bool left = ul != u, right = ur != u;
-      const float iq = inten_[q.pix], zq = height_[q.pix], rq = range_[q.pix];
-      auto to = [&](uint32_t r, uint32_t rv, bool moved) {
+      const float zq = height_[q.pix], rq = range_[q.pix];
+      // vertical: 0 beside or diagonal, 1 r the row above q, -1 r the row below.
+      auto to = [&](uint32_t r, uint32_t rv, bool moved, int vertical = 0) {
         if (s[r] != kUnknown) return;
-        if (StepAllowed(p_, iq, zq, rq, inten_[r], height_[r], range_[r], moved)) {
+        if (StepAllowed(p_, zq, rq, height_[r], range_[r], moved) ||
+            (vertical > 0 && Climbs(r, q.pix)) || (vertical < 0 && Climbs(q.pix, r))) {
           s[r] = kGround;
           stack.push_back({r, rv});
         }
       };
       if (v > 0) {
         const uint32_t above = at - w;
-        to(above + ul, v - 1, left), to(above + u, v - 1, false), to(above + ur, v - 1, right);
+        to(above + ul, v - 1, left), to(above + u, v - 1, false, 1), to(above + ur, v - 1, right);
       }
       to(at + ul, v, left), to(at + ur, v, right);
       if (v + 1 < h) {
         const uint32_t below = at + w;
-        to(below + ul, v + 1, left), to(below + u, v + 1, false), to(below + ur, v + 1, right);
+        to(below + ul, v + 1, left), to(below + u, v + 1, false, -1), to(below + ur, v + 1, right);
       }
     }
   }
 
+  // The bank's step between pixel up and pixel lo, the one below it in its column, where either
+  // is kPixUnknownOff (BankStep).
+  bool Climbs(uint32_t up, uint32_t lo) const {
+    if (fused_[up] != kPixUnknownOff && fused_[lo] != kPixUnknownOff) return false;
+    return BankStep(p_, height_[up], range_[up], height_[lo], range_[lo]);
+  }
+
   const Params& p_;
   const uint32_t w_, h_;
-  const float* const inten_;
   const float* const height_;
   const float* const range_;
+  const uint32_t* const fused_;
   uint8_t* const s_;
 };
 
@@ -317,8 +345,8 @@ void LabelComponents(const Params& p, Frame& f) {
 // The veto's lift over labels after the component test, every vetoed pixel decided on the labels
 // before any lift: one that stays is written non-ground at once (its neighbours read it as not
 // ground either way), the lifted ones are collected and written ground after the scan.
-void LiftVetoed(const Params& p, const float* __restrict inten, const float* __restrict range,
-                const float* __restrict height, uint32_t* __restrict label) {
+void LiftVetoed(const Params& p, const float* __restrict range, const float* __restrict height,
+                uint32_t* __restrict label) {
   const uint32_t w = p.width, h = p.beams;
   lifted.clear();
   for (uint32_t v = 0; v < h; ++v) {
@@ -328,7 +356,7 @@ void LiftVetoed(const Params& p, const float* __restrict inten, const float* __r
       const uint32_t left = u == 0 ? x + w - 1 : x - 1, right = u + 1 == w ? x + 1 - w : x + 1;
       auto joins = [&](uint32_t q) {
         return label[q] == kPixGround &&
-               StepAllowed(p, inten[q], height[q], range[q], inten[x], height[x], range[x], true);
+               StepAllowed(p, height[q], range[q], height[x], range[x], true);
       };
       bool lift = joins(left) && joins(right);
       if (!lift && v > 0 && label[x - w] == kPixGround) {
@@ -360,7 +388,7 @@ void Grow(const Params& p, Frame& f) {
   WriteOutputs(f.pixel_fused.data(), s, pixels, f.pixel_grown.data(), f.pixel_label.data(),
                f.pixel_comp.data());
   LabelComponents(p, f);
-  LiftVetoed(p, f.f_inten.data(), f.f_range.data(), f.f_height.data(), f.pixel_label.data());
+  LiftVetoed(p, f.f_range.data(), f.f_height.data(), f.pixel_label.data());
 }
 
 }  // namespace lpir

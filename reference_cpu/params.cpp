@@ -21,20 +21,20 @@ struct Field {
   { #name, offsetof(Params, name), true }
 // Fields a profile may override (the image geometry comes from the profile itself).
 const Field kFields[] = {
-    LPIR_F(h_noise),          LPIR_F(i_noise),          LPIR_U(rings_near),
-    LPIR_U(rings_far),        LPIR_U(sectors_near),     LPIR_U(sectors_far),
-    LPIR_F(ring_res_near),    LPIR_F(ring_res_far),     LPIR_F(slope_max),
-    LPIR_F(seed_margin),      LPIR_F(h_athr),           LPIR_F(rise_margin),
-    LPIR_F(plane_dist_floor), LPIR_F(plane_dist_scale), LPIR_F(normal_min_z2),
-    LPIR_F(ground_max_above), LPIR_F(hole_gap),         LPIR_F(t_edge),
-    LPIR_F(t_slope_low),      LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),
-    LPIR_F(t_stdz_high),      LPIR_F(t_stdi_low),       LPIR_F(t_stdi_high),
-    LPIR_F(grow_di),          LPIR_F(grow_dz),          LPIR_F(grow_grade),
-    LPIR_U(min_component),    LPIR_F(bp_range_gate),    LPIR_F(bp_height_gate),
-    LPIR_U(occ_rows),         LPIR_F(occ_margin),       LPIR_F(occ_rise),
-    LPIR_F(occ_grade),        LPIR_F(occ_front),        LPIR_F(occ_pass),
-    LPIR_U(occ_step_rows),    LPIR_F(occ_step),         LPIR_F(occ_step_grade),
-    LPIR_F(occ_step_reach),   LPIR_U(comp_seed_min),    LPIR_F(comp_seed_share),
+    LPIR_F(h_noise),          LPIR_U(rings_near),     LPIR_U(rings_far),
+    LPIR_U(sectors_near),     LPIR_U(sectors_far),    LPIR_F(ring_res_near),
+    LPIR_F(ring_res_far),     LPIR_F(slope_max),      LPIR_F(seed_margin),
+    LPIR_F(h_athr),           LPIR_F(rise_margin),    LPIR_F(plane_dist_floor),
+    LPIR_F(plane_dist_scale), LPIR_F(normal_min_z2),  LPIR_F(ground_max_above),
+    LPIR_F(hole_gap),         LPIR_F(t_edge),         LPIR_F(t_slope_low),
+    LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),     LPIR_F(t_stdz_high),
+    LPIR_F(bank_slope),       LPIR_F(bank_rough),     LPIR_F(grow_dz),
+    LPIR_F(grow_grade),       LPIR_U(min_component),  LPIR_F(bp_range_gate),
+    LPIR_F(bp_height_gate),   LPIR_U(occ_rows),       LPIR_F(occ_margin),
+    LPIR_F(occ_rise),         LPIR_F(occ_grade),      LPIR_F(occ_front),
+    LPIR_F(occ_pass),         LPIR_U(occ_step_rows),  LPIR_F(occ_step),
+    LPIR_F(occ_step_grade),   LPIR_F(occ_step_reach), LPIR_U(comp_seed_min),
+    LPIR_F(comp_seed_share),
 };
 #undef LPIR_F
 #undef LPIR_U
@@ -62,9 +62,7 @@ Params DefaultParams() {
   p.max_range2 = 120.0f * 120.0f;
   p.k_xz = 0.0f;
   p.k_yz = 0.0f;
-  p.h_noise = -2.73f;  // 1 m under the road for a 1.73 m mount (see ParamsForSensor)
-  p.i_noise = 0.05f;
-  p.intensity_scale = 1.0f;
+  p.h_noise = -3.73f;  // 2 m under the road for a 1.73 m mount (see ParamsForSensor)
   p.sensor_height = 1.73f;
   p.rings_near = 10;     // 10 x 2 m = 20 m near zone
   p.rings_far = 25;      // 25 x 4 m beyond: to 120 m
@@ -90,9 +88,8 @@ Params DefaultParams() {
   p.t_slope_high = 0.25f;
   p.t_stdz_low = 0.000025f;   // (5 mm)^2
   p.t_stdz_high = 0.000144f;  // (12 mm)^2
-  p.t_stdi_low = 0.035f;
-  p.t_stdi_high = 0.1f;
-  p.grow_di = 0.35f;
+  p.bank_slope = 0.8f;        // 39 degrees
+  p.bank_rough = 0.01f;       // (10 cm)^2: grass on a bank
   p.grow_dz = 0.03f;
   p.grow_grade = 0.0f;
   p.column_arc = float(2.0 * 3.14159265358979323846 / 2048.0);
@@ -148,11 +145,10 @@ Params ParamsForSensor(const SensorProfile& s) {
   p.max_range2 = s.max_range * s.max_range;
   p.k_xz = s.k_xz;
   p.k_yz = s.k_yz;
-  p.intensity_scale = s.intensity_scale;
   p.sensor_height = s.sensor_height;
-  // Reflection noise lies under the road: 1 m under the sensor's own ground plane, so that a road
-  // falling away is not flagged (docs/decisions/prepare.md).
-  p.h_noise = -s.sensor_height - 1.0f;
+  // Reflection noise lies under the road: 2 m under the sensor's own ground plane, so that a road
+  // falling away is not flagged (docs/decisions/intensity.md).
+  p.h_noise = -s.sensor_height - 2.0f;
   for (const auto& [name, value] : s.overrides) {
     if (!ApplyOverride(p, name, value))
       throw std::invalid_argument("sensor profile '" + s.name + "': unknown parameter '" + name +
@@ -187,7 +183,6 @@ Params ParamsForSensor(const SensorProfile& s) {
   RejectSubnormal(s.name, "max_range2 (max_range squared)", p.max_range2);
   RejectSubnormal(s.name, "k_xz", p.k_xz);
   RejectSubnormal(s.name, "k_yz", p.k_yz);
-  RejectSubnormal(s.name, "intensity_scale", p.intensity_scale);
   RejectSubnormal(s.name, "sensor_height", p.sensor_height);
   RejectSubnormal(s.name, "column_arc", p.column_arc);
   return p;

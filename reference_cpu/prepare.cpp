@@ -1,24 +1,21 @@
 // Stage 1, prepare (paper III-B.1, eq. 3).
-// In: cloud xyzi (+ ring). Out per point: flags (kPointValid, kPointNoise), zt, r2, inten.
-// Valid: x, y, z, intensity finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2;
-// z^2 <= max_range2; ring (when present) inside [0, beams). Everything of an invalid point is
-// written as 0.
-// inten is clamped to [-kMaxIntensity, kMaxIntensity] (1e4, far beyond any sensor's [0, 1]): stage
-// 5 quantises it to 1e-4 steps and squares it in int64, which a raw 1e30 would overflow.
-// Inputs (x, y, z, intensity) and every result that can be subnormal (xx, yy, zz, tx, ty, tilt,
-// zt, the scaled intensity) go through exact::Ftz0 (subnormals and -0 to +0), so that a device
-// that flushes gives the same bytes (docs/decisions/denormals.md).
+// In: cloud xyz (+ ring); the intensity is not read (docs/decisions/intensity.md). Out per point:
+// flags (kPointValid, kPointNoise), zt, r2.
+// Valid: x, y, z finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2; z^2 <=
+// max_range2; ring (when present) inside [0, beams). Everything of an invalid point is written as
+// 0.
+// Inputs (x, y, z) and every result that can be subnormal (xx, yy, zz, tx, ty, tilt, zt) go
+// through exact::Ftz0 (subnormals and -0 to +0), so that a device that flushes gives the same
+// bytes (docs/decisions/denormals.md).
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
-// sum, one difference); inten = intensity * intensity_scale; noise = zt < h_noise &&
-// inten < i_noise.
+// sum, one difference); noise = zt < h_noise (reflection noise, III-B.1: deeper under the road
+// than any ground the profile's height puts there).
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 
 namespace lpir {
 namespace {
-
-constexpr float kMaxIntensity = 10000.0f;  // shaders/prepare.comp: the same bound
 
 // std::isfinite as one float operation (f - f is 0 exactly when f is finite): fewer vector
 // instructions.
@@ -35,34 +32,29 @@ void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
   uint32_t* __restrict flags_out = f.flags.data();
   float* __restrict zt_out = f.zt.data();
   float* __restrict r2_out = f.r2.data();
-  float* __restrict inten_out = f.inten.data();
   const int32_t beams = int32_t(p.beams);
   const float min_range2 = p.min_range2, max_range2 = p.max_range2, k_xz = p.k_xz, k_yz = p.k_yz;
-  const float scale = p.intensity_scale, h_noise = p.h_noise, i_noise = p.i_noise;
+  const float h_noise = p.h_noise;
   for (size_t i = 0; i < n; ++i) {  // size_t: 4 * i must not wrap, or no vectors
     const float x = exact::Ftz0(xyzi[4 * i]), y = exact::Ftz0(xyzi[4 * i + 1]);
-    const float z = exact::Ftz0(xyzi[4 * i + 2]), in = exact::Ftz0(xyzi[4 * i + 3]);
+    const float z = exact::Ftz0(xyzi[4 * i + 2]);
     const float xx = exact::Ftz0(x * x), yy = exact::Ftz0(y * y);
     const float r2 = xx + yy;  // 0 or at least 2^-126: never subnormal
     const float zz = exact::Ftz0(z * z);
     const float tx = exact::Ftz0(k_xz * x), ty = exact::Ftz0(k_yz * y);
     const float tilt = exact::Ftz0(tx + ty);
     const float zt = exact::Ftz0(z - tilt);  // eq. 3
-    const float scaled = exact::Ftz0(in * scale);
-    const float low = scaled < -kMaxIntensity ? -kMaxIntensity : scaled;  // std::max(scaled, -k)
-    const float inten = kMaxIntensity < low ? kMaxIntensity : low;        // std::min(low, k)
     // 0 or 1 each, combined with & so that every test is evaluated (no branch); |z| beyond the
     // sensor's range is garbage; NaN fails every comparison.
-    const uint32_t finite = Finite(x) & Finite(y) & Finite(z) & Finite(in);
+    const uint32_t finite = Finite(x) & Finite(y) & Finite(z);
     const uint32_t origin = uint32_t(x == 0.0f) & uint32_t(y == 0.0f) & uint32_t(z == 0.0f);
     uint32_t valid = finite & (origin ^ 1u) & uint32_t(r2 >= min_range2) &
                      uint32_t(r2 <= max_range2) & uint32_t(zz <= max_range2);
     if constexpr (kRing) valid &= uint32_t(ring[i] >= 0) & uint32_t(ring[i] < beams);
-    const uint32_t noise = uint32_t(zt < h_noise) & uint32_t(inten < i_noise);
+    const uint32_t noise = uint32_t(zt < h_noise);
     flags_out[i] = valid ? kPointValid | noise * kPointNoise : 0u;
     zt_out[i] = valid ? zt : 0.0f;
     r2_out[i] = valid ? r2 : 0.0f;
-    inten_out[i] = valid ? inten : 0.0f;
   }
 }
 
@@ -74,7 +66,6 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
   f.flags.resize(n);
   f.zt.resize(n);
   f.r2.resize(n);
-  f.inten.resize(n);
   if (cloud.ring.empty())
     PrepareAll<false>(cloud, p, f);
   else

@@ -24,7 +24,6 @@ struct SensorProfile {
   // all 0). The HDL-64E fires from 0.1-0.2 m above its centre, which bends near elevations.
   std::vector<float> beam_origin_z;
   bool ring_zero_is_top = false;   // when the file has a ring field: true if ring 0 is the top beam
-  float intensity_scale = 1.0f;    // raw intensity * scale = intensity in [0, 1]
   float sensor_height = 1.73f;     // m, sensor above the ground it stands on
   float min_range = 2.5f;          // m, planar range below which points are invalid (the car)
   float max_range = 120.0f;        // m, planar range above which points are invalid

@@ -25,7 +25,7 @@ params=(
   "slope_max 0.10" "seed_margin 0.06" "h_athr 0.12" "rise_margin 0.3" "plane_dist_floor 0.3"
   "plane_dist_scale 2.5" "ground_max_above 0.3" "hole_gap 0.25" "t_edge 0.12"
   "t_slope_low 0.09" "t_slope_high 0.25" "t_stdz_low 0.000025" "t_stdz_high 0.000144"
-  "t_stdi_low 0.035" "t_stdi_high 0.1" "grow_di 0.35" "grow_dz 0.03" "min_component 300"
+  "grow_dz 0.03" "min_component 300"
   "bp_range_gate 0.15" "bp_height_gate 0.2" "occ_margin 0.3" "occ_rise 0.045"
   "occ_grade 0.0002" "occ_front 0.1" "occ_pass 0.15" "occ_step_rows 10" "occ_step 0.15" "occ_step_grade 0.1"
   "occ_step_reach 3" "comp_seed_min 10" "comp_seed_share 0.8")

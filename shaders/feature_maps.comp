@@ -9,26 +9,29 @@
 // three columns, so with kItems = 1 every pixel loads its own, and the integers summed are the
 // same for every kItems).
 // In: binding 0 Params (uniform: width, beams, hole_gap), 1 pixel_point (uint, kNone empty),
-//     2 r2, 3 zt, 4 inten (floats per point).
-// Out: 5 pixel_filled (0 empty, 1 measured, 2 filled), 6 f_range, 7 f_inten, 8 f_height
-//     (pass 0 or 1), 9 f_slope, 10 f_edge_l, 11 f_edge_r, 12 f_varz, 13 f_vari (pass 2).
-// Scratch: 14 feature_pack, per pixel (filled, range, intensity, height bits), written by pass 0
-//     or 1 beside the four maps, so that pass 2 reads a pixel with one vector load
+//     2 r2, 3 zt (floats per point).
+// Out: 4 pixel_filled (0 empty, 1 measured, 2 filled), 5 f_range, 6 f_height (pass 0 or 1),
+//     7 f_slope, 8 f_edge_l, 9 f_edge_r, 10 f_varz (pass 2).
+// Scratch: 11 feature_pack, per pixel (filled, range and height bits, 0), written by pass 0 or 1
+//     beside the three maps, so that pass 2 reads a pixel with one vector load
 //     (docs/decisions/feature_maps.md).
-// Pass 0 (or 1), measure and fill: a measured pixel takes range = Sqrt(r2), intensity and height
-//   z_t of its winning point; an empty pixel whose left and right neighbours (columns wrap) are
+// Pass 0 (or 1), measure and fill: a measured pixel takes range = Sqrt(r2) and height z_t of its
+//   winning point; an empty pixel whose left and right neighbours (columns wrap) are
 //   measured and whose ranges differ by at most hole_gap takes (l + r) * 0.5 of each. The
 //   neighbours' values are recomputed from pixel_point and the per-point buffers (read-only), so
 //   no invocation reads what another one writes in this pass.
 // Pass 2, on measured and filled pixels (0 everywhere else): slope = Div(|z(v+1) - z|,
 //   |r(v+1) - r|), -1 when the pixel below is empty (or absent) or the ranges are equal; edge_l =
-//   |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when that neighbour is empty); var_z, var_i over the
-//   3x3 window (rows clipped, columns wrapping) from the int64 moments n, sum q, sum q^2 of the
-//   quantised values q = ToFixed(value, 1e4) (the nine neighbours' integers summed directly: the
-//   CPU's shared row sums give the same integers), var = Div(I64ToFloat(n * sum q^2 - (sum q)^2),
+//   |z - z(u-1)|, edge_r = |z(u+1) - z| (0 when that neighbour is empty); var_z, the variance of
+//   height about the window's line in range, over the 3x3 window (rows clipped, columns
+//   wrapping) from the int64 moments n, sum z, sum z^2, sum r, sum r^2, sum r z of the quantised
+//   heights and ranges ToFixed(value, 1e4) (the nine neighbours' integers summed directly: the
+//   CPU's shared row sums give the same integers), then the reference's VarianceAboutLine op for
+//   op: Vz, Vr, C in int64, vz, vr, c = I64ToFloat, b = vr > 0 ? Div(c, vr) : 0 clamped to
+//   [-1, 1], bc = b * c, res = max((vz - (bc + bc)) + (b * b) * vr, 0), var = Div(res,
 //   float(n * n)) * 1e-8.
-// Results that can be subnormal go through exact_Ftz0 as in the reference: the filled intensity and
-// height (sum and product), the edges.
+// Results that can be subnormal go through exact_Ftz0 as in the reference: the filled height (sum
+// and product), the edges.
 // Comparisons on the bits (as IEEE does them: -0 == +0, false with a NaN), every float operation
 // precise (no contraction), division, square root and int64 -> float by exact.glsl.
 #version 450
@@ -44,23 +47,19 @@ layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
 layout(std430, set = 0, binding = 1) readonly buffer PixelPoint { uint pixel_point[]; };
 layout(std430, set = 0, binding = 2) readonly buffer R2 { float r2[]; };
 layout(std430, set = 0, binding = 3) readonly buffer Zt { float zt[]; };
-layout(std430, set = 0, binding = 4) readonly buffer Inten { float inten[]; };
-layout(std430, set = 0, binding = 5) writeonly buffer Filled { uint pixel_filled[]; };
-layout(std430, set = 0, binding = 6) writeonly buffer Range { float f_range[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer InMap { float f_inten[]; };
-layout(std430, set = 0, binding = 8) writeonly buffer Height { float f_height[]; };
-layout(std430, set = 0, binding = 9) writeonly buffer Slope { float f_slope[]; };
-layout(std430, set = 0, binding = 10) writeonly buffer EdgeL { float f_edge_l[]; };
-layout(std430, set = 0, binding = 11) writeonly buffer EdgeR { float f_edge_r[]; };
-layout(std430, set = 0, binding = 12) writeonly buffer VarZ { float f_varz[]; };
-layout(std430, set = 0, binding = 13) writeonly buffer VarI { float f_vari[]; };
-layout(std430, set = 0, binding = 14) buffer FeaturePack { uvec4 feature_pack[]; };
+layout(std430, set = 0, binding = 4) writeonly buffer Filled { uint pixel_filled[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer Range { float f_range[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer Height { float f_height[]; };
+layout(std430, set = 0, binding = 7) writeonly buffer Slope { float f_slope[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer EdgeL { float f_edge_l[]; };
+layout(std430, set = 0, binding = 9) writeonly buffer EdgeR { float f_edge_r[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer VarZ { float f_varz[]; };
+layout(std430, set = 0, binding = 11) buffer FeaturePack { uvec4 feature_pack[]; };
 // Pass 1's views, four pixels at a time.
 layout(std430, set = 0, binding = 1) readonly buffer PixelPoint4 { uvec4 pixel_point4[]; };
-layout(std430, set = 0, binding = 5) writeonly buffer Filled4 { uvec4 pixel_filled4[]; };
-layout(std430, set = 0, binding = 6) writeonly buffer Range4 { vec4 f_range4[]; };
-layout(std430, set = 0, binding = 7) writeonly buffer InMap4 { vec4 f_inten4[]; };
-layout(std430, set = 0, binding = 8) writeonly buffer Height4 { vec4 f_height4[]; };
+layout(std430, set = 0, binding = 4) writeonly buffer Filled4 { uvec4 pixel_filled4[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer Range4 { vec4 f_range4[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer Height4 { vec4 f_height4[]; };
 
 layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/kernel.h)
 layout(constant_id = 2) const uint kItems = 1u;  // pass 2: pixels of one row per invocation
@@ -71,8 +70,8 @@ layout(push_constant) uniform Push {
 
 const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 
-// reference_cpu/feature_maps.cpp: kHeightScale, kIntensityScale (10000), kHeightQuantum2,
-// kIntensityQuantum2 (1e-8f), by their bits so that no literal parsing can differ.
+// reference_cpu/feature_maps.cpp: kHeightScale (10000), kHeightQuantum2 (1e-8f), by their bits so
+// that no literal parsing can differ.
 #define kScale uintBitsToFloat(0x461C4000u)     // 10000.0f
 #define kQuantum2 uintBitsToFloat(0x322BCC77u)  // 1e-8f
 
@@ -88,23 +87,21 @@ bool AbsPositive(float x) {
 // values are read where the empty pixel's left neighbour's are (docs/decisions/feature_maps.md).
 struct Maps {
   uint filled;
-  float range, in_map, height;
+  float range, height;
 };
 Maps Fill(uint i, uint left, uint right) {
   uint il = i != kNone ? i : left;
   uint ir = i != kNone ? kNone : right;
-  float rl = 0.0, il_in = 0.0, il_z = 0.0;  // the measured point's, or the left neighbour's
+  float rl = 0.0, il_z = 0.0;  // the measured point's, or the left neighbour's
   if (il != kNone) {
     rl = exact_Sqrt(r2[il]);
-    il_in = inten[il];
     il_z = zt[il];
   }
   uint filled = 0u;
-  precise float range = 0.0, in_map = 0.0, height = 0.0;
+  precise float range = 0.0, height = 0.0;
   if (i != kNone) {
     filled = 1u;
     range = rl;
-    in_map = il_in;
     height = il_z;
   } else if (il != kNone && ir != kNone) {
     float rr = exact_Sqrt(r2[ir]);
@@ -112,18 +109,15 @@ Maps Fill(uint i, uint left, uint right) {
     if (LessEq(gap, p.hole_gap)) {
       filled = 2u;
       range = (rl + rr) * 0.5;
-      precise float in_sum = exact_Ftz0(il_in + inten[ir]);
       precise float z_sum = exact_Ftz0(il_z + zt[ir]);
-      in_map = exact_Ftz0(in_sum * 0.5);
       height = exact_Ftz0(z_sum * 0.5);
     }
   }
-  return Maps(filled, range, in_map, height);
+  return Maps(filled, range, height);
 }
 
 uvec4 Packed(Maps m) {
-  return uvec4(m.filled, floatBitsToUint(m.range), floatBitsToUint(m.in_map),
-               floatBitsToUint(m.height));
+  return uvec4(m.filled, floatBitsToUint(m.range), floatBitsToUint(m.height), 0u);
 }
 
 // Pass 0, any width: pixel pix.
@@ -137,7 +131,6 @@ void MeasureAndFill(uint pix) {
   // One write of each output (as in pass 2).
   pixel_filled[pix] = m.filled;
   f_range[pix] = m.range;
-  f_inten[pix] = m.in_map;
   f_height[pix] = m.height;
   feature_pack[pix] = Packed(m);
 }
@@ -154,7 +147,6 @@ void MeasureAndFillQuad(uint e) {
        d = Fill(i.w, i.z, right);
   pixel_filled4[e] = uvec4(a.filled, b.filled, c.filled, d.filled);
   f_range4[e] = vec4(a.range, b.range, c.range, d.range);
-  f_inten4[e] = vec4(a.in_map, b.in_map, c.in_map, d.in_map);
   f_height4[e] = vec4(a.height, b.height, c.height, d.height);
   feature_pack[first] = Packed(a);
   feature_pack[first + 1u] = Packed(b);
@@ -165,15 +157,14 @@ void MeasureAndFillQuad(uint e) {
 // A pixel as pass 0 or 1 packed it.
 bool IsFilled(uvec4 e) { return e.x != 0u; }
 float RangeOf(uvec4 e) { return uintBitsToFloat(e.y); }
-float IntensityOf(uvec4 e) { return uintBitsToFloat(e.z); }
-float HeightOf(uvec4 e) { return uintBitsToFloat(e.w); }
+float HeightOf(uvec4 e) { return uintBitsToFloat(e.z); }
 
 // One column's pixels in rows v - 1 .. v + 1 (clipped): the int64 moments of the window (filled
-// count, sum and sum of squares of the quantised heights and intensities; empty pixels hold 0),
+// count, sums of the quantised heights, ranges, their squares and products; empty pixels hold 0),
 // and the pixels of rows v and v + 1 (zero when v + 1 is past the last row), which are all the
 // features of row v need of this column besides the moments.
 struct Moments {
-  int64_t n, sz, szz, si, sii;
+  int64_t n, sz, szz, sr, srr, srz;
 };
 struct Column {
   Moments m;
@@ -182,7 +173,7 @@ struct Column {
 Column ColumnAt(uint col, uint v) {
   uint w = p.width, h = p.beams;
   Column c;
-  c.m = Moments(int64_t(0), int64_t(0), int64_t(0), int64_t(0), int64_t(0));
+  c.m = Moments(int64_t(0), int64_t(0), int64_t(0), int64_t(0), int64_t(0), int64_t(0));
   c.mid = uvec4(0u);
   c.below = uvec4(0u);
   for (int dv = -1; dv <= 1; ++dv) {
@@ -193,11 +184,12 @@ Column ColumnAt(uint col, uint v) {
     if (dv == 1) c.below = e;
     if (IsFilled(e)) c.m.n += int64_t(1);
     int64_t qz = exact_ToFixed(HeightOf(e), kScale);
-    int64_t qi = exact_ToFixed(IntensityOf(e), kScale);
+    int64_t qr = exact_ToFixed(RangeOf(e), kScale);
     c.m.sz += qz;
     c.m.szz += qz * qz;
-    c.m.si += qi;
-    c.m.sii += qi * qi;
+    c.m.sr += qr;
+    c.m.srr += qr * qr;
+    c.m.srz += qr * qz;
   }
   return c;
 }
@@ -229,13 +221,18 @@ void Features(uint pix, uint v, Column l, Column c, Column r) {
 
   // 3x3 moments of the quantised values: integers, so any summation order gives the same.
   int64_t n = l.m.n + c.m.n + r.m.n, sz = l.m.sz + c.m.sz + r.m.sz;
-  int64_t szz = l.m.szz + c.m.szz + r.m.szz;
-  int64_t si = l.m.si + c.m.si + r.m.si, sii = l.m.sii + c.m.sii + r.m.sii;
+  int64_t szz = l.m.szz + c.m.szz + r.m.szz, sr = l.m.sr + c.m.sr + r.m.sr;
+  int64_t srr = l.m.srr + c.m.srr + r.m.srr, srz = l.m.srz + c.m.srz + r.m.srz;
+  float vz = exact_I64ToFloat(n * szz - sz * sz);
+  float vr = exact_I64ToFloat(n * srr - sr * sr);
+  float cv = exact_I64ToFloat(n * srz - sr * sz);
+  float fitted = vr > 0.0 ? exact_Div(cv, vr) : 0.0;
+  float b = min(max(fitted, -1.0), 1.0);
+  precise float bc = b * cv;
+  precise float res = (vz - (bc + bc)) + (b * b) * vr;
   float den = float(int(n * n));  // <= 81: exact
-  precise float varz = exact_Div(exact_I64ToFloat(n * szz - sz * sz), den) * kQuantum2;
-  precise float vari = exact_Div(exact_I64ToFloat(n * sii - si * si), den) * kQuantum2;
+  precise float varz = exact_Div(max(res, 0.0), den) * kQuantum2;
   f_varz[pix] = filled ? varz : 0.0;
-  f_vari[pix] = filled ? vari : 0.0;
 }
 
 // Pass 2 over run `run` (kItems consecutive pixels of one row): the window's column moments slide

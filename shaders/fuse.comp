@@ -6,7 +6,7 @@
 // above are quads too; docs/decisions/fuse.md).
 // In: binding 0 Params (uniform), 1 pixel_class, 2 pixel_point (kNone: no point), 3 coarse (per
 //     point; any buffer of at least one element when there are no points), 4 pixel_filled,
-//     5 f_range, 6 f_height (floats). Out: 7 pixel_fused (kPix*, kPixVetoed).
+//     5 f_range, 6 f_height (floats). Out: 7 pixel_fused (kPix*, kPixVetoed, kPixUnknownOff).
 // Opinion: the coarse bit of the pixel's winning point, kPixUnknown where it has none.
 // Occlusion veto over rows v - k, k = 1 .. min(occ_rows, v) of the same column: the pixel's
 // bounds, each one rounded float op (`precise`, never an FMA), in this order: rr = r * r,
@@ -21,9 +21,10 @@
 // 0, bound = Ftz0(base + Ftz0(occ_step_grade * beyond)); it counts when filled != 0 and range
 // above < far; steep |= counts & height above > bound; landing |= counts & class above == ground &
 // d > 0. occluded &= !(landing & !steep).
-// Decision: agree = class == opinion, or class unknown and opinion ground; vote = agree ? opinion
-// : unknown; kept = occluded ? (vote == non-ground ? non-ground : vetoed) : vote; fused = class
-// empty ? empty : kept.
+// Decision: agree = class == opinion, or class unknown and opinion ground; unknown = opinion ==
+// ground ? kPixUnknown : kPixUnknownOff; vote = agree and opinion != kNoOpinion ? opinion :
+// unknown (a bank, kPixBank, never agrees); kept = occluded ? (vote == non-ground ? non-ground :
+// vetoed) : vote; fused = class empty ? empty : kept.
 // No ties and no reductions: each invocation writes only its own pixels.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -62,6 +63,7 @@ const uint kPixGround = 1u;
 const uint kPixUnknown = 2u;
 const uint kPixEmpty = 3u;
 const uint kPixVetoed = 4u;
+const uint kPixUnknownOff = 6u;
 const uint kNoOpinion = kPixUnknown;
 
 // Element e of a buffer: a quad in pass 1, a pixel (in component x) in pass 0.
@@ -132,7 +134,9 @@ void main() {
 
   uvec4 agree = uvec4(equal(c, opinion)) |
                 (uvec4(equal(c, uvec4(kPixUnknown))) & uvec4(equal(opinion, uvec4(kPixGround))));
-  uvec4 vote = mix(uvec4(kPixUnknown), opinion, notEqual(agree, uvec4(0u)));
+  uvec4 unknown = mix(uvec4(kPixUnknownOff), uvec4(kPixUnknown), equal(opinion, uvec4(kPixGround)));
+  uvec4 decided = agree & uvec4(notEqual(opinion, uvec4(kNoOpinion)));
+  uvec4 vote = mix(unknown, opinion, notEqual(decided, uvec4(0u)));
   uvec4 vetoed = mix(uvec4(kPixVetoed), uvec4(kPixNonGround), equal(vote, uvec4(kPixNonGround)));
   uvec4 kept = mix(vote, vetoed, notEqual(occluded, uvec4(0u)));
   uvec4 fused = mix(kept, uvec4(kPixEmpty), equal(c, uvec4(kPixEmpty)));

@@ -1,6 +1,6 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
-// In: pixel_fused, f_inten, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
-// Growing is connected-component labelling (SPEC 2): with the symmetric step test below, the
+// In: pixel_fused, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
+// Growing is connected-component labelling (SPEC 2): with the symmetric step tests below, the
 // unknown pixels that grow are those whose component of the allowed-step graph (nodes: ground
 // and unknown pixels; edges: 8-neighbours, columns wrapping, whose step is allowed) holds a
 // ground pixel. Two union-finds with lowest-index roots (parents only decrease: links and path
@@ -11,11 +11,12 @@
 // Five passes, one pixel an invocation, chosen by the specialization constant kPass, one
 // pipeline each, recorded in this order with a compute-to-compute barrier between them
 // (host/stages/grow.cpp):
-//   0 init    grow_reach[x + 1] = 0 for ground, x + 1 for unknown, kNone otherwise;
+//   0 init    grow_reach[x + 1] = 0 for ground, x + 1 for unknown (kPixUnknown and
+//             kPixUnknownOff alike), kNone otherwise;
 //             grow_reach[0] = 0; pixel_comp[x] = x; grow_sizes[x] = grow_sizes[count + x] = 0.
 //   1 reach   for each node x and each forward neighbour y (right, below-left, below,
-//             below-right) that is a node, not both ground, with an allowed step: union of
-//             x + 1 and y + 1 in grow_reach.
+//             below-right) that is a node, not both ground, with an allowed step (or, for the
+//             neighbour below, a bank's step up to x): union of x + 1 and y + 1 in grow_reach.
 //   2 join    x grows when it is ground, or unknown with grow_reach root 0; pixel_grown[x] = ground
 //             then, non-ground for an unknown pixel that did not grow, pixel_fused[x] otherwise.
 //             A grown x is joined in pixel_comp with each forward neighbour that grows (the
@@ -34,10 +35,15 @@
 // and x's ray did not pass under it: not (d = Ftz0(range above - r) < 0 and Ftz0(z * d) >=
 // Ftz0(occ_pass * r)).
 // Step test from pixel a to pixel b (the reference's StepAllowed, each op rounded: `precise`):
-// di = |ib - ia|, dz = |zb - za|, step = |rb - ra|, + min(ra, rb) * column_arc when the column
-// changes; allowed = grow_dz + grow_grade * step; di <= grow_di && dz <= allowed. Every term is
+// dz = |zb - za|, step = |rb - ra|, + min(ra, rb) * column_arc when the column changes;
+// allowed = grow_dz + grow_grade * step; dz <= allowed. Every term is
 // symmetric in a and b (IEEE |b - a| = |a - b|), so the graph is undirected. Each result goes
 // through exact_Ftz0 as in the reference, so that a device that flushes subnormals agrees.
+// A bank's step from pixel lo up to pixel up, the one above it in its column (the reference's
+// BankStep), where either is kPixUnknownOff: d = r_up - r_lo, rise = z_up - z_lo, allowed =
+// grow_dz + bank_slope * d, each through exact_Ftz0; d > 0 && rise >= 0 && rise <= allowed. An
+// edge of the same undirected graph: it is tested once, from the upper pixel's forward
+// neighbour below.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_memory_scope_semantics : require  // atomicLoad (core SPIR-V)
@@ -49,14 +55,13 @@ layout(local_size_x_id = 0) in;
 
 layout(std140, set = 0, binding = 0) uniform ParamsBlock { Params p; };
 layout(std430, set = 0, binding = 1) readonly buffer PixelFused { uint pixel_fused[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Inten { float f_inten[]; };
-layout(std430, set = 0, binding = 3) readonly buffer Height { float f_height[]; };
-layout(std430, set = 0, binding = 4) readonly buffer Range { float f_range[]; };
-layout(std430, set = 0, binding = 5) buffer PixelGrown { uint pixel_grown[]; };
-layout(std430, set = 0, binding = 6) buffer PixelComp { uint pixel_comp[]; };
-layout(std430, set = 0, binding = 7) buffer PixelLabel { uint pixel_label[]; };
-layout(std430, set = 0, binding = 8) buffer GrowReach { uint grow_reach[]; };  // pixels + 1 nodes
-layout(std430, set = 0, binding = 9) buffer GrowSizes { uint grow_sizes[]; };  // 2 per pixel
+layout(std430, set = 0, binding = 2) readonly buffer Height { float f_height[]; };
+layout(std430, set = 0, binding = 3) readonly buffer Range { float f_range[]; };
+layout(std430, set = 0, binding = 4) buffer PixelGrown { uint pixel_grown[]; };
+layout(std430, set = 0, binding = 5) buffer PixelComp { uint pixel_comp[]; };
+layout(std430, set = 0, binding = 6) buffer PixelLabel { uint pixel_label[]; };
+layout(std430, set = 0, binding = 7) buffer GrowReach { uint grow_reach[]; };  // pixels + 1 nodes
+layout(std430, set = 0, binding = 8) buffer GrowSizes { uint grow_sizes[]; };  // 2 per pixel
 
 layout(constant_id = 1) const uint kPass = 0u;
 
@@ -69,6 +74,7 @@ const uint kPixNonGround = 0u;
 const uint kPixGround = 1u;
 const uint kPixUnknown = 2u;
 const uint kPixVetoed = 4u;
+const uint kPixUnknownOff = 6u;
 const uint kSeed = 0u;  // grow_reach's virtual node: the root of every component holding a seed
 
 const uint kInit = 0u, kReach = 1u, kJoin = 2u, kCount = 3u, kFinish = 4u;
@@ -111,9 +117,8 @@ UNION_FIND(FindComp, UnionComp, pixel_comp)
 
 // The step test between pixels a and b (columns ca, cb), the reference's StepAllowed op for op.
 bool StepAllowed(uint a, uint b, uint ca, uint cb) {
-  float ia = f_inten[a], za = f_height[a], ra = f_range[a];
-  float ib = f_inten[b], zb = f_height[b], rb = f_range[b];
-  precise float di = exact_Ftz0(abs(ib - ia));
+  float za = f_height[a], ra = f_range[a];
+  float zb = f_height[b], rb = f_range[b];
   precise float dz = exact_Ftz0(abs(zb - za));
   precise float step = exact_Ftz0(abs(rb - ra));
   if (ca != cb) {
@@ -122,15 +127,27 @@ bool StepAllowed(uint a, uint b, uint ca, uint cb) {
   }
   precise float graded = exact_Ftz0(p.grow_grade * step);
   precise float allowed = exact_Ftz0(p.grow_dz + graded);
-  return di <= p.grow_di && dz <= allowed;
+  return dz <= allowed;
 }
 
-bool Node(uint c) { return c == kPixGround || c == kPixUnknown; }
+// The bank's step between pixel up and pixel lo, the one below it in its column, whose fused
+// classes are cu and cl.
+bool Climbs(uint up, uint lo, uint cu, uint cl) {
+  if (cu != kPixUnknownOff && cl != kPixUnknownOff) return false;
+  precise float d = exact_Ftz0(f_range[up] - f_range[lo]);
+  precise float rise = exact_Ftz0(f_height[up] - f_height[lo]);
+  precise float graded = exact_Ftz0(p.bank_slope * d);
+  precise float allowed = exact_Ftz0(p.grow_dz + graded);
+  return d > 0.0 && rise >= 0.0 && rise <= allowed;
+}
+
+bool Unknown(uint c) { return c == kPixUnknown || c == kPixUnknownOff; }
+bool Node(uint c) { return c == kPixGround || Unknown(c); }
 
 // Does pixel x grow (join pass: grow_reach is final)?
 bool Grows(uint x) {
   uint c = pixel_fused[x];
-  return c == kPixGround || (c == kPixUnknown && FindReach(x + 1u) == kSeed);
+  return c == kPixGround || (Unknown(c) && FindReach(x + 1u) == kSeed);
 }
 
 // Forward neighbour k (0 right, 1 below-left, 2 below, 3 below-right) of pixel x at row v,
@@ -180,7 +197,7 @@ void main() {
   if (x >= pc.count) return;
   if (pass == kInit) {
     uint c = pixel_fused[x];
-    grow_reach[x + 1u] = c == kPixGround ? kSeed : c == kPixUnknown ? x + 1u : kNone;
+    grow_reach[x + 1u] = c == kPixGround ? kSeed : Unknown(c) ? x + 1u : kNone;
     if (x == 0u) grow_reach[0] = kSeed;
     pixel_comp[x] = x;
     grow_sizes[x] = 0u;
@@ -197,14 +214,14 @@ void main() {
       if (y == kNone) continue;
       uint d = pixel_fused[y];
       if (!Node(d) || (c == kPixGround && d == kPixGround)) continue;
-      if (StepAllowed(x, y, u, col)) UnionReach(x + 1u, y + 1u);
+      if (StepAllowed(x, y, u, col) || (k == 2u && Climbs(x, y, c, d))) UnionReach(x + 1u, y + 1u);
     }
     return;
   }
   if (pass == kJoin) {
     uint c = pixel_fused[x];
     bool grows = Grows(x);
-    pixel_grown[x] = grows ? kPixGround : c == kPixUnknown ? kPixNonGround : c;
+    pixel_grown[x] = grows ? kPixGround : Unknown(c) ? kPixNonGround : c;
     if (!grows) return;
     for (uint k = 0u; k < 4u; ++k) {
       uint col;

@@ -73,8 +73,13 @@ TEST(Attribution, EachRuleOnOnePixel) {
   unknown.cls = kPixNonGround;
   unknown.coarse = true;
   EXPECT_EQ(Of(unknown, true), Decider::kGrowClassNg);
+  unknown.cls = kPixBank;  // a bank on the coarse ground: the class objected
+  EXPECT_EQ(Of(unknown, true), Decider::kGrowClassNg);
   unknown.cls = kPixGround;
   unknown.coarse = false;
+  unknown.fused = unknown.grown = kPixUnknownOff;
+  EXPECT_EQ(Of(unknown, true), Decider::kGrowCoarseNg);
+  unknown.cls = kPixBank;  // a bank off the coarse ground, not climbed to
   EXPECT_EQ(Of(unknown, true), Decider::kGrowCoarseNg);
   unknown.has_point = false;
   EXPECT_EQ(Of(unknown, true), Decider::kGrowHole);

@@ -46,11 +46,10 @@ std::string PixelText(const Frame& f, const Params& p, size_t pix) {
   return "pixel " + std::to_string(pix) + " (row " + std::to_string(pix / p.width) + ", column " +
          std::to_string(pix % p.width) + "): filled " + std::to_string(f.pixel_filled[pix]) +
          ", edge_l " + FloatText(f.f_edge_l[pix]) + ", edge_r " + FloatText(f.f_edge_r[pix]) +
-         ", slope " + FloatText(f.f_slope[pix]) + ", varz " + FloatText(f.f_varz[pix]) + ", vari " +
-         FloatText(f.f_vari[pix]);
+         ", slope " + FloatText(f.f_slope[pix]) + ", varz " + FloatText(f.f_varz[pix]);
 }
 
-// Stage 6 on the GPU, as lpir::ClassifyPixels(p, f): reads f.pixel_filled and the five maps it
+// Stage 6 on the GPU, as lpir::ClassifyPixels(p, f): reads f.pixel_filled and the four maps it
 // uses, fills f.pixel_class.
 vk::Status ClassifyPixelsOnGpu(const vk::Device& device, const Params& p, Frame& f,
                                double* gpu_ns) {
@@ -63,7 +62,6 @@ vk::Status ClassifyPixelsOnGpu(const vk::Device& device, const Params& p, Frame&
   b.f_edge_r = h.In("f_edge_r", f.f_edge_r, pixels);
   b.f_slope = h.In("f_slope", f.f_slope, pixels);
   b.f_varz = h.In("f_varz", f.f_varz, pixels);
-  b.f_vari = h.In("f_vari", f.f_vari, pixels);
   b.pixel_class = h.Out(&f.pixel_class, pixels);
   return h.Run<vk::ClassifyPixelsStage>(
       b,
@@ -98,12 +96,13 @@ uint64_t ExpectSameClassify(const vk::Context& context, const Params& p, const F
                   << count << " of " << a.size() << " differ): CPU " << ValueText(a[first])
                   << ", GPU " << ValueText(b[first]) << "; " << PixelText(in, p, first);
   }
-  size_t classes[4] = {};
-  for (uint32_t c : a) classes[c & 3]++;
+  size_t classes[8] = {};
+  for (uint32_t c : a) classes[c & 7]++;
   std::printf(
-      "[classify_pixels] %s: %zu pixels (%zu non-ground, %zu ground, %zu unknown, %zu empty): "
-      "%zu values compared, GPU %.3f ms\n",
-      what, a.size(), classes[0], classes[1], classes[2], classes[3], a.size(), gpu_ns / 1e6);
+      "[classify_pixels] %s: %zu pixels (%zu non-ground, %zu ground, %zu unknown, %zu empty, %zu "
+      "bank): %zu values compared, GPU %.3f ms\n",
+      what, a.size(), classes[0], classes[1], classes[2], classes[3], classes[kPixBank], a.size(),
+      gpu_ns / 1e6);
   return a.size();
 }
 
@@ -116,8 +115,8 @@ void Around(float t, std::vector<float>& out) {
 }
 
 // Every combination of the candidate values of each feature, then random picks among them to the
-// end of the image. Candidates: each threshold and its neighbours, +-0, subnormals, -1 (undefined
-// slope), infinities, a NaN.
+// end of the image. Candidates: each threshold (banks' included) and its neighbours, +-0,
+// subnormals, -1 (undefined slope), infinities, a NaN.
 Frame HandMadeImage(const Params& p, uint32_t seed, size_t* combinations) {
   const float inf = std::numeric_limits<float>::infinity();
   const float sub = exact::FromBits(0x00000101u);
@@ -138,17 +137,18 @@ Frame HandMadeImage(const Params& p, uint32_t seed, size_t* combinations) {
   edge.insert(edge.end(), {0.0f, -0.0f, sub, 10.0f, -inf, std::numeric_limits<float>::quiet_NaN()});
   std::vector<float> slope = candidates(p.t_slope_low, p.t_slope_high);
   slope.insert(slope.end(), {-1.0f, -1e-30f, std::nextafter(0.0f, -1.0f)});
-  const std::vector<float> varz = candidates(p.t_stdz_low, p.t_stdz_high);
-  const std::vector<float> vari = candidates(p.t_stdi_low, p.t_stdi_high);
+  Around(p.bank_slope, slope);
+  std::vector<float> varz = candidates(p.t_stdz_low, p.t_stdz_high);
+  Around(p.bank_rough, varz);
   const uint32_t filled[] = {0u, 1u, 2u};
-  const size_t combos = edge.size() * edge.size() * slope.size() * varz.size() * vari.size() * 3;
+  const size_t combos = edge.size() * edge.size() * slope.size() * varz.size() * 3;
   *combinations = combos;
   const uint32_t pixels = p.width * p.beams;
   EXPECT_GE(pixels, combos) << "the image is too small for every combination";
   Frame f;
   f.pixel_filled.resize(pixels);
   f.f_edge_l.resize(pixels), f.f_edge_r.resize(pixels), f.f_slope.resize(pixels);
-  f.f_varz.resize(pixels), f.f_vari.resize(pixels);
+  f.f_varz.resize(pixels);
   f.f_range.assign(pixels, 0.0f);  // not read by stage 6
   std::mt19937 rng(seed);
   for (uint32_t pix = 0; pix < pixels; ++pix) {
@@ -163,12 +163,11 @@ Frame HandMadeImage(const Params& p, uint32_t seed, size_t* combinations) {
     f.f_edge_r[pix] = edge[take(edge.size())];
     f.f_slope[pix] = slope[take(slope.size())];
     f.f_varz[pix] = varz[take(varz.size())];
-    f.f_vari[pix] = vari[take(vari.size())];
   }
   return f;
 }
 
-// A big image (2048 x 768 pixels) so that every combination (1.4 million) fits.
+// A big image (2048 x 768 pixels) so that every combination fits.
 Params BigImage(Params p) {
   p.width = 2048;
   p.beams = 768;
@@ -190,14 +189,14 @@ TEST_F(ClassifyPixelsVkHand, ZeroAndSubnormalThresholds) {
   // Thresholds where IEEE comparison and a flushing device part ways: +-0 and subnormals, equal
   // low and high, and negative values.
   struct T {
-    float edge, slope_low, slope_high, z_low, z_high, i_low, i_high;
+    float edge, slope_low, slope_high, z_low, z_high, bank_slope, bank_rough;
   };
   const float sub = exact::FromBits(0x00000101u), sub2 = exact::FromBits(0x00400000u);
   const T cases[] = {
-      {0.0f, 0.0f, sub, -0.0f, sub2, sub, sub2},
-      {-0.0f, -0.0f, 0.0f, sub, sub, 0.0f, 0.0f},
-      {sub, sub, sub2, 0.0f, 1e-30f, -sub, sub},
-      {-1.0f, -0.5f, 0.5f, -sub2, -sub, -1.0f, 0.0f},
+      {0.0f, 0.0f, sub, -0.0f, sub2, sub2, sub},
+      {-0.0f, -0.0f, 0.0f, sub, sub, 0.0f, -0.0f},
+      {sub, sub, sub2, 0.0f, 1e-30f, sub, 1e-30f},
+      {-1.0f, -0.5f, 0.5f, -sub2, -sub, 1.0f, sub2},
   };
   uint32_t seed = 10;
   for (const T& t : cases) {
@@ -205,7 +204,7 @@ TEST_F(ClassifyPixelsVkHand, ZeroAndSubnormalThresholds) {
     p.t_edge = t.edge;
     p.t_slope_low = t.slope_low, p.t_slope_high = t.slope_high;
     p.t_stdz_low = t.z_low, p.t_stdz_high = t.z_high;
-    p.t_stdi_low = t.i_low, p.t_stdi_high = t.i_high;
+    p.bank_slope = t.bank_slope, p.bank_rough = t.bank_rough;
     size_t combos = 0;
     const Frame f = HandMadeImage(p, seed++, &combos);
     EXPECT_EQ(ExpectSameClassify(context(), p, f, "hand-made, zero / subnormal thresholds"),
@@ -226,8 +225,7 @@ TEST_F(ClassifyPixelsVkHand, PixelCountsThatAreNotMultiplesOfFour) {
     p.width = size[0], p.beams = size[1];
     const size_t pixels = size_t(p.width) * p.beams;
     Frame cut = f;
-    for (auto* v :
-         {&cut.f_edge_l, &cut.f_edge_r, &cut.f_slope, &cut.f_varz, &cut.f_vari, &cut.f_range})
+    for (auto* v : {&cut.f_edge_l, &cut.f_edge_r, &cut.f_slope, &cut.f_varz, &cut.f_range})
       v->resize(pixels);
     cut.pixel_filled.resize(pixels);
     const std::string what = std::to_string(size[0]) + " x " + std::to_string(size[1]);

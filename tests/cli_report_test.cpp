@@ -43,11 +43,13 @@ Cloud Scan(uint32_t seed) {
 }
 
 // `base` plus invalid points: 3 not finite, 2 at the origin (one of them subnormal, flushed), 4 out
-// of range (near, far, beyond the range's z bound, r2 right above max).
+// of range (near, far, beyond the range's z bound, r2 right above max); and one valid point whose
+// intensity is NaN (intensity is not read).
 Cloud WithInvalidPoints(Cloud c) {
   c.Push(kNan, 1, 1, 0);
   c.Push(1, kInf, 1, 0);
-  c.Push(5, 5, -1, kNan);  // the intensity counts too
+  c.Push(5, 5, -kInf, 0);
+  c.Push(5, 5, -1, kNan);
   c.Push(0, 0, 0, 0.5f);
   c.Push(1e-40f, 0, 0, 0);
   c.Push(1, 1, -1, 0);       // 1.4 m: the car

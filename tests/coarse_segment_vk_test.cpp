@@ -184,7 +184,6 @@ Frame Inputs(const Cloud& c, const Params& p, const Tables& t) {
   f.flags.assign(f.n, kPointValid);
   f.zt.resize(f.n);
   f.r2.resize(f.n);
-  f.inten.resize(f.n);
   f.point_cell.resize(f.n);
   const uint32_t cells = CellCount(p);
   f.cell_zmin.assign(cells, kNone);
@@ -193,7 +192,6 @@ Frame Inputs(const Cloud& c, const Params& p, const Tables& t) {
   for (uint32_t i = 0; i < f.n; ++i) {
     f.zt[i] = c.z(i);
     f.r2[i] = c.x(i) * c.x(i) + c.y(i) * c.y(i);
-    f.inten[i] = c.intensity(i);
     const uint32_t cell = CellOf(p, t, c.x(i), c.y(i));
     f.point_cell[i] = cell;
     if (cell == kNone) continue;

@@ -1,8 +1,8 @@
 // Stage 5, feature maps, on Vulkan (shaders/feature_maps.comp) against the CPU reference
-// (reference_cpu/feature_maps.cpp): pixel_filled and the eight feature maps byte for byte.
+// (reference_cpu/feature_maps.cpp): pixel_filled and the six feature maps byte for byte.
 // Inputs: hand-made images (holes at the column wrap, holes whose neighbours' ranges sit exactly
 // on, one ulp under and one ulp over hole_gap, equal ranges down a column (undefined slope), large
-// and negative heights and intensities, images 1 and 2 pixels wide or 1 row high), and the
+// and negative heights, images 1 and 2 pixels wide or 1 row high), and the
 // reference's stages 1-4 on random clouds of 1 to 200000 points, the simulated street (HDL-64E)
 // and the real scans when ../shared/data is present.
 #include <gtest/gtest.h>
@@ -61,12 +61,10 @@ std::string NeighbourhoodText(const Frame& in, const Frame& cpu, const Params& p
       if (i == kNone) {
         text += "none";
       } else {
-        text += std::to_string(i) + ": r2 " + FloatText(in.r2[i]) + ", zt " + FloatText(in.zt[i]) +
-                ", inten " + FloatText(in.inten[i]);
+        text += std::to_string(i) + ": r2 " + FloatText(in.r2[i]) + ", zt " + FloatText(in.zt[i]);
       }
       text += "; CPU filled " + std::to_string(cpu.pixel_filled[q]) + ", range " +
-              FloatText(cpu.f_range[q]) + ", height " + FloatText(cpu.f_height[q]) + ", inten " +
-              FloatText(cpu.f_inten[q]);
+              FloatText(cpu.f_range[q]) + ", height " + FloatText(cpu.f_height[q]);
     }
   }
   return text;
@@ -100,8 +98,8 @@ bool ExpectSameBuffer(const char* name, const std::vector<T>& a, const std::vect
   return false;
 }
 
-// Stage 5 on the GPU, as lpir::FeatureMaps(p, f): reads f.r2, f.zt, f.inten (f.n each) and
-// f.pixel_point, fills f.pixel_filled and the eight maps.
+// Stage 5 on the GPU, as lpir::FeatureMaps(p, f): reads f.r2, f.zt (f.n each) and
+// f.pixel_point, fills f.pixel_filled and the six maps.
 vk::Status FeatureMapsOnGpu(const vk::Device& device, const Params& p, Frame& f, double* gpu_ns) {
   const uint32_t n = f.n;
   const size_t pixels = size_t(p.width) * p.beams;
@@ -111,16 +109,13 @@ vk::Status FeatureMapsOnGpu(const vk::Device& device, const Params& p, Frame& f,
   b.pixel_point = h.In("pixel_point", f.pixel_point, pixels);
   b.r2 = h.In("r2", f.r2, n);
   b.zt = h.In("zt", f.zt, n);
-  b.inten = h.In("inten", f.inten, n);
   b.pixel_filled = h.Out(&f.pixel_filled, pixels);
   b.f_range = h.Out(&f.f_range, pixels);
-  b.f_inten = h.Out(&f.f_inten, pixels);
   b.f_height = h.Out(&f.f_height, pixels);
   b.f_slope = h.Out(&f.f_slope, pixels);
   b.f_edge_l = h.Out(&f.f_edge_l, pixels);
   b.f_edge_r = h.Out(&f.f_edge_r, pixels);
   b.f_varz = h.Out(&f.f_varz, pixels);
-  b.f_vari = h.Out(&f.f_vari, pixels);
   b.feature_pack = h.Scratch(vk::FeatureMapsStage::PackBytes(pixels));
   return h.Run<vk::FeatureMapsStage>(
       b,
@@ -131,7 +126,7 @@ vk::Status FeatureMapsOnGpu(const vk::Device& device, const Params& p, Frame& f,
 }
 
 // `in` holds the stage 1-4 buffers; runs stage 5 on both sides from them and compares
-// pixel_filled and the eight maps. Returns the number of values compared.
+// pixel_filled and the six maps. Returns the number of values compared.
 uint64_t ExpectSameFeatures(const vk::Context& context, const Params& p, const Frame& in,
                             const char* what) {
   Frame cpu = in, gpu = in;
@@ -144,10 +139,9 @@ uint64_t ExpectSameFeatures(const vk::Context& context, const Params& p, const F
   const struct {
     const char* name;
     std::vector<float> Frame::*map;
-  } maps[] = {{"f_range", &Frame::f_range},   {"f_inten", &Frame::f_inten},
-              {"f_height", &Frame::f_height}, {"f_slope", &Frame::f_slope},
-              {"f_edge_l", &Frame::f_edge_l}, {"f_edge_r", &Frame::f_edge_r},
-              {"f_varz", &Frame::f_varz},     {"f_vari", &Frame::f_vari}};
+  } maps[] = {{"f_range", &Frame::f_range},   {"f_height", &Frame::f_height},
+              {"f_slope", &Frame::f_slope},   {"f_edge_l", &Frame::f_edge_l},
+              {"f_edge_r", &Frame::f_edge_r}, {"f_varz", &Frame::f_varz}};
   for (const auto& m : maps) same &= ExpectSameBuffer(m.name, cpu.*m.map, gpu.*m.map, in, cpu, p);
   size_t kinds[3] = {}, undefined_slope = 0;
   for (size_t i = 0; i < cpu.pixel_filled.size(); ++i) {
@@ -158,18 +152,17 @@ uint64_t ExpectSameFeatures(const vk::Context& context, const Params& p, const F
       "[feature_maps] %s: %zu pixels (%zu measured, %zu filled, %zu empty, %zu undefined "
       "slopes): %zu values compared%s, GPU %.3f ms\n",
       what, cpu.pixel_filled.size(), kinds[1], kinds[2], kinds[0], undefined_slope,
-      9 * cpu.pixel_filled.size(), same ? "" : " (DIFFER)", gpu_ns / 1e6);
-  return same ? 9 * cpu.pixel_filled.size() : 0;
+      7 * cpu.pixel_filled.size(), same ? "" : " (DIFFER)", gpu_ns / 1e6);
+  return same ? 7 * cpu.pixel_filled.size() : 0;
 }
 
 // A hand-made image of `p.width` x `p.beams` pixels: one point per measured pixel (numbered in a
-// shuffled order), empty pixels with probability `empty`, heights and intensities from `value`.
+// shuffled order), empty pixels with probability `empty`, heights from `value`.
 struct HandOptions {
   float empty = 0.3f;
   float base_range = 10.0f;   // ranges base_range + small steps, so that holes get filled
   float range_step = 0.02f;   // per column
   float height_scale = 1.0f;  // heights in +-height_scale
-  float inten_scale = 1.0f;   // intensities in [0, inten_scale]
   bool equal_down = false;    // a pixel's range equals the one below (undefined slope)
   bool wrap_holes = true;     // holes at columns 0 and width - 1 with measured neighbours
 };
@@ -208,7 +201,6 @@ Frame HandMadeImage(const Params& p, uint32_t seed, const HandOptions& o) {
   f.n = uint32_t(measured.size() + 1);
   f.r2.assign(f.n, 25.0f);
   f.zt.assign(f.n, 7.0f);
-  f.inten.assign(f.n, 0.5f);
   std::vector<float> range(pixels, 0.0f);
   for (size_t k = 0; k < measured.size(); ++k) {
     const uint32_t pix = measured[k], i = order[k];
@@ -219,9 +211,7 @@ Frame HandMadeImage(const Params& p, uint32_t seed, const HandOptions& o) {
     range[pix] = r;
     f.r2[i] = r * r;
     f.zt[i] = o.height_scale * (2.0f * unit(rng) - 1.0f);
-    f.inten[i] = o.inten_scale * unit(rng);
     if (rng() % 16 == 0) f.zt[i] = (rng() % 2 ? 1.0f : -1.0f) * o.height_scale;  // extremes
-    if (rng() % 16 == 0) f.inten[i] = o.inten_scale;
     if (rng() % 32 == 0) f.zt[i] = 0.0f;
   }
   return f;
@@ -244,7 +234,7 @@ TEST_F(FeatureMapsVkHand, HolesAtTheColumnWrap) {
     o.empty = 0.35f;
     EXPECT_EQ(ExpectSameFeatures(context(), p, HandMadeImage(p, 1, o),
                                  ("hand-made, wrap holes, width " + std::to_string(width)).c_str()),
-              9u * width * 32);
+              7u * width * 32);
   }
 }
 
@@ -289,7 +279,7 @@ TEST_F(FeatureMapsVkHand, HoleGapExactlyAndOneUlpAround) {
     EXPECT_GT(left, 0u);
   }
   EXPECT_EQ(ExpectSameFeatures(context(), p, f, "hand-made, ranges around hole_gap"),
-            9u * 1024 * 16);
+            7u * 1024 * 16);
 }
 
 TEST_F(FeatureMapsVkHand, EqualRangesDownAColumnGiveUndefinedSlopes) {
@@ -298,19 +288,18 @@ TEST_F(FeatureMapsVkHand, EqualRangesDownAColumnGiveUndefinedSlopes) {
   o.equal_down = true;
   o.empty = 0.2f;
   EXPECT_EQ(ExpectSameFeatures(context(), p, HandMadeImage(p, 3, o), "hand-made, equal ranges"),
-            9u * 300 * 24);
+            7u * 300 * 24);
 }
 
-TEST_F(FeatureMapsVkHand, LargeHeightsAndIntensities) {
+TEST_F(FeatureMapsVkHand, LargeHeights) {
   const Params p = SmallImage(2048, 64);
   for (uint32_t seed : {4u, 5u, 6u}) {
     HandOptions o;
     o.height_scale = seed == 4 ? 1000.0f : seed == 5 ? 8191.5f : 123.456f;
-    o.inten_scale = seed == 4 ? 255.0f : seed == 5 ? 10000.0f : 1.0f;
     o.empty = 0.1f * float(seed - 3);
-    EXPECT_EQ(ExpectSameFeatures(context(), p, HandMadeImage(p, seed, o),
-                                 "hand-made, large heights and intensities"),
-              9u * 2048 * 64);
+    EXPECT_EQ(
+        ExpectSameFeatures(context(), p, HandMadeImage(p, seed, o), "hand-made, large heights"),
+        7u * 2048 * 64);
   }
 }
 
@@ -326,7 +315,7 @@ TEST_F(FeatureMapsVkHand, TinyImages) {
       o.empty = empty;
       o.range_step = 0.0f;
       EXPECT_EQ(ExpectSameFeatures(context(), p, HandMadeImage(p, seed++, o), "hand-made, tiny"),
-                9u * s[0] * s[1]);
+                7u * s[0] * s[1]);
     }
   }
 }
@@ -337,7 +326,7 @@ TEST_F(FeatureMapsVkHand, EveryPixelEmpty) {
   o.empty = 1.0f;
   o.wrap_holes = false;
   EXPECT_EQ(ExpectSameFeatures(context(), p, HandMadeImage(p, 30, o), "hand-made, empty"),
-            9u * 128 * 8);
+            7u * 128 * 8);
 }
 
 // Stages 1-4 of the reference (RunReference, then stage 5 again from its buffers).
@@ -360,7 +349,7 @@ TEST_P(FeatureMapsVk, RandomCloudMatchesTheReference) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   const Cloud cloud = test::StreetLikeCloud(n, uint32_t(n + 7));
-  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "random"), 9 * uint64_t(p.width) * p.beams);
+  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "random"), 7 * uint64_t(p.width) * p.beams);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sizes, FeatureMapsVk,
@@ -382,7 +371,7 @@ TEST_F(FeatureMapsVkScan, SimulatedStreetHdl64e) {
     o.pitch_deg = seed == 2 ? 1.5f : 0.0f;
     const SimScan scan = Simulate(s, o);
     EXPECT_EQ(ExpectSameOnCloud(context(), scan.cloud, p, t, "simulated street"),
-              9 * uint64_t(p.width) * p.beams);
+              7 * uint64_t(p.width) * p.beams);
   }
 }
 
@@ -393,7 +382,7 @@ TEST_F(FeatureMapsVkScan, Kitti07Frame964) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "kitti 07/000964"),
-            9 * uint64_t(p.width) * p.beams);
+            7 * uint64_t(p.width) * p.beams);
 }
 
 TEST_F(FeatureMapsVkScan, KittiUnknown56) {
@@ -403,7 +392,7 @@ TEST_F(FeatureMapsVkScan, KittiUnknown56) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "kitti unknown/000056"),
-            9 * uint64_t(p.width) * p.beams);
+            7 * uint64_t(p.width) * p.beams);
 }
 
 TEST_F(FeatureMapsVkScan, Rellis3dOuster) {
@@ -413,7 +402,7 @@ TEST_F(FeatureMapsVkScan, Rellis3dOuster) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "rellis3d os1/000104"),
-            9 * uint64_t(p.width) * p.beams);
+            7 * uint64_t(p.width) * p.beams);
 }
 
 }  // namespace

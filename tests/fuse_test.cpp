@@ -20,6 +20,10 @@ const char* Name(uint32_t c) {
       return "unknown";
     case kPixVetoed:
       return "vetoed";
+    case kPixBank:
+      return "bank";
+    case kPixUnknownOff:
+      return "unknown off the coarse ground";
     default:
       return "empty";
   }
@@ -64,16 +68,18 @@ struct Image {
 
 TEST(Fuse, PixelClassAgainstTheCoarseLabel) {
   // Contract: agreement keeps the class; ground vs non-ground disagreement -> unknown; an unknown
-  // pixel takes ground from a coarse-ground point and stays unknown otherwise.
+  // pixel takes ground from a coarse-ground point and stays unknown otherwise; a bank is
+  // non-ground that never agrees. Unknown is kPixUnknownOff where the coarse label is non-ground.
   struct Row {
     uint32_t cls;
     bool coarse;
     uint32_t want;
   };
   const Row table[] = {
-      {kPixGround, true, kPixGround},     {kPixGround, false, kPixUnknown},
+      {kPixGround, true, kPixGround},     {kPixGround, false, kPixUnknownOff},
       {kPixNonGround, true, kPixUnknown}, {kPixNonGround, false, kPixNonGround},
-      {kPixUnknown, true, kPixGround},    {kPixUnknown, false, kPixUnknown},
+      {kPixUnknown, true, kPixGround},    {kPixUnknown, false, kPixUnknownOff},
+      {kPixBank, true, kPixUnknown},      {kPixBank, false, kPixUnknownOff},
   };
   for (uint32_t occ_rows : {0u, 2u}) {  // isolated pixels: the veto must not matter
     Image im(8, 3);
@@ -102,10 +108,12 @@ TEST(Fuse, HoleFilledPixelHasNoCoarseOpinionAndIsUnknown) {
   im.Fill(1, 1, kPixGround);
   im.Fill(1, 3, kPixNonGround);
   im.Fill(1, 5, kPixUnknown);
+  im.Fill(1, 7, kPixBank);
   Fuse(im.p, im.f);
-  EXPECT_EQ(im.Fused(1, 1), kPixUnknown);
-  EXPECT_EQ(im.Fused(1, 3), kPixUnknown);
-  EXPECT_EQ(im.Fused(1, 5), kPixUnknown);
+  EXPECT_EQ(im.Fused(1, 1), kPixUnknownOff);
+  EXPECT_EQ(im.Fused(1, 3), kPixUnknownOff);
+  EXPECT_EQ(im.Fused(1, 5), kPixUnknownOff);
+  EXPECT_EQ(im.Fused(1, 7), kPixUnknownOff);
 }
 
 // The occlusion veto: a pixel with an occluder among the occ_rows pixels above it in its column

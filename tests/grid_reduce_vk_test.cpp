@@ -157,7 +157,6 @@ SensorProfile WideSensor() {
   SensorProfile s = test::SmallSensor();
   s.max_range = 140.0f;
   s.k_xz = 0.03f;
-  s.intensity_scale = 1.0f / 255.0f;
   return s;
 }
 

@@ -25,15 +25,12 @@ struct Image {
     f.pixel_fused.assign(pixels, fill);
     f.f_range.assign(pixels, 10.0f);
     f.f_height.assign(pixels, -1.7f);
-    f.f_inten.assign(pixels, 0.3f);
   }
   uint32_t Pix(uint32_t v, uint32_t u) const { return v * p.width + u; }
-  void Set(uint32_t v, uint32_t u, uint32_t cls, float height, float inten = 0.3f,
-           float range = 10.0f) {
+  void Set(uint32_t v, uint32_t u, uint32_t cls, float height, float range = 10.0f) {
     const uint32_t pix = Pix(v, u);
     f.pixel_fused[pix] = cls;
     f.f_height[pix] = height;
-    f.f_inten[pix] = inten;
     f.f_range[pix] = range;
   }
   void Run() { Grow(p, f); }
@@ -48,9 +45,9 @@ float Allowed(const Params& p, const Frame& f, uint32_t q, uint32_t r) {
   return p.grow_dz + p.grow_grade * step;
 }
 
-TEST(Grow, StopsAtAHeightOrIntensityStep) {
+TEST(Grow, StopsAtAHeightStep) {
   // One row of unknown pixels between empty rows; a seed at column 2. Going right: small steps,
-  // then a height jump at column 7; going left: an intensity jump between columns 1 and 0.
+  // then a height jump at column 7; going left: a drop between columns 1 and 0.
   const uint32_t w = 16;
   Image im(w, 3);
   im.p.min_component = 0;
@@ -59,11 +56,11 @@ TEST(Grow, StopsAtAHeightOrIntensityStep) {
   float z = -1.7f;
   for (uint32_t u = 0; u < w; ++u) {
     if (u == 7) z += allowed + 0.02f;  // too high a step
-    im.Set(1, u, kPixUnknown, z, 0.3f);
+    im.Set(1, u, kPixUnknown, z);
     z += small;
   }
-  im.Set(1, 0, kPixUnknown, im.f.f_height[im.Pix(1, 0)], 0.3f + im.p.grow_di + 0.05f);
-  im.Set(1, 2, kPixGround, im.f.f_height[im.Pix(1, 2)], 0.3f);
+  im.Set(1, 0, kPixUnknown, im.f.f_height[im.Pix(1, 0)] - allowed - 0.02f);
+  im.Set(1, 2, kPixGround, im.f.f_height[im.Pix(1, 2)]);
   im.Run();
   for (uint32_t u = 0; u < w; ++u) {
     const bool ground = u >= 1 && u <= 6;
@@ -77,19 +74,19 @@ TEST(Grow, StopsAtAHeightOrIntensityStep) {
 }
 
 TEST(Grow, StepsWithinTheThresholdsAllGrow) {
-  // Changes just under the limits (intensity 0.99 grow_di, height 0.99 of the allowance) grow;
+  // Changes just under the limit (height 0.99 of the allowance) grow;
   // non-ground and empty pixels block.
   Image im(8, 1);
   im.p.min_component = 0;
   const float allowed = im.p.grow_dz + im.p.grow_grade * (10.0f * im.p.column_arc);
-  im.Set(0, 0, kPixGround, -1.7f, 0.2f);
-  im.Set(0, 1, kPixUnknown, -1.7f + 0.99f * allowed, 0.2f + 0.99f * im.p.grow_di);
-  im.Set(0, 2, kPixUnknown, -1.7f, 0.2f);    // a step back down from column 1: still allowed
-  im.Set(0, 3, kPixNonGround, -1.7f, 0.2f);  // non-ground blocks
-  im.Set(0, 4, kPixUnknown, -1.7f, 0.2f);
-  im.Set(0, 5, kPixEmpty, -1.7f, 0.2f);  // empty blocks
-  im.Set(0, 6, kPixUnknown, -1.7f, 0.2f);
-  im.Set(0, 7, kPixEmpty, -1.7f, 0.2f);
+  im.Set(0, 0, kPixGround, -1.7f);
+  im.Set(0, 1, kPixUnknown, -1.7f + 0.99f * allowed);
+  im.Set(0, 2, kPixUnknown, -1.7f);    // a step back down from column 1: still allowed
+  im.Set(0, 3, kPixNonGround, -1.7f);  // non-ground blocks
+  im.Set(0, 4, kPixUnknown, -1.7f);
+  im.Set(0, 5, kPixEmpty, -1.7f);  // empty blocks
+  im.Set(0, 6, kPixUnknown, -1.7f);
+  im.Set(0, 7, kPixEmpty, -1.7f);
   im.Run();
   EXPECT_EQ(im.Grown(0, 1), kPixGround);
   EXPECT_EQ(im.Grown(0, 2), kPixGround);
@@ -129,13 +126,45 @@ TEST(Grow, GradeTermCountsTheStepLength) {
   const float climb = im.p.grow_dz + im.p.grow_grade * (30.0f * im.p.column_arc);
   ASSERT_GT(im.p.grow_dz + im.p.grow_grade * far_r * im.p.column_arc, climb);
   ASSERT_LT(im.p.grow_dz + im.p.grow_grade * near_r * im.p.column_arc, climb);
-  im.Set(0, 0, kPixGround, -1.7f, 0.3f, near_r);
-  im.Set(0, 1, kPixUnknown, -1.7f + climb, 0.3f, near_r);
-  im.Set(0, 10, kPixGround, -1.7f, 0.3f, far_r);
-  im.Set(0, 11, kPixUnknown, -1.7f + climb, 0.3f, far_r);
+  im.Set(0, 0, kPixGround, -1.7f, near_r);
+  im.Set(0, 1, kPixUnknown, -1.7f + climb, near_r);
+  im.Set(0, 10, kPixGround, -1.7f, far_r);
+  im.Set(0, 11, kPixUnknown, -1.7f + climb, far_r);
   im.Run();
   EXPECT_EQ(im.Grown(0, 1), kPixNonGround);
   EXPECT_EQ(im.Grown(0, 11), kPixGround);
+}
+
+TEST(Grow, APixelOffTheCoarseGroundIsClimbedUpItsColumnAtTheBanksGrade) {
+  // Columns 0, 2, 4, 6, 8 apart (empty between them); each a seed and unknown pixels above or
+  // below it. The bank's step: up its column, to a pixel farther and no lower, rising at most
+  // grow_dz + bank_slope * (range difference), where either pixel is kPixUnknownOff.
+  Image im(10, 4);
+  im.p.min_component = 0;
+  const float z = -1.7f, rise_max = im.p.grow_dz + im.p.bank_slope * 1.0f;  // per metre farther
+  // 0: climbs one row (rise within the grade), not the next (too steep).
+  im.Set(3, 0, kPixGround, z, 10.0f);
+  im.Set(2, 0, kPixUnknownOff, z + 0.9f * rise_max, 11.0f);
+  im.Set(1, 0, kPixUnknownOff, z + 0.9f * rise_max + 1.1f * rise_max, 12.0f);
+  // 2: the same rise, but the pixel's coarse label is ground (kPixUnknown): only the flat step.
+  im.Set(3, 2, kPixGround, z, 10.0f);
+  im.Set(2, 2, kPixUnknown, z + 0.9f * rise_max, 11.0f);
+  // 4: nearer than the seed (an object's face): no climb.
+  im.Set(3, 4, kPixGround, z, 10.0f);
+  im.Set(2, 4, kPixUnknownOff, z + 0.5f, 9.0f);
+  // 6: farther but lower (ground seen past an object's top): no climb.
+  im.Set(3, 6, kPixGround, z, 10.0f);
+  im.Set(2, 6, kPixUnknownOff, z - 0.2f, 11.0f);
+  // 8: the seed above, the bank below it: the step is the same edge, taken from either end.
+  im.Set(1, 8, kPixGround, z + 0.5f, 12.0f);
+  im.Set(2, 8, kPixUnknownOff, z, 11.0f);
+  im.Run();
+  EXPECT_EQ(im.Grown(2, 0), kPixGround);
+  EXPECT_EQ(im.Grown(1, 0), kPixNonGround);
+  EXPECT_EQ(im.Grown(2, 2), kPixNonGround);
+  EXPECT_EQ(im.Grown(2, 4), kPixNonGround);
+  EXPECT_EQ(im.Grown(2, 6), kPixNonGround);
+  EXPECT_EQ(im.Grown(2, 8), kPixGround);
 }
 
 TEST(Grow, StepTestIsSymmetric) {
@@ -153,17 +182,31 @@ TEST(Grow, StepTestIsSymmetric) {
       const float climb = climb_share < 1.0f
                               ? 0.9f * near_allowed
                               : near_allowed + 0.5f * im.p.grow_grade * far_r * im.p.column_arc;
-      im.Set(0, 0, seed_far ? kPixGround : kPixUnknown, -1.7f, 0.3f, far_r);
-      im.Set(0, 1, seed_far ? kPixUnknown : kPixGround, -1.7f + climb, 0.3f, near_r);
+      im.Set(0, 0, seed_far ? kPixGround : kPixUnknown, -1.7f, far_r);
+      im.Set(0, 1, seed_far ? kPixUnknown : kPixGround, -1.7f + climb, near_r);
       im.Run();
       EXPECT_EQ(im.Grown(0, seed_far ? 1 : 0), climb_share < 1.0f ? kPixGround : kPixNonGround)
           << "seed " << (seed_far ? "far" : "near") << ", climb " << climb;
     }
 }
 
+// The bank's step (contract) from pixel lo up to pixel up, the one above it in its column, where
+// either is kPixUnknownOff: up farther, no lower, rising at most grow_dz + bank_slope * (r_up -
+// r_lo), each float op rounded as the contract has it.
+bool BankStepAllowed(const Params& p, const Frame& f, uint32_t up, uint32_t lo) {
+  if (f.pixel_fused[up] != kPixUnknownOff && f.pixel_fused[lo] != kPixUnknownOff) return false;
+  const float d = f.f_range[up] - f.f_range[lo];
+  const float rise = f.f_height[up] - f.f_height[lo];
+  const float allowed = p.grow_dz + p.bank_slope * d;
+  return d > 0.0f && rise >= 0.0f && rise <= allowed;
+}
+
+bool IsUnknown(uint32_t c) { return c == kPixUnknown || c == kPixUnknownOff; }
+
 // The independent Jacobi schedule: every sweep reads the previous sweep's labels only; an unknown
-// pixel with a ground 8-neighbour (columns wrap, rows do not) whose step passes becomes ground;
-// repeat until nothing changes; left-over unknowns are non-ground.
+// pixel with a ground 8-neighbour (columns wrap, rows do not) whose step passes, or whose bank's
+// step passes (the neighbour straight above or below), becomes ground; repeat until nothing
+// changes; left-over unknowns are non-ground.
 std::vector<uint32_t> JacobiGrow(const Params& p, const Frame& f) {
   const int w = int(p.width), h = int(p.beams);
   std::vector<uint32_t> cur = f.pixel_fused;
@@ -173,14 +216,15 @@ std::vector<uint32_t> JacobiGrow(const Params& p, const Frame& f) {
     for (int v = 0; v < h; ++v)
       for (int u = 0; u < w; ++u) {
         const uint32_t r = uint32_t(v * w + u);
-        if (cur[r] != kPixUnknown) continue;
-        for (int dv = -1; dv <= 1 && next[r] == kPixUnknown; ++dv)
+        if (!IsUnknown(cur[r])) continue;
+        for (int dv = -1; dv <= 1 && IsUnknown(next[r]); ++dv)
           for (int du = -1; du <= 1; ++du) {
             if ((dv == 0 && du == 0) || v + dv < 0 || v + dv >= h) continue;
             const uint32_t q = uint32_t((v + dv) * w + (u + du + w) % w);
             if (cur[q] != kPixGround) continue;
-            if (std::fabs(f.f_inten[r] - f.f_inten[q]) <= p.grow_di &&
-                std::fabs(f.f_height[r] - f.f_height[q]) <= Allowed(p, f, q, r)) {
+            const bool bank =
+                du == 0 && (dv < 0 ? BankStepAllowed(p, f, q, r) : BankStepAllowed(p, f, r, q));
+            if (std::fabs(f.f_height[r] - f.f_height[q]) <= Allowed(p, f, q, r) || bank) {
               next[r] = kPixGround;
               changed = true;
               break;
@@ -190,22 +234,21 @@ std::vector<uint32_t> JacobiGrow(const Params& p, const Frame& f) {
     cur.swap(next);
   }
   for (uint32_t& c : cur)
-    if (c == kPixUnknown) c = kPixNonGround;
+    if (IsUnknown(c)) c = kPixNonGround;
   return cur;
 }
 
-// A random label image: random heights and ranges near a step's allowance, occasional
-// intensity jumps.
+// A random label image: random heights and ranges near a step's allowance.
 Image RandomImage(uint32_t seed, float grow_grade) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<uint32_t> width_pick(8, 48), beams_pick(2, 16);
   Image im(width_pick(rng), beams_pick(rng));
   im.p.min_component = 0;
   im.p.grow_grade = grow_grade;
-  std::discrete_distribution<int> cls({3, 2, 12, 1});  // ground, non-ground, unknown, empty
+  // ground, non-ground, unknown, empty, unknown off the coarse ground
+  std::discrete_distribution<int> cls({3, 2, 8, 1, 4});
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-  const uint32_t classes[4] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty};
-  const float di = im.p.grow_di;
+  const uint32_t classes[5] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixUnknownOff};
   // Heights spread over about twice a typical step allowance, so that many steps sit near it.
   const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
   for (uint32_t v = 0; v < im.p.beams; ++v)
@@ -213,7 +256,6 @@ Image RandomImage(uint32_t seed, float grow_grade) {
       const uint32_t pix = im.Pix(v, u);
       im.f.pixel_fused[pix] = classes[cls(rng)];
       im.f.f_height[pix] = -1.7f + 2.0f * typical * uni(rng);
-      im.f.f_inten[pix] = 0.2f + (uni(rng) < 0.15f ? 1.5f * di : 0.0f) + 0.1f * di * uni(rng);
       im.f.f_range[pix] = 30.0f - 1.5f * float(v) + 2.0f * uni(rng);
     }
   // Seeds are rare: growth has to travel.
@@ -233,7 +275,7 @@ TEST(Grow, EqualsTheJacobiFixedPointOnRandomImages) {
           << "seed " << seed << " grade " << grade << " size " << im.p.beams << " x " << im.p.width;
       for (uint32_t pix = 0; pix < want.size(); ++pix) {
         seeds_total += im.f.pixel_fused[pix] == kPixGround;
-        grown_total += im.f.pixel_fused[pix] == kPixUnknown && want[pix] == kPixGround;
+        grown_total += IsUnknown(im.f.pixel_fused[pix]) && want[pix] == kPixGround;
       }
     }
   // The images exercise growth, not just the seeds.
@@ -382,28 +424,28 @@ TEST(Grow, AVetoedPixelIsLiftedWhereTheGroundGoesOnAroundIt) {
   im.p.min_component = 4;
   im.p.comp_seed_share = 2.0f;  // no component kept for its seeds
   const float z = -1.7f, r = 10.0f;
-  for (uint32_t u = 0; u < 32; ++u) im.Set(2, u, kPixGround, z, 0.3f, r + 1.0f);  // ground above
+  for (uint32_t u = 0; u < 32; ++u) im.Set(2, u, kPixGround, z, r + 1.0f);  // ground above
   // A curb's foot: vetoed under ground that ends ground, farther away.
-  im.Set(3, 1, kPixVetoed, z - 0.15f, 0.3f, r);
+  im.Set(3, 1, kPixVetoed, z - 0.15f, r);
   // Two vetoed pixels stacked: the upper one is lifted, the lower one reads it unlifted.
-  im.Set(3, 4, kPixVetoed, z - 0.1f, 0.3f, r);
-  im.Set(4, 4, kPixVetoed, z - 0.2f, 0.3f, r - 0.5f);
+  im.Set(3, 4, kPixVetoed, z - 0.1f, r);
+  im.Set(4, 4, kPixVetoed, z - 0.2f, r - 0.5f);
   // Seen under the ground pixel above (reflection noise under the road): not lifted.
   const float under = r * (1.0f + 4.0f * im.p.occ_pass / (z - 1.0f));  // nearer, cleared by 4x
-  im.Set(2, 7, kPixGround, z, 0.3f, under);
-  im.Set(3, 7, kPixVetoed, z - 1.0f, 0.3f, r);
+  im.Set(2, 7, kPixGround, z, under);
+  im.Set(3, 7, kPixVetoed, z - 1.0f, r);
   // Row 0 has nothing above; no ground beside it either.
-  im.Set(0, 10, kPixVetoed, z, 0.3f, r);
+  im.Set(0, 10, kPixVetoed, z, r);
   // Ground on both sides, steps allowed: lifted (a pole's foot). Row 5, columns 12..14 and a
   // component of at least min_component pixels on each side.
-  for (uint32_t u = 9; u <= 17; ++u) im.Set(5, u, kPixGround, z, 0.3f, r);
-  im.Set(5, 13, kPixVetoed, z, 0.3f, r);
+  for (uint32_t u = 9; u <= 17; ++u) im.Set(5, u, kPixGround, z, r);
+  im.Set(5, 13, kPixVetoed, z, r);
   // Ground on both sides but one step too high: not lifted.
-  for (uint32_t u = 19; u <= 29; ++u) im.Set(6, u, kPixGround, z, 0.3f, r);
-  im.Set(6, 24, kPixVetoed, z + 2.0f * im.p.grow_dz, 0.3f, r);
+  for (uint32_t u = 19; u <= 29; ++u) im.Set(6, u, kPixGround, z, r);
+  im.Set(6, 24, kPixVetoed, z + 2.0f * im.p.grow_dz, r);
   // Above a ground pixel whose component is removed (one pixel): not lifted.
-  im.Set(6, 2, kPixGround, z, 0.3f, r + 1.0f);
-  im.Set(7, 2, kPixVetoed, z - 0.1f, 0.3f, r);
+  im.Set(6, 2, kPixGround, z, r + 1.0f);
+  im.Set(7, 2, kPixVetoed, z - 0.1f, r);
   im.Run();
   auto label = [&](uint32_t v, uint32_t u) { return im.f.pixel_label[im.Pix(v, u)]; };
   EXPECT_EQ(label(3, 1), kPixGround);

@@ -82,7 +82,8 @@ void Compare(const Params& p, const Frame& in, const Frame& gpu, const std::stri
   uint32_t hist[4] = {0, 0, 0, 0}, grown = 0;
   for (size_t i = 0; i < pixels; ++i) {
     if (in.pixel_fused[i] < 4) ++hist[in.pixel_fused[i]];
-    grown += in.pixel_fused[i] == kPixUnknown && cpu.pixel_grown[i] == kPixGround;
+    grown += (in.pixel_fused[i] == kPixUnknown || in.pixel_fused[i] == kPixUnknownOff) &&
+             cpu.pixel_grown[i] == kPixGround;
   }
   std::printf(
       "[grow] %s: %ux%u pixels (fused non-ground %u, ground %u, unknown %u, empty %u; %u grown): "
@@ -91,15 +92,14 @@ void Compare(const Params& p, const Frame& in, const Frame& gpu, const std::stri
       gpu_ns / 1e6);
 }
 
-// Stage 8 on the GPU, as lpir::Grow(p, f): reads f.pixel_fused, f.f_inten, f.f_height and
-// f.f_range, fills f.pixel_grown, f.pixel_comp and f.pixel_label.
+// Stage 8 on the GPU, as lpir::Grow(p, f): reads f.pixel_fused, f.f_height and f.f_range, fills
+// f.pixel_grown, f.pixel_comp and f.pixel_label.
 vk::Status GrowOnGpu(const vk::Device& device, const Params& p, Frame& f, double* gpu_ns) {
   const size_t pixels = size_t(p.width) * p.beams;
   test::StageHarness h(device, "grow");
   vk::GrowBuffers b;
   b.params = h.Uniform(p);
   b.pixel_fused = h.In("pixel_fused", f.pixel_fused, pixels);
-  b.f_inten = h.In("f_inten", f.f_inten, pixels);
   b.f_height = h.In("f_height", f.f_height, pixels);
   b.f_range = h.In("f_range", f.f_range, pixels);
   b.pixel_grown = h.Out(&f.pixel_grown, pixels);
@@ -148,15 +148,15 @@ class GrowRunner {
       b = std::move(made).value();
     };
     make(params_, sizeof(Params));
-    for (vk::Buffer* b : {&fused_, &inten_, &height_, &range_, &grown_, &comp_, &label_})
+    for (vk::Buffer* b : {&fused_, &height_, &range_, &grown_, &comp_, &label_})
       make(*b, 4 * VkDeviceSize(kMaxPixels));
     make(reach_, vk::GrowStage::ReachBytes(kMaxPixels));
     make(sizes_, vk::GrowStage::SizesBytes(kMaxPixels));
     auto transfer = vk::Transfer::Create(device);
     ASSERT_TRUE(transfer.ok()) << transfer.status().message();
     transfer_.emplace(std::move(transfer).value());
-    const vk::GrowBuffers b{&params_, &fused_, &inten_, &height_, &range_,
-                            &grown_,  &comp_,  &label_, &reach_,  &sizes_};
+    const vk::GrowBuffers b{&params_, &fused_, &height_, &range_, &grown_,
+                            &comp_,   &label_, &reach_,  &sizes_};
     auto stage = vk::GrowStage::Create(device, b);
     ASSERT_TRUE(stage.ok()) << stage.status().message();
     stage_.emplace(std::move(stage).value());
@@ -174,7 +174,6 @@ class GrowRunner {
     ASSERT_TRUE(transfer_->Upload(params_, &p, sizeof(Params)).ok());
     if (pixels) {
       ASSERT_TRUE(transfer_->Upload(fused_, in.pixel_fused.data(), bytes).ok());
-      ASSERT_TRUE(transfer_->Upload(inten_, in.f_inten.data(), bytes).ok());
       ASSERT_TRUE(transfer_->Upload(height_, in.f_height.data(), bytes).ok());
       ASSERT_TRUE(transfer_->Upload(range_, in.f_range.data(), bytes).ok());
     }
@@ -198,14 +197,14 @@ class GrowRunner {
 
  private:
   const vk::Device& device_;
-  vk::Buffer params_, fused_, inten_, height_, range_, grown_, comp_, label_, reach_, sizes_;
+  vk::Buffer params_, fused_, height_, range_, grown_, comp_, label_, reach_, sizes_;
   std::optional<vk::Transfer> transfer_;
   std::optional<vk::GrowStage> stage_;
   uint32_t images_ = 0;
 };
 
-// A random label image as in tests/grow_test.cpp (heights near a step's allowance, intensity
-// jumps, rare seeds), here also with larger sizes and min_component > 0.
+// A random label image as in tests/grow_test.cpp (heights near a step's allowance, rare seeds),
+// here also with larger sizes and min_component > 0.
 struct Image {
   Params p = DefaultParams();
   Frame f;
@@ -217,7 +216,6 @@ struct Image {
     f.pixel_fused.assign(pixels, kPixEmpty);
     f.f_range.assign(pixels, 10.0f);
     f.f_height.assign(pixels, -1.7f);
-    f.f_inten.assign(pixels, 0.3f);
   }
 };
 
@@ -237,18 +235,17 @@ Image RandomImage(uint32_t seed, float grow_grade, uint32_t max_width, uint32_t 
   im.p.min_component = rng() % 16;
   im.p.grow_grade = grow_grade;
   SeedShare(rng, im.p);
-  // ground, non-ground, unknown, empty, vetoed, 7
-  std::discrete_distribution<int> cls({3, 2, 12, 1, 2, 0.2});
+  // ground, non-ground, unknown, empty, vetoed, 7, unknown off the coarse ground
+  std::discrete_distribution<int> cls({3, 2, 8, 1, 2, 0.2, 4});
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-  const uint32_t classes[6] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed, 7u};
-  const float di = im.p.grow_di;
+  const uint32_t classes[7] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed,
+                               7u,         kPixUnknownOff};
   const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
   for (uint32_t v = 0; v < im.p.beams; ++v)
     for (uint32_t u = 0; u < im.p.width; ++u) {
       const uint32_t pix = v * im.p.width + u;
       im.f.pixel_fused[pix] = classes[cls(rng)];
       im.f.f_height[pix] = -1.7f + 2.0f * typical * uni(rng);
-      im.f.f_inten[pix] = 0.2f + (uni(rng) < 0.15f ? 1.5f * di : 0.0f) + 0.1f * di * uni(rng);
       im.f.f_range[pix] = 30.0f - 1.5f * float(v) + 2.0f * uni(rng);
     }
   for (uint32_t& c : im.f.pixel_fused)
@@ -267,17 +264,18 @@ Image MixedImage(std::mt19937& rng, uint32_t max_width, uint32_t max_beams) {
   im.p.min_component = rng() % 40;
   im.p.grow_grade = uni(rng) < 0.5f ? 0.0f : 0.05f;
   SeedShare(rng, im.p);
-  const double weights[6] = {1.0 + 10 * uni(rng), 1.0 + 10 * uni(rng), 1.0 + 20 * uni(rng),
-                             5 * uni(rng),        5 * uni(rng),        0.3 * uni(rng)};
-  std::discrete_distribution<int> cls(weights, weights + 6);
-  const uint32_t classes[6] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed, 7u};
+  const double weights[7] = {1.0 + 10 * uni(rng), 1.0 + 10 * uni(rng), 1.0 + 20 * uni(rng),
+                             5 * uni(rng),        5 * uni(rng),        0.3 * uni(rng),
+                             10 * uni(rng)};
+  std::discrete_distribution<int> cls(weights, weights + 7);
+  const uint32_t classes[7] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed,
+                               7u,         kPixUnknownOff};
   const float allowed = im.p.grow_dz + im.p.grow_grade * (1.0f + 20.0f * im.p.column_arc);
   const float step_share = 0.5f + 1.5f * uni(rng);  // heights spread over this many allowances
   for (uint32_t pix = 0; pix < im.p.width * im.p.beams; ++pix) {
     const uint32_t v = pix / im.p.width;
     im.f.pixel_fused[pix] = classes[cls(rng)];
     im.f.f_height[pix] = -1.7f + step_share * allowed * uni(rng);
-    im.f.f_inten[pix] = 0.2f + (uni(rng) < 0.1f ? 1.5f * im.p.grow_di : 0.0f);
     im.f.f_range[pix] = 30.0f - 0.4f * float(v) + 2.0f * uni(rng);
   }
   return im;
@@ -375,6 +373,18 @@ std::vector<Adversary> Adversaries() {
       if (pix % 2048 % 97 == 0) im.f.f_height[pix] = 5.0f;
     out.push_back({"huge region behind walls", im});
   }
+  {
+    // Columns off the coarse ground climbed only by the bank's step: each row up lies 0.5 m
+    // farther and 0.15 m higher; neighbouring columns 1 m apart in height, so no other step
+    // joins them (a chain of 200 union-find links up one column).
+    Image im = Blank(64, 200, kPixUnknownOff);
+    for (uint32_t v = 0; v < 200; ++v)
+      for (uint32_t u = 0; u < 64; ++u) {
+        im.f.f_range[v * 64 + u] = 5.0f + 0.5f * float(199 - v);
+        im.f.f_height[v * 64 + u] = -1.7f + 0.15f * float(199 - v) + float(u % 2);
+      }
+    out.push_back({"banks climbed up their columns", im});
+  }
   return out;
 }
 
@@ -386,7 +396,8 @@ TEST_F(GrowVk, AdversarialImages) {
     im.p.min_component = 5;
     std::vector<uint32_t> unknown;
     for (uint32_t pix = 0; pix < im.f.pixel_fused.size(); ++pix)
-      if (im.f.pixel_fused[pix] == kPixUnknown) unknown.push_back(pix);
+      if (im.f.pixel_fused[pix] == kPixUnknown || im.f.pixel_fused[pix] == kPixUnknownOff)
+        unknown.push_back(pix);
     ASSERT_FALSE(unknown.empty()) << a.name;
     const bool seeded = a.name.find("no seed") == std::string::npos;
     for (int end = 0; end < (seeded ? 2 : 1); ++end) {
@@ -401,6 +412,8 @@ TEST_F(GrowVk, AdversarialImages) {
         EXPECT_EQ(grown, 0u) << a.name << ": nothing grows without a seed";
       } else if (a.name.rfind("serpentine", 0) == 0) {
         EXPECT_EQ(grown, unknown.size()) << a.name << ": the whole corridor grows";
+      } else if (a.name.rfind("banks", 0) == 0) {
+        EXPECT_EQ(grown, 200u) << a.name << ": the seed's column, and only it, grows";
       }
     }
   }

@@ -82,8 +82,7 @@ Scene MakeScene() {
   f.pixel_filled.assign(kPixels, 1);
   f.pixel_filled[0] = 0;  // empty
   f.pixel_filled[2] = 2;  // hole filled
-  for (auto* feature : {&f.f_range, &f.f_inten, &f.f_height, &f.f_slope, &f.f_edge_l, &f.f_edge_r,
-                        &f.f_varz, &f.f_vari}) {
+  for (auto* feature : {&f.f_range, &f.f_height, &f.f_slope, &f.f_edge_l, &f.f_edge_r, &f.f_varz}) {
     feature->assign(kPixels, 0.0f);
   }
   f.f_range[1] = 80.0f;   // top of the range scale
@@ -167,9 +166,8 @@ TEST(Images, WritesEveryPictureWithTheExpectedColours) {
   std::vector<std::string> paths =
       WriteImages(dir, "f0", s.cloud, s.frame, SmallParams(), &s.truth);
 
-  const std::vector<std::string> names = {"range", "intensity", "height", "slope",
-                                          "edge",  "varz",      "vari",   "classes",
-                                          "fused", "labels",    "bev",    "coarse_bev"};
+  const std::vector<std::string> names = {"range",   "height", "slope",  "edge", "varz",
+                                          "classes", "fused",  "labels", "bev",  "coarse_bev"};
   ASSERT_EQ(paths.size(), names.size());
   const int range_rows = static_cast<int>(kBeams) * RangeImageRowScale(kBeams) + kLegendRows;
   for (size_t i = 0; i < names.size(); ++i) {

@@ -24,15 +24,16 @@ TEST(Prepare, InvalidPointsAreMarkedAndZeroed) {
   c.Push(5, 0, -1.7f, 0.3f);     // 0 valid
   c.Push(nan, 0, -1.7f, 0.3f);   // 1 NaN
   c.Push(5, inf, -1.7f, 0.3f);   // 2 Inf
-  c.Push(5, 0, -1.7f, nan);      // 3 NaN intensity
-  c.Push(0, 0, 0, 0.3f);         // 4 origin
-  c.Push(0.5f, 0, -1.7f, 0.3f);  // 5 closer than min_range
-  c.Push(200, 0, -1.7f, 0.3f);   // 6 beyond max_range
-  c.Push(5, 0, 1e30f, 0.3f);     // 7 absurd height
+  c.Push(0, 0, 0, 0.3f);         // 3 origin
+  c.Push(0.5f, 0, -1.7f, 0.3f);  // 4 closer than min_range
+  c.Push(200, 0, -1.7f, 0.3f);   // 5 beyond max_range
+  c.Push(5, 0, 1e30f, 0.3f);     // 6 absurd height
+  c.Push(5, 0, -1.7f, nan);      // 7 NaN intensity: valid, intensity is not read
   const Params p = ParamsForSensor(test::SmallSensor());
   const Frame f = RunPrepare(c, p);
   EXPECT_EQ(f.flags[0], kPointValid);
-  for (uint32_t i = 1; i < c.size(); ++i) {
+  EXPECT_EQ(f.flags[7], kPointValid);
+  for (uint32_t i = 1; i < 7; ++i) {
     EXPECT_EQ(f.flags[i], 0u) << "point " << i;
     EXPECT_EQ(f.zt[i], 0.0f);
     EXPECT_EQ(f.r2[i], 0.0f);
@@ -64,31 +65,32 @@ TEST(Prepare, CorrectsHeightByTheTiltOfEq3) {
   EXPECT_EQ(exact::Bits(f.zt[0]), exact::Bits(expected));
   EXPECT_NEAR(f.zt[0], -1.0f - (0.5f - 0.08f), 1e-6f);
   EXPECT_EQ(f.r2[0], 116.0f);
-  EXPECT_EQ(f.inten[0], 0.5f * p.intensity_scale);
 }
 
 TEST(Prepare, SubnormalInputsAndOutputsAreFlushed) {
   const Params p = ParamsForSensor(test::SmallSensor());
   const float sub = exact::FromBits(0x00012345u);
   Cloud c;
-  c.Push(10.0f, 0.0f, sub, sub);       // subnormal height and intensity
-  c.Push(10.0f, 0.0f, -1.0f, 1e-38f);  // intensity * scale underflows
+  c.Push(10.0f, 0.0f, sub, sub);    // subnormal height (and intensity)
+  c.Push(sub, 10.0f, -1.0f, 0.3f);  // subnormal x: x * x underflows
   const Frame f = RunPrepare(c, p);
   EXPECT_EQ(f.flags[0] & kPointValid, kPointValid);
   EXPECT_EQ(exact::Bits(f.zt[0]), 0u);
-  EXPECT_EQ(exact::Bits(f.inten[0]), 0u);
-  EXPECT_EQ(exact::Bits(f.inten[1]) & 0x7FFFFFFFu, 0u);
+  EXPECT_EQ(f.flags[1] & kPointValid, kPointValid);
+  EXPECT_EQ(exact::Bits(f.r2[1]), exact::Bits(100.0f));
 }
 
-TEST(Prepare, DimPointsFarBelowTheGroundAreReflectionNoise) {
-  const Params p = ParamsForSensor(test::SmallSensor());
+TEST(Prepare, PointsFarBelowTheGroundAreReflectionNoise) {
+  const SensorProfile s = test::SmallSensor();
+  const Params p = ParamsForSensor(s);
+  EXPECT_EQ(p.h_noise, -s.sensor_height - 2.0f);  // 2 m under the road
   Cloud c;
-  c.Push(10, 0, p.h_noise - 0.1f, 0.0f);  // low and dim: noise
-  c.Push(10, 0, p.h_noise - 0.1f, 0.9f);  // low but bright: a real return
-  c.Push(10, 0, p.h_noise + 0.1f, 0.0f);  // dim but not low
+  c.Push(10, 0, p.h_noise - 0.1f, 0.0f);  // low: noise, whatever its intensity
+  c.Push(10, 0, p.h_noise - 0.1f, 0.9f);
+  c.Push(10, 0, p.h_noise + 0.1f, 0.0f);  // not low
   const Frame f = RunPrepare(c, p);
   EXPECT_EQ(f.flags[0], kPointValid | kPointNoise);
-  EXPECT_EQ(f.flags[1], kPointValid);
+  EXPECT_EQ(f.flags[1], kPointValid | kPointNoise);
   EXPECT_EQ(f.flags[2], kPointValid);
 }
 

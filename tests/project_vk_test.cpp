@@ -200,7 +200,6 @@ struct Sensor {
 
 Sensor SmallSensorSetup() {
   SensorProfile s = test::SmallSensor();
-  s.intensity_scale = 1.0f / 255.0f;
   Sensor setup{ParamsForSensor(s), {}};
   setup.t = MakeTables(s, setup.p);
   return setup;

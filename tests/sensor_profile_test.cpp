@@ -35,7 +35,7 @@ const char kValid[] =
     "elevation_deg 3.0 1.0   # the table continues\n"
     "  -1.0 -3.0\n"
     "ring_zero_is_top 1\n"
-    "intensity_scale 0.00392156863\n"
+    "# intensity is not read: no key for it\n"
     "sensor_height 1.84\n"
     "min_range 2\n"
     "max_range 100\n"
@@ -53,7 +53,6 @@ TEST(SensorProfile, EveryShippedProfileLoadsAndIsConsistent) {
     EXPECT_EQ(p.width % 64, 0u);
     for (size_t i = 1; i < p.elevation_deg.size(); ++i)
       EXPECT_LT(p.elevation_deg[i], p.elevation_deg[i - 1]) << "beam " << i;
-    EXPECT_GT(p.intensity_scale, 0.0f);
     EXPECT_GT(p.sensor_height, 0.0f);
     EXPECT_LT(p.min_range, p.max_range);
     // The pipeline accepts it: parameters and tables derive without complaint.
@@ -135,7 +134,6 @@ TEST(SensorProfile, VendorTablesMatchTheirSources) {
     ASSERT_GT(steps, 4);
     EXPECT_NEAR(sum / steps, t.fine_step, 0.005);
     EXPECT_EQ(p.ring_zero_is_top, t.ring_zero_is_top);
-    EXPECT_FLOAT_EQ(p.intensity_scale, 1.0f / 255);
     EXPECT_EQ(p.width, 1792u);
     EXPECT_EQ(p.max_points, 2u * t.beams * 1800u);
     EXPECT_GE(p.sensor_height, 1.8f);
@@ -152,7 +150,6 @@ TEST(SensorProfile, ParsesEveryKey) {
   EXPECT_EQ(p.width, 1024u);
   EXPECT_EQ(p.elevation_deg, (std::vector<float>{3.0f, 1.0f, -1.0f, -3.0f}));
   EXPECT_TRUE(p.ring_zero_is_top);
-  EXPECT_FLOAT_EQ(p.intensity_scale, 1.0f / 255);
   EXPECT_FLOAT_EQ(p.sensor_height, 1.84f);
   EXPECT_FLOAT_EQ(p.min_range, 2.0f);
   EXPECT_FLOAT_EQ(p.max_range, 100.0f);
@@ -194,7 +191,6 @@ TEST(SensorProfile, RoundTripsExactly) {
     EXPECT_EQ(b.max_points, a.max_points);
     EXPECT_EQ(b.elevation_deg, a.elevation_deg);  // bit-exact floats
     EXPECT_EQ(b.ring_zero_is_top, a.ring_zero_is_top);
-    EXPECT_EQ(b.intensity_scale, a.intensity_scale);
     EXPECT_EQ(b.sensor_height, a.sensor_height);
     EXPECT_EQ(b.min_range, a.min_range);
     EXPECT_EQ(b.max_range, a.max_range);
@@ -248,12 +244,13 @@ std::string Edit(int line, const std::string& replacement) {
 
 TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
   // kValid's lines: 1 comment, 2 name, 3 beams, 4 width, 5 elevation_deg, 6 continuation,
-  // 7 ring_zero_is_top, 8 intensity_scale, 9 sensor_height, 10 min_range, 11 max_range,
+  // 7 ring_zero_is_top, 8 comment, 9 sensor_height, 10 min_range, 11 max_range,
   // 12-13 param.
   const BadCase cases[] = {
       {"unknown key", Edit(9, "sensor_hieght 1.8"), 9, "unknown key 'sensor_hieght'"},
       {"duplicate key", Edit(1, "width 2048"), 4, "duplicate key 'width' (first on line 1)"},
-      {"bad number", Edit(8, "intensity_scale 0.5x"), 8, "'0.5x' is not a finite number"},
+      {"bad number", Edit(8, "min_range 0.5x"), 8, "'0.5x' is not a finite number"},
+      {"intensity scale", Edit(8, "intensity_scale 0.0039"), 8, "unknown key 'intensity_scale'"},
       {"bad number in table", Edit(6, "  -1.0 minus3"), 6, "'minus3' is not a finite number"},
       {"number in the table", Edit(6, "  -1.0 -3,0"), 6, "'-3,0' is not a finite number"},
       {"non-finite", Edit(10, "min_range 1e99"), 10, "not a finite number"},
@@ -384,10 +381,6 @@ TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
   s = good;
   s.min_range = 1e-20f;  // its square is subnormal
   EXPECT_NE(ParamsError(s).find("parameter min_range2 (min_range squared) is "), std::string::npos)
-      << ParamsError(s);
-  s = good;
-  s.intensity_scale = 2e-39f;
-  EXPECT_NE(ParamsError(s).find("parameter intensity_scale is "), std::string::npos)
       << ParamsError(s);
 }
 

@@ -23,9 +23,9 @@ namespace {
 // RS-Ruby-80, Pandar64 and OT128 profiles are held to 96 % at least.
 const std::map<std::string, double>& F1Floors() {
   static const std::map<std::string, double> floors = {
-      {"hdl32e", 0.985},    {"hdl64e", 0.99}, {"os1-128", 0.99},
-      {"os1-64", 0.985},    {"ot128", 0.99},  {"pandar64", 0.98},
-      {"rs-ruby80", 0.985}, {"vlp16", 0.965}, {"vlp32c", 0.98},
+      {"hdl32e", 0.985},    {"hdl64e", 0.988}, {"os1-128", 0.988},
+      {"os1-64", 0.988},    {"ot128", 0.99},   {"pandar64", 0.983},
+      {"rs-ruby80", 0.982}, {"vlp16", 0.965},  {"vlp32c", 0.98},
   };
   return floors;
 }

@@ -14,8 +14,8 @@ InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p) {
   const bool has_ring = !cloud.ring.empty();
   for (size_t i = 0; i < cloud.size(); ++i) {
     const float x = exact::Ftz0(cloud.x(i)), y = exact::Ftz0(cloud.y(i));
-    const float z = exact::Ftz0(cloud.z(i)), in = exact::Ftz0(cloud.intensity(i));
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(in)) {
+    const float z = exact::Ftz0(cloud.z(i));
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
       ++r.not_finite;
       continue;
     }

@@ -10,7 +10,7 @@
 namespace lpir {
 
 struct InvalidReasons {
-  size_t not_finite = 0;    // x, y, z or intensity NaN or infinite
+  size_t not_finite = 0;    // x, y or z NaN or infinite
   size_t at_origin = 0;     // x, y and z all zero (subnormals flushed, as stage 1 does)
   size_t out_of_range = 0;  // planar r2 outside [min_range2, max_range2], or z^2 > max_range2
   size_t bad_ring = 0;      // a ring outside [0, beams)

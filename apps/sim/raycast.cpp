@@ -177,8 +177,6 @@ void Validate(const SensorProfile& s, const SimOptions& o) {
     fail("sensor_height must be > 0");
   if (!(s.min_range >= 0.0f) || !(s.max_range > s.min_range) || !std::isfinite(s.max_range))
     fail("range limits must satisfy 0 <= min_range < max_range");
-  if (!(s.intensity_scale > 0.0f) || !std::isfinite(s.intensity_scale))
-    fail("intensity_scale must be > 0");
   if (!(std::abs(o.pitch_deg) <= 30.0f) || !(std::abs(o.roll_deg) <= 30.0f))
     fail("pitch and roll must lie within [-30, 30] degrees");
   if (!(o.range_noise_m >= 0.0f) || !(o.range_noise_m <= 1.0f))
@@ -247,7 +245,6 @@ SimScan Simulate(const SensorProfile& sensor, const SimOptions& options) {
   const double sigma = options.range_noise_m;
   const double min_r2 = static_cast<double>(sensor.min_range) * sensor.min_range;
   const double max_r2 = static_cast<double>(sensor.max_range) * sensor.max_range;
-  const double inv_scale = 1.0 / sensor.intensity_scale;
   scan.cloud.xyzi.reserve(static_cast<size_t>(rows) * cols * 4 * 3 / 4);
   scan.labels.reserve(static_cast<size_t>(rows) * cols * 3 / 4);
 
@@ -339,7 +336,7 @@ SimScan Simulate(const SensorProfile& sensor, const SimOptions& options) {
       if (t <= 0 || r2 < min_r2 || r2 > max_r2) continue;
       refl = std::max(0.0, std::min(1.0, refl));
       scan.cloud.Push(static_cast<float>(px), static_cast<float>(py), static_cast<float>(pz),
-                      static_cast<float>(refl * inv_scale));
+                      static_cast<float>(refl));
       scan.labels.push_back(label);
       if (options.emit_rings)
         scan.cloud.ring.push_back(static_cast<int32_t>(sensor.ring_zero_is_top ? v : rows - 1 - v));

@@ -115,7 +115,7 @@ struct SimScene {
 SimScene BuildScene(const SimOptions& options, double sensor_height);
 
 struct SimScan {
-  Cloud cloud;                   // sensor frame, raw intensity (value / intensity_scale)
+  Cloud cloud;                   // sensor frame, intensity the surface's reflectivity in [0, 1]
   std::vector<uint32_t> labels;  // SemanticKITTI class per point
   SimScene scene;                // what was scanned, for tests and pictures
 };

@@ -184,6 +184,10 @@ cv::Vec3b ClassColor(uint32_t pixel_class) {
       return kBlack;
     case kPixVetoed:
       return kMagenta;
+    case kPixBank:
+      return kBlue;
+    case kPixUnknownOff:
+      return kGrey;
     default:
       return kWhite;  // not a class: a bug upstream, make it visible
   }
@@ -202,8 +206,10 @@ cv::Mat ClassLegend(int width, const std::string& title) {
   const struct {
     cv::Vec3b color;
     const char* name;
-  } entries[] = {{kGreen, "ground"}, {kRed, "non-ground"}, {kYellow, "unknown"},
-                 {kBlack, "empty"},  {kMagenta, "vetoed"}, {kWhite, "invalid class value"}};
+  } entries[] = {{kGreen, "ground"},   {kRed, "non-ground"},
+                 {kYellow, "unknown"}, {kGrey, "unknown, no coarse ground"},
+                 {kBlue, "bank"},      {kBlack, "empty"},
+                 {kMagenta, "vetoed"}, {kWhite, "invalid class value"}};
   for (const auto& e : entries)
     x = PutText(legend, e.name, PutSwatch(legend, e.color, x, kTextBaseline), kTextBaseline) + 16;
   return legend;
@@ -378,12 +384,10 @@ std::vector<std::string> WriteImages(const std::string& dir, const std::string& 
     FeatureStyle style;
   } features[] = {
       {&frame.f_range, {"range", "range", "m", 0.0f, 80.0f, false}},
-      {&frame.f_inten, {"intensity", "intensity", "", 0.0f, 1.0f, false}},
       {&frame.f_height, {"height", "height z_t", "m", height_lo, height_hi, false}},
       {&frame.f_slope, {"slope", "slope |dz|/|dr|", "", 0.0f, 2.0f, false}},
       {&edge, {"edge", "edge max(left, right)", "m", 0.0f, 1.0f, false}},
       {&frame.f_varz, {"varz", "height variance 3x3", "m^2", 1e-5f, 1.0f, true}},
-      {&frame.f_vari, {"vari", "intensity variance 3x3", "", 1e-5f, 0.1f, true}},
   };
   if (!frame.pixel_filled.empty()) {
     for (const auto& f : features) {

@@ -3,10 +3,10 @@
 //
 // How the paper's steps are read (each choice is measured in tests/calibrate_test.cpp):
 //  1. Reflection noise first (III-B.1, Fig. 1: noise is removed before the tilt is estimated): a
-//     point is dropped when z < h_noise and intensity * intensity_scale < i_noise, with the
-//     profile's parameters (ParamsForSensor, so `param h_noise/i_noise` overrides apply). z is
-//     not corrected yet: the tilt is what is being measured, and the profile's own k_xz, k_yz
-//     are ignored so that a recalibration never compounds an old one.
+//     point is dropped when z < h_noise, the profile's parameter (ParamsForSensor, so a
+//     `param h_noise` override applies), as stage 1 drops it. z is not corrected yet: the tilt
+//     is what is being measured, and the profile's own k_xz, k_yz are ignored so that a
+//     recalibration never compounds an old one.
 //  2. "Generate a LiDAR depth image ... extract the point cloud from four main directions" and
 //     "sample point clouds within a 3-pixel width on both sides of each fitting line": a point's
 //     range-image column is eq. 1's u = floor(W/2 (1 - atan2(y, x)/pi)) mod W (W = the profile's
@@ -230,8 +230,7 @@ Calibration Calibrate(const std::vector<Cloud>& scans, const SensorProfile& sens
       if (r < d_min || r > d_max) continue;  // d_thr
       const int dir = BandOf(Column(x, y, sensor.width), sensor.width, o.band_columns);
       if (dir < 0) continue;
-      if (o.noise_filter && float(z) < params.h_noise &&
-          cloud.intensity(i) * params.intensity_scale < params.i_noise) {  // III-B.1
+      if (o.noise_filter && float(z) < params.h_noise) {  // III-B.1
         ++out.noise_points;
         continue;
       }

@@ -40,8 +40,8 @@ struct CalibrateOptions {
                                        // inlier_threshold of it (below: refused, not flat)
   float max_rms = 0.03f;               // m, flatness: RMS vertical residual of a line's inliers
   float max_b_diff = 0.01f;            // m, |b_x - b_y| allowed (III-B.3: "less than 1 cm")
-  // Drop reflection noise first (III-B.1: z < h_noise and intensity < i_noise, the profile's
-  // values, on the uncorrected z).
+  // Drop reflection noise first (III-B.1: z < h_noise, the profile's value, on the uncorrected
+  // z).
   bool noise_filter = true;
 };
 

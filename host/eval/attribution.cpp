@@ -32,7 +32,7 @@ Decider Attribute(const Frame& f, uint32_t i, bool truth) {
     if (fused == kPixVetoed) return Decider::kVeto;
     if (fused == kPixNonGround) return Decider::kClassAndCoarse;
     if (winner == kNone) return Decider::kGrowHole;
-    return cls == kPixNonGround ? Decider::kGrowClassNg : Decider::kGrowCoarseNg;
+    return fused == kPixUnknown ? Decider::kGrowClassNg : Decider::kGrowCoarseNg;
   }
   if (fused == kPixVetoed) return Decider::kLift;
   if (fused == kPixGround) return cls == kPixGround ? Decider::kSeedBoth : Decider::kSeedCoarse;

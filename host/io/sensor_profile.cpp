@@ -29,7 +29,6 @@ const char* const kKeys[] = {"name",
                              "elevation_deg",
                              "beam_origin_z",
                              "ring_zero_is_top",
-                             "intensity_scale",
                              "sensor_height",
                              "min_range",
                              "max_range",
@@ -166,9 +165,6 @@ class Parser {
       } else if (key == "ring_zero_is_top") {
         if (v != "0" && v != "1") Fail(line, "ring_zero_is_top must be 0 or 1, got '" + v + "'");
         p.ring_zero_is_top = v == "1";
-      } else if (key == "intensity_scale") {
-        p.intensity_scale = Float(line, key, v);
-        if (!(p.intensity_scale > 0)) Fail(line, "intensity_scale must be > 0");
       } else if (key == "sensor_height") {
         p.sensor_height = Float(line, key, v);
         if (!(p.sensor_height > 0)) Fail(line, "sensor_height must be > 0");
@@ -293,7 +289,6 @@ void WriteSensorProfile(const std::string& path, const SensorProfile& p) {
     s += "\n";
   }
   s += std::string("ring_zero_is_top ") + (p.ring_zero_is_top ? "1" : "0") + "\n";
-  s += "intensity_scale " + FormatFloat(p.intensity_scale) + "\n";
   s += "sensor_height " + FormatFloat(p.sensor_height) + "\n";
   s += "min_range " + FormatFloat(p.min_range) + "\n";
   s += "max_range " + FormatFloat(p.max_range) + "\n";

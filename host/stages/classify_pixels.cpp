@@ -13,7 +13,7 @@ Result<ClassifyPixelsStage> ClassifyPixelsStage::Create(const Device& device,
   PipelineDesc desc;
   desc.name = "classify_pixels";
   desc.code = SpirvOf(kClassifyPixelsSpv);
-  desc.bindings.assign(8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  desc.bindings.assign(7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
@@ -21,7 +21,7 @@ Result<ClassifyPixelsStage> ClassifyPixelsStage::Create(const Device& device,
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel, Kernel::Create(device, desc,
                                     {b.params, b.pixel_filled, b.f_edge_l, b.f_edge_r, b.f_slope,
-                                     b.f_varz, b.f_vari, b.pixel_class}));
+                                     b.f_varz, b.pixel_class}));
   return ClassifyPixelsStage(std::move(kernel));
 }
 

@@ -16,13 +16,12 @@ namespace lpir::vk {
 // The bindings of shaders/classify_pixels.comp, each per-pixel buffer holding at least
 // width * beams elements.
 struct ClassifyPixelsBuffers {
-  const Buffer* params = nullptr;        // one Params (uniform): t_edge, t_slope_*, t_std*_*
+  const Buffer* params = nullptr;        // one Params (uniform): t_edge, t_slope_*, t_stdz_*
   const Buffer* pixel_filled = nullptr;  // uint32 (stage 5): 0 empty
   const Buffer* f_edge_l = nullptr;      // floats (stage 5)
   const Buffer* f_edge_r = nullptr;
   const Buffer* f_slope = nullptr;
   const Buffer* f_varz = nullptr;
-  const Buffer* f_vari = nullptr;
   const Buffer* pixel_class = nullptr;  // out: uint32 kPix*
 };
 
@@ -36,7 +35,7 @@ class ClassifyPixelsStage {
   static Result<ClassifyPixelsStage> Create(const Device& device, const FrameBuffers& b) {
     return Create(device,
                   ClassifyPixelsBuffers{&b.params, &b.pixel_filled, &b.f_edge_l, &b.f_edge_r,
-                                        &b.f_slope, &b.f_varz, &b.f_vari, &b.pixel_class});
+                                        &b.f_slope, &b.f_varz, &b.pixel_class});
   }
 
   // Records the dispatches over `pixels` pixels (no barrier: the caller orders it with the stages

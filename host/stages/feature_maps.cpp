@@ -17,17 +17,17 @@ Result<FeatureMapsStage> FeatureMapsStage::Create(const Device& device,
   PipelineDesc desc;
   desc.name = "feature_maps";
   desc.code = SpirvOf(kFeatureMapsSpv);
-  desc.bindings.assign(15, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  desc.bindings.assign(12, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
   desc.passes = 3;
   desc.cpu_items = kCpuItems;
   LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel, Kernel::Create(device, desc,
-                                    {b.params, b.pixel_point, b.r2, b.zt, b.inten, b.pixel_filled,
-                                     b.f_range, b.f_inten, b.f_height, b.f_slope, b.f_edge_l,
-                                     b.f_edge_r, b.f_varz, b.f_vari, b.feature_pack}));
+      Kernel kernel,
+      Kernel::Create(device, desc,
+                     {b.params, b.pixel_point, b.r2, b.zt, b.pixel_filled, b.f_range, b.f_height,
+                      b.f_slope, b.f_edge_l, b.f_edge_r, b.f_varz, b.feature_pack}));
   return FeatureMapsStage(std::move(kernel));
 }
 

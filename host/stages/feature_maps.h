@@ -20,16 +20,13 @@ struct FeatureMapsBuffers {
   const Buffer* pixel_point = nullptr;   // uint32 winning point per pixel, kNone empty (stage 4)
   const Buffer* r2 = nullptr;            // float squared planar range per point (stage 1)
   const Buffer* zt = nullptr;            // float corrected height per point (stage 1)
-  const Buffer* inten = nullptr;         // float intensity per point (stage 1)
   const Buffer* pixel_filled = nullptr;  // out: uint32 0 empty, 1 measured, 2 filled
   const Buffer* f_range = nullptr;       // out: floats per pixel
-  const Buffer* f_inten = nullptr;
   const Buffer* f_height = nullptr;
   const Buffer* f_slope = nullptr;
   const Buffer* f_edge_l = nullptr;
   const Buffer* f_edge_r = nullptr;
   const Buffer* f_varz = nullptr;
-  const Buffer* f_vari = nullptr;
   const Buffer* feature_pack = nullptr;  // scratch: PackBytes(pixels), pass 0 or 1 -> pass 2
 };
 
@@ -39,17 +36,16 @@ class FeatureMapsStage {
   // Pixels of a row per invocation of pass 2 in the CPU shape (host/vk/shape.h; the GPU's is 1).
   static constexpr uint32_t kCpuItems = 32;
 
-  // The scratch buffer's size: a uvec4 per pixel (filled, and the bits of range, intensity and
-  // height), so that pass 2 reads a pixel with one load (docs/decisions/feature_maps.md).
+  // The scratch buffer's size: a uvec4 per pixel (filled, the bits of range and height, and 0), so
+  // that pass 2 reads a pixel with one load (docs/decisions/feature_maps.md).
   static VkDeviceSize PackBytes(uint64_t pixels) { return 16 * (pixels == 0 ? 1 : pixels); }
 
   static Result<FeatureMapsStage> Create(const Device& device, const FeatureMapsBuffers& buffers);
   // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
   static Result<FeatureMapsStage> Create(const Device& device, const FrameBuffers& b) {
-    return Create(device, FeatureMapsBuffers{&b.params, &b.pixel_point, &b.r2, &b.zt, &b.inten,
-                                             &b.pixel_filled, &b.f_range, &b.f_inten, &b.f_height,
-                                             &b.f_slope, &b.f_edge_l, &b.f_edge_r, &b.f_varz,
-                                             &b.f_vari, &b.feature_pack});
+    return Create(device, FeatureMapsBuffers{&b.params, &b.pixel_point, &b.r2, &b.zt,
+                                             &b.pixel_filled, &b.f_range, &b.f_height, &b.f_slope,
+                                             &b.f_edge_l, &b.f_edge_r, &b.f_varz, &b.feature_pack});
   }
 
   // Records the measure-and-fill pass over the width x beams image (pass 1, one invocation per

@@ -17,16 +17,15 @@ Result<GrowStage> GrowStage::Create(const Device& device, const GrowBuffers& b) 
   PipelineDesc desc;
   desc.name = "grow";
   desc.code = SpirvOf(kGrowSpv);
-  desc.bindings.assign(10, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  desc.bindings.assign(9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   desc.bindings[0] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   desc.push_constant_bytes = sizeof(Push);
   desc.local_size_x = kLocalSize;
   desc.passes = kPasses;
   LPIR_VK_ASSIGN_OR_RETURN(
-      Kernel kernel,
-      Kernel::Create(device, desc,
-                     {b.params, b.pixel_fused, b.f_inten, b.f_height, b.f_range, b.pixel_grown,
-                      b.pixel_comp, b.pixel_label, b.grow_reach, b.grow_sizes}));
+      Kernel kernel, Kernel::Create(device, desc,
+                                    {b.params, b.pixel_fused, b.f_height, b.f_range, b.pixel_grown,
+                                     b.pixel_comp, b.pixel_label, b.grow_reach, b.grow_sizes}));
   return GrowStage(std::move(kernel));
 }
 

@@ -17,7 +17,6 @@ namespace lpir::vk {
 struct GrowBuffers {
   const Buffer* params = nullptr;       // one Params (uniform)
   const Buffer* pixel_fused = nullptr;  // uint32 kPix* per pixel (stage 7)
-  const Buffer* f_inten = nullptr;      // float per pixel
   const Buffer* f_height = nullptr;     // float per pixel
   const Buffer* f_range = nullptr;      // float per pixel
   const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel
@@ -40,9 +39,9 @@ class GrowStage {
   static Result<GrowStage> Create(const Device& device, const GrowBuffers& buffers);
   // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
   static Result<GrowStage> Create(const Device& device, const FrameBuffers& b) {
-    return Create(device, GrowBuffers{&b.params, &b.pixel_fused, &b.f_inten, &b.f_height,
-                                      &b.f_range, &b.pixel_grown, &b.pixel_comp, &b.pixel_label,
-                                      &b.grow_reach, &b.grow_sizes});
+    return Create(device,
+                  GrowBuffers{&b.params, &b.pixel_fused, &b.f_height, &b.f_range, &b.pixel_grown,
+                              &b.pixel_comp, &b.pixel_label, &b.grow_reach, &b.grow_sizes});
   }
 
   // Records the whole stage over a width x beams image (the Params uploaded to buffers.params

@@ -14,13 +14,12 @@ Result<PrepareStage> PrepareStage::Create(const Device& device, const PrepareBuf
   desc.code = SpirvOf(kPrepareSpv);
   desc.bindings = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   desc.push_constant_bytes = sizeof(uint32_t);
   desc.local_size_x = kLocalSize;
   LPIR_VK_ASSIGN_OR_RETURN(
       Kernel kernel,
-      Kernel::Create(device, desc, {b.params, b.points, b.ring, b.flags, b.zt, b.r2, b.inten}));
+      Kernel::Create(device, desc, {b.params, b.points, b.ring, b.flags, b.zt, b.r2}));
   return PrepareStage(std::move(kernel));
 }
 

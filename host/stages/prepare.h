@@ -20,7 +20,6 @@ struct PrepareBuffers {
   const Buffer* flags = nullptr;   // out: uint32 kPoint* bits
   const Buffer* zt = nullptr;      // out: float corrected height, eq. 3
   const Buffer* r2 = nullptr;      // out: float squared planar range
-  const Buffer* inten = nullptr;   // out: float scaled intensity
 };
 
 class PrepareStage {
@@ -30,8 +29,7 @@ class PrepareStage {
   static Result<PrepareStage> Create(const Device& device, const PrepareBuffers& buffers);
   // Bound to one frame of a frame pipeline (host/stages/frame_buffers.h).
   static Result<PrepareStage> Create(const Device& device, const FrameBuffers& b) {
-    return Create(device,
-                  PrepareBuffers{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2, &b.inten});
+    return Create(device, PrepareBuffers{&b.params, &b.points, &b.ring, &b.flags, &b.zt, &b.r2});
   }
 
   // Records the dispatch over n points (no barrier: the caller orders it with the stages around).

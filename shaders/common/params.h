@@ -1,7 +1,7 @@
 // Every threshold of the method, read by the shaders and the CPU reference alike. Valid GLSL and
 // C++: scalars only (std430 pads vec3), no initialisers (defaults live in
-// reference_cpu/params.cpp). Units: metres, intensities in [0, 1] after the sensor's
-// intensity_scale, counts in pixels/points.
+// reference_cpu/params.cpp). Units: metres, counts in pixels/points. No parameter reads intensity:
+// the method does not use it (docs/decisions/intensity.md).
 #ifndef LPIR_SHADERS_COMMON_PARAMS_H_
 #define LPIR_SHADERS_COMMON_PARAMS_H_
 
@@ -19,14 +19,12 @@ struct Params {
   uint has_ring;  // 1 when the cloud carries ring indices (row = ring), else elevation table
 
   // --- stage 1 prepare (III-B.1, eq. 3) ---
-  float min_range2;       // m^2, planar range^2 below which a point is invalid
-  float max_range2;       // m^2, planar range^2 above which a point is invalid
-  float k_xz;             // eq. 3 tilt slope along x
-  float k_yz;             // eq. 3 tilt slope along y
-  float h_noise;          // m, corrected height below which a dim point is reflection noise
-  float i_noise;          // intensity below which a point under h_noise is reflection noise
-  float intensity_scale;  // raw intensity * scale -> [0, 1]
-  float sensor_height;    // m
+  float min_range2;     // m^2, planar range^2 below which a point is invalid
+  float max_range2;     // m^2, planar range^2 above which a point is invalid
+  float k_xz;           // eq. 3 tilt slope along x
+  float k_yz;           // eq. 3 tilt slope along y
+  float h_noise;        // m, corrected height below which a point is reflection noise
+  float sensor_height;  // m
 
   // --- stage 3 grid reduce (eq. 4) ---
   uint rings_near;      // rings of width ring_res_near up to near_radius
@@ -54,13 +52,15 @@ struct Params {
   float t_edge;       // m, eq. 8
   float t_slope_low;  // eq. 9 (|dz|/|dr|, unitless)
   float t_slope_high;
-  float t_stdz_low;  // m^2, eq. 10 (variance of height in the 3x3 window)
+  float t_stdz_low;  // m^2, eq. 10 (variance of height in the 3x3 window about its line in range)
   float t_stdz_high;
-  float t_stdi_low;  // eq. 11 (variance of intensity in the 3x3 window)
-  float t_stdi_high;
+  // --- our addition: stages 6-8, banks (see classify_pixels.cpp and grow.cpp) ---
+  float bank_slope;  // a non-ground pixel no steeper (dz/dr) than this and smoother than bank_rough
+                     // is a bank: unknown, not non-ground, where the coarse label is non-ground;
+                     // growing climbs to such a pixel up its column at this grade
+  float bank_rough;  // m^2, the variance (as t_stdz_*) under which a bank is smooth
 
   // --- stage 8 grow (Alg. 1, IV-A) ---
-  float grow_di;       // max intensity change of one growing step
   float grow_dz;       // m, height change of one growing step allowed at zero distance
   float grow_grade;    // ... plus this times the step's planar length (|dr|, + the nearer
                        // pixel's r * column_arc when the column changes)
@@ -89,7 +89,7 @@ struct Params {
   uint comp_seed_min;     // pixels: a component smaller than this is non-ground whatever it holds
   float comp_seed_share;  // a component under min_component stays ground when at least this share
                           // of its pixels are seeds (fused ground); above 1: never
-  uint pad0, pad1, pad2;  // unused: the block is a whole number of vec4s
+  uint pad0, pad1;        // unused: the block is a whole number of vec4s
 };
 
 #ifdef __cplusplus
