@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "host/cpu_pipeline.h"
+#include "host/sensor_fit.h"
 #include "host/vulkan_pipeline.h"
 
 namespace lpir {
@@ -71,13 +72,18 @@ bool Segmenter::on_cpu_driver() const { return pipeline_->on_cpu_driver(); }
 uint64_t Segmenter::device_bytes() const { return pipeline_->device_bytes(); }
 
 void Segmenter::CheckCloud(const Cloud& cloud) const {
-  if (cloud.size() > options_.max_points)
-    throw std::length_error("cloud has " + std::to_string(cloud.size()) +
-                            " points, more than the configured maximum of " +
-                            std::to_string(options_.max_points) + " (raise it with --max-points)");
   if (!cloud.ring.empty() && cloud.ring.size() != cloud.size())
     throw std::invalid_argument("cloud has " + std::to_string(cloud.ring.size()) +
                                 " ring entries for " + std::to_string(cloud.size()) + " points");
+  const std::string misfit = SensorFitError(MeasureRings(cloud, sensor_), sensor_);
+  if (!misfit.empty()) throw std::invalid_argument(misfit);
+  if (cloud.size() > options_.max_points)
+    throw std::length_error(
+        "cloud has " + std::to_string(cloud.size()) + " points, more than the " +
+        std::to_string(options_.max_points) + " this segmenter takes (profile '" + sensor_.name +
+        "', " + std::to_string(sensor_.beams) + " beams x " + std::to_string(sensor_.width) +
+        " columns): wrong --sensor? Raise the limit with --max-points if the sensor really "
+        "returns this many");
 }
 
 const Frame& Segmenter::Segment(const Cloud& cloud, FrameTimes* times) {

@@ -69,8 +69,9 @@ class Segmenter {
 
   // Labels one cloud: Submit then Collect. The frame stays valid until the next Segment or
   // Collect. Throws std::length_error when the cloud holds more than max_points points,
-  // std::invalid_argument when its ring field does not match its size, std::runtime_error when
-  // the device fails.
+  // std::invalid_argument when its ring field does not match its size or does not fit the profile
+  // (SensorFitError: rings past the beams on more than 1 % of the points), std::runtime_error
+  // when the device fails.
   const Frame& Segment(const Cloud& cloud, FrameTimes* times = nullptr);
 
   // Frames in flight: Submit queues a cloud (copied; it need not outlive the call) while
