@@ -76,7 +76,7 @@ Params DefaultParams() {
   p.seed_margin = 0.06f;
   p.h_athr = 0.12f;
   p.rise_margin = 0.3f;
-  p.plane_dist_floor = 0.3f;
+  p.plane_dist_floor = 0.1f;  // docs/decisions/coarse_segment.md, The plane band (issue 28)
   p.plane_dist_scale = 2.5f;
   p.normal_min_z2 = 0.7f;  // normal within ~33 degrees of vertical
   // 0.3 keeps the roof of a car parked beside the sensor out of the seeds

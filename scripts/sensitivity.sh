@@ -22,7 +22,7 @@ scores() {
 
 # name default: the defaults of reference_cpu/params.cpp that the hdl64e profile keeps.
 params=(
-  "slope_max 0.10" "seed_margin 0.06" "h_athr 0.12" "rise_margin 0.3" "plane_dist_floor 0.3"
+  "slope_max 0.10" "seed_margin 0.06" "h_athr 0.12" "rise_margin 0.3" "plane_dist_floor 0.1"
   "plane_dist_scale 2.5" "ground_max_above 0.3" "hole_gap 0.25" "t_edge 0.12"
   "t_slope_low 0.09" "t_slope_high 0.25" "t_stdz_low 0.000025" "t_stdz_high 0.000144"
   "grow_dz 0.03" "min_component 300"

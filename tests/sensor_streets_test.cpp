@@ -24,8 +24,8 @@ namespace {
 const std::map<std::string, double>& F1Floors() {
   static const std::map<std::string, double> floors = {
       {"hdl32e", 0.985},    {"hdl64e", 0.988}, {"os1-128", 0.988},
-      {"os1-64", 0.988},    {"ot128", 0.99},   {"pandar64", 0.983},
-      {"rs-ruby80", 0.982}, {"vlp16", 0.965},  {"vlp32c", 0.98},
+      {"os1-64", 0.988},    {"ot128", 0.99},   {"pandar64", 0.985},
+      {"rs-ruby80", 0.985}, {"vlp16", 0.965},  {"vlp32c", 0.98},
   };
   return floors;
 }
