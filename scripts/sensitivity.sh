@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/sensitivity.sh: the DG F1 change, PP F1 and the share of car points labelled ground
-# (summed over the five labelled KITTI frames) when each main threshold of the hdl64e profile is
+# (summed over the eight labelled KITTI frames) when each main threshold of the hdl64e profile is
 # set 25 % below and 25 % above its default (whole-number ones rounded down), one at a time, as a
 # markdown table (docs/accuracy.md, "No knife edge").
 # Needs build/attribute (scripts/build.sh attribute) and ../shared/data (or LPIR_DATA_DIR).
@@ -8,7 +8,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 data=${LPIR_DATA_DIR:-../shared/data}
 tool=${LPIR_BUILD_DIR:-build}/attribute
-frames=(07/000964 unknown/000056 00/000000 00/000001 00/000002)
+frames=(07/000964 unknown/000056 00/000000 00/000001 00/000002 sglc/000052 sglc/000088
+  sglc/004501)
 scans=()
 for f in "${frames[@]}"; do
   scans+=("$data/kitti/${f%/*}/velodyne/${f#*/}.bin" "$data/kitti/${f%/*}/labels/${f#*/}.label")
@@ -25,6 +26,7 @@ params=(
   "slope_max 0.10" "seed_margin 0.06" "h_athr 0.12" "rise_margin 0.3" "plane_dist_floor 0.1"
   "plane_dist_scale 2.5" "ground_max_above 0.3" "hole_gap 0.25" "t_edge 0.12"
   "t_slope_low 0.09" "t_slope_high 0.25" "t_stdz_low 0.000025" "t_stdz_high 0.000144"
+  "bank_slope 0.8" "bank_rough 0.01"
   "grow_dz 0.03" "min_component 300"
   "bp_range_gate 0.15" "bp_height_gate 0.2" "occ_margin 0.3" "occ_rise 0.045"
   "occ_grade 0.0002" "occ_front 0.1" "occ_pass 0.15" "occ_step_rows 10" "occ_step 0.15" "occ_step_grade 0.1"
