@@ -377,7 +377,7 @@ TEST(DrivePointCloud2, DecodesEveryFieldLayout) {
   }
 }
 
-TEST(DrivePointCloud2, IntensityIsTheFirstOfIntensityReflectivityI) {
+TEST(DrivePointCloud2, IntensityIsTheBestOfTheIntensityNamesPresent) {
   const auto value = [](size_t p, size_t f) { return double(10 * f + p); };
   const PointCloud2 all = MakeCloud({{"x", kPfFloat32},
                                      {"y", kPfFloat32},
@@ -394,6 +394,14 @@ TEST(DrivePointCloud2, IntensityIsTheFirstOfIntensityReflectivityI) {
                                      {"reflectivity", kPfFloat32}},
                                     2, 1, 0, 0, false, value);
   EXPECT_EQ(CloudFromPointCloud2(kWhere, two).intensity(1), 41.0f);
+  // The names of IntensityNames() in any case, as the PCD and PLY readers take them.
+  const PointCloud2 other = MakeCloud({{"x", kPfFloat32},
+                                       {"y", kPfFloat32},
+                                       {"z", kPfFloat32},
+                                       {"Remission", kPfFloat32},
+                                       {"scalar_Intensity", kPfFloat32}},
+                                      2, 1, 0, 0, false, value);
+  EXPECT_EQ(CloudFromPointCloud2(kWhere, other).intensity(1), 41.0f);
 }
 
 TEST(DrivePointCloud2, KeepsNanPointsBitForBit) {
