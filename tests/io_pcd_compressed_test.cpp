@@ -1,7 +1,7 @@
-// PCD DATA binary_compressed: PCL's own files (tests/data/pcd/, written by
-// tools/pcd_fixtures/make_pcd_fixtures.sh) read to the same points as their binary twins; hand-made
-// files for padding and multi-count fields and empty clouds; every size the data can lie about,
-// every cut of PCL's file and flipped bytes in its stream.
+// PCD DATA binary_compressed: PCL's own files (tests/data/clouds/, written by
+// tools/cloud_fixtures/make_cloud_fixtures.sh) read to the same points as their binary twins;
+// hand-made files for padding and multi-count fields and empty clouds; every size the data can lie
+// about, cuts of PCL's file and flipped bytes in its stream.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "host/io/cloud_file.h"
 #include "host/io/pcd.h"
+#include "tests/cloud_fixtures.h"
 #include "tests/io_alloc_tracker.h"
 #include "tests/io_test_helpers.h"
 #include "tests/test_util.h"
@@ -21,11 +22,6 @@ using test::Bytes;
 using test::ReturnsOrThrowsIoError;
 using test::SameBits;
 using test::ThrowsIoError;
-
-// tests/data/pcd/<name>, or $LPIR_TEST_DATA_DIR/pcd/<name>.
-std::string Fixture(const std::string& name) {
-  return test::EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) + std::string("/pcd/") + name;
-}
 
 std::string Make(const std::string& bytes) {
   const std::string path = test::TempDir() + "/c.pcd";
@@ -60,10 +56,10 @@ std::string Body(const std::string& stream, uint32_t decompressed) {
 }
 
 TEST(IoPcdCompressed, PclFileReadsAsItsBinaryTwin) {
-  const Cloud compressed = ReadPcd(Fixture("pcl_binary_compressed.pcd"));
-  const Cloud binary = ReadPcd(Fixture("pcl_binary.pcd"));
+  const Cloud compressed = ReadPcd(test::CloudFixture("pcl_binary_compressed.pcd"));
+  const Cloud binary = ReadPcd(test::CloudFixture("pcl_binary.pcd"));
   EXPECT_TRUE(SameBits(compressed, binary));
-  EXPECT_TRUE(SameBits(compressed, ReadCloud(Fixture("pcl_binary_compressed.pcd"))));
+  EXPECT_TRUE(SameBits(compressed, ReadCloud(test::CloudFixture("pcl_binary_compressed.pcd"))));
   // What the script wrote: 16 rings of 40 columns, row by row, every 37th point from the 5th NaN.
   ASSERT_EQ(compressed.size(), 640u);
   ASSERT_EQ(compressed.ring.size(), 640u);
@@ -193,8 +189,8 @@ size_t StreamEnd(const std::string& bytes) {
 }
 
 TEST(IoPcdCompressed, CutsOfPclsFileAreErrorsUpToTheStreamsEnd) {
-  const std::string bytes = test::ReadRaw(Fixture("pcl_binary_compressed.pcd"));
-  const Cloud whole = ReadPcd(Fixture("pcl_binary_compressed.pcd"));
+  const std::string bytes = test::ReadRaw(test::CloudFixture("pcl_binary_compressed.pcd"));
+  const Cloud whole = ReadPcd(test::CloudFixture("pcl_binary_compressed.pcd"));
   const size_t end = StreamEnd(bytes);
   ASSERT_LT(end, bytes.size());
   const std::string path = test::TempDir() + "/cut.pcd";
@@ -211,7 +207,7 @@ TEST(IoPcdCompressed, CutsOfPclsFileAreErrorsUpToTheStreamsEnd) {
 }
 
 TEST(IoPcdCompressed, FlippedStreamBytesNeverCrash) {
-  const std::string bytes = test::ReadRaw(Fixture("pcl_binary_compressed.pcd"));
+  const std::string bytes = test::ReadRaw(test::CloudFixture("pcl_binary_compressed.pcd"));
   const size_t stream = bytes.find("DATA binary_compressed\n") + 23 + 8;
   const std::string path = test::TempDir() + "/flipped.pcd";
   size_t errors = 0;

@@ -8,6 +8,7 @@
 #include "host/io/cloud_file.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/ply.h"
+#include "tests/cloud_fixtures.h"
 #include "tests/io_alloc_tracker.h"
 #include "tests/io_test_helpers.h"
 #include "tests/test_util.h"
@@ -158,6 +159,23 @@ TEST(IoPly, IntensityUnderTheNamesOtherWritersUse) {
     EXPECT_EQ(ReadPly(path, &note).intensity(0), 187.0f) << name;
     EXPECT_EQ(note, "") << name;
   }
+}
+
+TEST(IoPly, CloudComparesScalarIntensityIsTheIntensity) {
+  // CloudCompare wrote the scan's valid points; PCL the whole scan, NaN no-returns included.
+  std::string note = "stale";
+  const Cloud cc = ReadPly(test::CloudFixture("cloudcompare.ply"), &note);
+  EXPECT_EQ(note, "");
+  const Cloud pcl = ReadCloud(test::CloudFixture("pcl_binary.pcd"));
+  size_t k = 0;
+  for (size_t i = 0; i < pcl.size(); ++i) {
+    if (std::isnan(pcl.x(i))) continue;
+    ASSERT_LT(k, cc.size());
+    for (int v = 0; v < 4; ++v) ASSERT_EQ(cc.xyzi[4 * k + v], pcl.xyzi[4 * i + v]) << i << " " << v;
+    ++k;
+  }
+  EXPECT_EQ(k, cc.size());
+  EXPECT_EQ(k, 622u);
 }
 
 TEST(IoPly, TheBestIntensityNameWinsWhateverTheOrder) {

@@ -245,14 +245,18 @@ def test_read_cloud_finds_the_intensity_by_other_writers_names_and_warns_without
             lpir_gseg.read_cloud(bare)
 
 
-def test_read_cloud_reads_pcls_binary_compressed_pcd():
-    fixtures = REPO / "tests" / "data" / "pcd"  # written by PCL (tools/pcd_fixtures/)
+def test_read_cloud_reads_pcl_and_cloudcompare_files():
+    fixtures = REPO / "tests" / "data" / "clouds"  # written by PCL (tools/cloud_fixtures/)
     compressed, ring = lpir_gseg.read_cloud(fixtures / "pcl_binary_compressed.pcd", ring=True)
     binary, binary_ring = lpir_gseg.read_cloud(fixtures / "pcl_binary.pcd", ring=True)
     assert compressed.shape == (640, 4)
     assert compressed.tobytes() == binary.tobytes()  # NaN points included, bit for bit
     np.testing.assert_array_equal(ring, binary_ring)
     np.testing.assert_array_equal(ring, np.arange(640) // 40)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # CloudCompare's scalar_Intensity is an intensity
+        cloudcompare = lpir_gseg.read_cloud(fixtures / "cloudcompare.ply")
+    np.testing.assert_array_equal(cloudcompare, binary[~np.isnan(binary[:, 0])])
 
 
 def test_labels_round_trip_and_errors(tmp_path):
