@@ -18,11 +18,6 @@
 namespace lpir {
 namespace {
 
-using test::Bytes;
-using test::ReturnsOrThrowsIoError;
-using test::SameBits;
-using test::ThrowsIoError;
-
 std::string Make(const std::string& bytes) {
   const std::string path = test::TempDir() + "/c.pcd";
   test::WriteRaw(path, bytes);
@@ -52,14 +47,15 @@ std::string LzfLiterals(const std::string& bytes) {
 
 // The body after the header: the two sizes and the stream.
 std::string Body(const std::string& stream, uint32_t decompressed) {
-  return Bytes<uint32_t>({uint32_t(stream.size()), decompressed}) + stream;
+  return test::Bytes<uint32_t>({uint32_t(stream.size()), decompressed}) + stream;
 }
 
 TEST(IoPcdCompressed, PclFileReadsAsItsBinaryTwin) {
   const Cloud compressed = ReadPcd(test::CloudFixture("pcl_binary_compressed.pcd"));
   const Cloud binary = ReadPcd(test::CloudFixture("pcl_binary.pcd"));
-  EXPECT_TRUE(SameBits(compressed, binary));
-  EXPECT_TRUE(SameBits(compressed, ReadCloud(test::CloudFixture("pcl_binary_compressed.pcd"))));
+  EXPECT_TRUE(test::SameBits(compressed, binary));
+  EXPECT_TRUE(
+      test::SameBits(compressed, ReadCloud(test::CloudFixture("pcl_binary_compressed.pcd"))));
   // What the script wrote: 16 rings of 40 columns, row by row, every 37th point from the 5th NaN.
   ASSERT_EQ(compressed.size(), 640u);
   ASSERT_EQ(compressed.ring.size(), 640u);
@@ -86,12 +82,12 @@ TEST(IoPcdCompressed, FieldsStoredOneAfterAnotherWithPaddingAndCounts) {
   const std::string sizes = "4 8 4 4 2 1 1", types = "F F F F U U U", counts = "3 1 1 1 1 1 2";
   std::string records, normal, x, yz_y, yz_z, intensity, ring;
   for (int i = 0; i < 3; ++i) {
-    const std::string n = Bytes<float>({0.5f * i, -1.0f, 2.0f});
-    const std::string xi = Bytes<double>({1.5 + i});
-    const std::string yi = Bytes<float>({2.5f - i}), zi = Bytes<float>({-3.5f * i});
-    const std::string ii = Bytes<uint16_t>({uint16_t(1000 + i)}),
-                      ri = Bytes<uint8_t>({uint8_t(7 * i)});
-    records += n + xi + yi + zi + ii + ri + Bytes<uint8_t>({0xAA, 0xBB});
+    const std::string n = test::Bytes<float>({0.5f * i, -1.0f, 2.0f});
+    const std::string xi = test::Bytes<double>({1.5 + i});
+    const std::string yi = test::Bytes<float>({2.5f - i}), zi = test::Bytes<float>({-3.5f * i});
+    const std::string ii = test::Bytes<uint16_t>({uint16_t(1000 + i)}),
+                      ri = test::Bytes<uint8_t>({uint8_t(7 * i)});
+    records += n + xi + yi + zi + ii + ri + test::Bytes<uint8_t>({0xAA, 0xBB});
     normal += n;
     x += xi;
     yz_y += yi;
@@ -107,7 +103,7 @@ TEST(IoPcdCompressed, FieldsStoredOneAfterAnotherWithPaddingAndCounts) {
   test::WriteRaw(dir + "/c.pcd", Header(fields, sizes, types, counts, "3") +
                                      Body(LzfLiterals(soa), uint32_t(soa.size())));
   const Cloud cloud = ReadPcd(dir + "/c.pcd");
-  EXPECT_TRUE(SameBits(cloud, ReadPcd(dir + "/b.pcd")));
+  EXPECT_TRUE(test::SameBits(cloud, ReadPcd(dir + "/b.pcd")));
   ASSERT_EQ(cloud.size(), 3u);
   EXPECT_EQ(cloud.x(2), 3.5f);
   EXPECT_EQ(cloud.z(1), -3.5f);
@@ -121,47 +117,48 @@ TEST(IoPcdCompressed, EmptyCloudAsPclWritesIt) {
 }
 
 TEST(IoPcdCompressed, ZerosAfterTheStreamAreAllowedOtherBytesNot) {
-  const std::string points = Bytes<float>({1, 2, 3});
+  const std::string points = test::Bytes<float>({1, 2, 3});
   const std::string body = Body(LzfLiterals(points), 12);
   EXPECT_EQ(ReadPcd(Make(XyzHeader("1") + body + std::string(3000, '\0'))).y(0), 2.0f);
   const std::string path = Make(XyzHeader("1") + body + std::string(5, '\0') + "x");
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path,
-                            {"binary_compressed", "6 bytes after the 13 compressed bytes"}));
+  EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path,
+                                  {"binary_compressed", "6 bytes after the 13 compressed bytes"}));
 }
 
 TEST(IoPcdCompressed, FewerBytesThanTheTwoSizes) {
   const std::string path = Make(XyzHeader("1") + std::string(7, '\0'));
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path,
-                            {"7 bytes after the header", "two 4-byte sizes"}));
+  EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path,
+                                  {"7 bytes after the header", "two 4-byte sizes"}));
 }
 
 TEST(IoPcdCompressed, DecompressedSizeDisagreesWithTheHeader) {
   const std::string path = Make(XyzHeader("2") + Body(LzfLiterals(std::string(12, '\0')), 12));
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path,
-                            {"decompresses to 12 bytes", "2 points of 12 bytes take 24"}));
+  EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path,
+                                  {"decompresses to 12 bytes", "2 points of 12 bytes take 24"}));
 }
 
 TEST(IoPcdCompressed, CompressedSizeBeyondTheFile) {
-  std::string body = Body(LzfLiterals(Bytes<float>({1, 2, 3})), 12);
+  std::string body = Body(LzfLiterals(test::Bytes<float>({1, 2, 3})), 12);
   body.resize(body.size() - 2);
   const std::string path = Make(XyzHeader("1") + body);
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path,
-                            {"holds 13 compressed bytes", "the file has 11", "cut short"}));
+  EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path,
+                                  {"holds 13 compressed bytes", "the file has 11", "cut short"}));
 }
 
 TEST(IoPcdCompressed, NoCompressedBytesForSomePoints) {
   const std::string path = Make(XyzHeader("1") + Body("", 12));
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path, {"no compressed bytes for 1 points"}));
+  EXPECT_TRUE(
+      test::ThrowsIoError([&] { ReadPcd(path); }, path, {"no compressed bytes for 1 points"}));
 }
 
 TEST(IoPcdCompressed, AStreamThatDoesNotDecode) {
   // A back reference as the first instruction reaches before the output.
   const std::string path = Make(XyzHeader("1") + Body(std::string("\x20\x00", 2), 12));
   EXPECT_TRUE(
-      ThrowsIoError([&] { ReadPcd(path); }, path, {"LZF data, byte 0", "before the start"}));
+      test::ThrowsIoError([&] { ReadPcd(path); }, path, {"LZF data, byte 0", "before the start"}));
   const std::string short_stream = Make(XyzHeader("1") + Body(LzfLiterals("12345678"), 12));
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(short_stream); }, short_stream,
-                            {"decodes to 8 bytes, not the 12"}));
+  EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(short_stream); }, short_stream,
+                                  {"decodes to 8 bytes, not the 12"}));
 }
 
 TEST(IoPcdCompressed, HostilePointCountDoesNotAllocate) {
@@ -169,15 +166,15 @@ TEST(IoPcdCompressed, HostilePointCountDoesNotAllocate) {
   const std::string path =
       Make(XyzHeader("100000000") + Body(LzfLiterals("12345678"), 1200000000u));
   const size_t largest = test::LargestAllocationDuring([&] {
-    EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path,
-                              {"9 compressed bytes cannot hold the 1200000000 bytes"}));
+    EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path,
+                                    {"9 compressed bytes cannot hold the 1200000000 bytes"}));
   });
   EXPECT_LT(largest, 64u * 1024u);
 }
 
 TEST(IoPcdCompressed, MorePointsThanTheSizesCanHold) {
   const std::string path = Make(XyzHeader("1000000000") + Body("", 0));
-  EXPECT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path, {"32-bit sizes"}));
+  EXPECT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path, {"32-bit sizes"}));
 }
 
 // The stream of PCL's file ends at `end`; the rest is PCL's zero padding.
@@ -199,9 +196,9 @@ TEST(IoPcdCompressed, CutsOfPclsFileAreErrorsUpToTheStreamsEnd) {
   for (size_t n = 0; n <= end + 16; n += n < stream || n + 40 > end ? 1 : 13) {
     test::WriteRaw(path, bytes.substr(0, n));
     if (n < end) {
-      ASSERT_TRUE(ThrowsIoError([&] { ReadPcd(path); }, path, {})) << "cut at " << n;
+      ASSERT_TRUE(test::ThrowsIoError([&] { ReadPcd(path); }, path, {})) << "cut at " << n;
     } else {
-      ASSERT_TRUE(SameBits(ReadPcd(path), whole)) << "cut at " << n;
+      ASSERT_TRUE(test::SameBits(ReadPcd(path), whole)) << "cut at " << n;
     }
   }
 }
@@ -216,7 +213,7 @@ TEST(IoPcdCompressed, FlippedStreamBytesNeverCrash) {
       std::string flipped = bytes;
       flipped[i] = char(uint8_t(flipped[i]) ^ mask);
       test::WriteRaw(path, flipped);
-      ASSERT_TRUE(ReturnsOrThrowsIoError([&] {
+      ASSERT_TRUE(test::ReturnsOrThrowsIoError([&] {
         try {
           EXPECT_EQ(ReadPcd(path).size(), 640u);
         } catch (const IoError&) {
