@@ -1,11 +1,13 @@
 // Writes the seed corpus of every fuzz target: small valid files from the project's own writers
 // and hand-made edge cases (comments, CRLF, skipped and multi-count fields, NaN/Inf, 0 points,
-// other elements, continuation lines, calibration keys; PointCloud2 layouts of every kind; small
-// .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand; ROS 1 bags indexed
-// or not, of each chunk compression, truncated), one folder per target.
+// PCD binary_compressed with LZF references, other elements, continuation lines, calibration
+// keys; PointCloud2 layouts of every kind; small .db3 bags of each rosbag2 schema; MCAP drives
+// from the writer and by hand; ROS 1 bags indexed or not, of each chunk compression, truncated),
+// one folder per target.
 // Usage: make_corpus OUT_DIR  (fuzz/corpus/ holds its output, checked by ctest: fuzz.corpus).
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -41,6 +43,57 @@ void Text(const std::string& path, const std::string& text) {
 template <size_t N>
 std::string Raw(const char (&literal)[N]) {
   return std::string(literal, N - 1);
+}
+
+template <typename T>
+void Append(std::string* out, T value) {
+  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+// `bytes` as LZF (host/io/lzf.h): at each byte the longest earlier match of 3 to 264 bytes at
+// most 8192 back (found by trying every start), else a literal; literals in runs of up to 32.
+std::string Lzf(const std::string& bytes) {
+  std::string out, literal;
+  const auto flush = [&] {
+    if (literal.empty()) return;
+    out += char(literal.size() - 1);
+    out += literal;
+    literal.clear();
+  };
+  size_t i = 0;
+  while (i < bytes.size()) {
+    size_t best = 0, distance = 0;
+    for (size_t from = i > 8192 ? i - 8192 : 0; from < i; ++from) {
+      size_t n = 0;
+      while (n < 264 && i + n < bytes.size() && bytes[from + n] == bytes[i + n]) ++n;
+      if (n > best) {
+        best = n;
+        distance = i - from;
+      }
+    }
+    if (best < 3) {
+      literal += bytes[i++];
+      if (literal.size() == 32) flush();
+      continue;
+    }
+    flush();
+    const size_t length = best - 2, back = distance - 1;
+    out += char(std::min<size_t>(length, 7) << 5 | back >> 8);
+    if (length >= 7) out += char(length - 7);
+    out += char(back & 0xff);
+    i += best;
+  }
+  flush();
+  return out;
+}
+
+// What follows DATA binary_compressed: the compressed and decompressed sizes, then the LZF.
+std::string CompressedBody(const std::string& fields) {
+  const std::string stream = Lzf(fields);
+  std::string body;
+  Append(&body, uint32_t(stream.size()));
+  Append(&body, uint32_t(fields.size()));
+  return body + stream;
 }
 
 // A few points with every kind of value a scan holds: road, obstacle, NaN, Inf, the origin,
@@ -94,9 +147,27 @@ void Pcd(const std::string& dir) {
   Text(dir + "/no_intensity.pcd",
        "VERSION 0.7\nFIELDS z y x\nSIZE 2 8 1\nTYPE I F I\nWIDTH 2\nDATA ascii\n-5 0.25 -128\n"
        "32767 -1e300 127\n");
+  // DATA binary_compressed as PCL writes it: the fields one after another (padding "_" not
+  // stored), LZF with runs and references; then a multi-count field, an organised cloud and the
+  // zero bytes PCL 1.13 leaves after the data.
+  std::string soa;
+  for (int k = 0; k < 4; ++k) {
+    for (size_t i = 0; i < ring.size(); ++i) Append(&soa, ring.xyzi[4 * i + k]);
+  }
+  for (int32_t r : ring.ring) Append(&soa, r);
   Text(dir + "/compressed.pcd",
-       Raw("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
-           "POINTS 1\nDATA binary_compressed\n\x0c\0\0\0\x0c\0\0\0"));
+       "VERSION 0.7\nFIELDS x y z intensity ring _\nSIZE 4 4 4 4 4 1\nTYPE F F F F I U\n"
+       "COUNT 1 1 1 1 1 3\nWIDTH 6\nHEIGHT 1\nPOINTS 6\nDATA binary_compressed\n" +
+           CompressedBody(soa));
+  soa.clear();
+  for (int i = 0; i < 8; ++i) Append(&soa, double(i % 3) * 0.5);
+  for (int i = 0; i < 8; ++i) Append(&soa, float(-i));
+  for (int i = 0; i < 8; ++i) Append(&soa, uint16_t(1000));
+  for (int i = 0; i < 8 * 3; ++i) Append(&soa, i % 3 == 2 ? 1.0f : 0.0f);
+  Text(dir + "/compressed_organised.pcd",
+       "VERSION 0.7\nFIELDS x y z normal\nSIZE 8 4 2 4\nTYPE F F U F\nCOUNT 1 1 1 3\nWIDTH 4\n"
+       "HEIGHT 2\nPOINTS 8\nDATA binary_compressed\n" +
+           CompressedBody(soa) + std::string(40, '\0'));
 }
 
 void Ply(const std::string& dir) {

@@ -76,6 +76,34 @@ TEST(CliSegment, WritesPcdAndPlyWithLabelsAndPictures) {
   EXPECT_TRUE(fs::exists(dir + "/o/images/scan_classes.png"));
 }
 
+TEST(CliSegment, AFileWithoutIntensityIsNotedOnceARun) {
+  const std::string dir = test::TempDir();
+  fs::create_directories(dir + "/in");
+  const Cloud scan = SmallScan();
+  std::string xyz = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(scan.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (size_t i = 0; i < scan.size(); ++i)
+    xyz += std::to_string(scan.x(i)) + " " + std::to_string(scan.y(i)) + " " +
+           std::to_string(scan.z(i)) + "\n";
+  WriteBytes(dir + "/in/a.ply", xyz);
+  WriteBytes(dir + "/in/b.ply", xyz);
+  WriteKittiBin(dir + "/in/c.bin", scan);
+  std::string log;
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --out " + dir + "/o", &log), 0) << log;
+  const std::string note = "lpir-gseg segment: note: " + dir + "/in/a.ply has no intensity field";
+  EXPECT_NE(log.find(note), std::string::npos) << log;
+  EXPECT_NE(log.find("first such file only"), std::string::npos) << log;
+  size_t notes = 0;
+  for (size_t at = log.find("no intensity field"); at != std::string::npos;
+       at = log.find("no intensity field", at + 1))
+    ++notes;
+  EXPECT_EQ(notes, 1u) << log;
+  for (const char* stem : {"a", "b", "c"})
+    EXPECT_TRUE(fs::exists(dir + "/o/" + stem + ".label")) << stem;
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --quiet --out " + dir + "/q", &log), 0) << log;
+  EXPECT_EQ(log, "");
+}
+
 TEST(CliSegment, NanInfAndOriginPointsAreNonGroundAndCounted) {
   const std::string dir = test::TempDir();
   Cloud c = SmallScan();

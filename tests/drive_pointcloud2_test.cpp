@@ -377,23 +377,22 @@ TEST(DrivePointCloud2, DecodesEveryFieldLayout) {
   }
 }
 
-TEST(DrivePointCloud2, IntensityIsTheFirstOfIntensityReflectivityI) {
+TEST(DrivePointCloud2, IntensityIsTheBestOfTheIntensityNamesPresent) {
+  // Field f of point p holds 10 f + p; x, y, z are fields 0-2, the candidates 3 on. The names of
+  // IntensityNames() in any case, as the PCD and PLY readers take them.
   const auto value = [](size_t p, size_t f) { return double(10 * f + p); };
-  const PointCloud2 all = MakeCloud({{"x", kPfFloat32},
-                                     {"y", kPfFloat32},
-                                     {"z", kPfFloat32},
-                                     {"i", kPfFloat32},
-                                     {"reflectivity", kPfFloat32},
-                                     {"intensity", kPfFloat32}},
-                                    2, 1, 0, 0, false, value);
-  EXPECT_EQ(CloudFromPointCloud2(kWhere, all).intensity(1), 51.0f);
-  const PointCloud2 two = MakeCloud({{"x", kPfFloat32},
-                                     {"y", kPfFloat32},
-                                     {"z", kPfFloat32},
-                                     {"i", kPfFloat32},
-                                     {"reflectivity", kPfFloat32}},
-                                    2, 1, 0, 0, false, value);
-  EXPECT_EQ(CloudFromPointCloud2(kWhere, two).intensity(1), 41.0f);
+  const struct {
+    std::vector<std::string> names;
+    float intensity;  // of point 1
+  } cases[] = {{{"i", "reflectivity", "intensity"}, 51.0f},
+               {{"i", "reflectivity"}, 41.0f},
+               {{"Remission", "scalar_Intensity"}, 41.0f}};
+  for (const auto& c : cases) {
+    std::vector<FieldSpec> specs = {{"x", kPfFloat32}, {"y", kPfFloat32}, {"z", kPfFloat32}};
+    for (const std::string& name : c.names) specs.push_back({name, kPfFloat32});
+    const PointCloud2 msg = MakeCloud(specs, 2, 1, 0, 0, false, value);
+    EXPECT_EQ(CloudFromPointCloud2(kWhere, msg).intensity(1), c.intensity) << c.names.back();
+  }
 }
 
 TEST(DrivePointCloud2, KeepsNanPointsBitForBit) {

@@ -135,10 +135,8 @@ int RunDemo(int argc, char** argv) {
   const std::string images = (fs::path(out) / "images").string();
   const std::vector<std::string> written =
       WriteImages(images, "demo_scan", scan.cloud, *frame, segmenter.params(), &truth);
-  std::printf(
-      "wrote %zu pictures to %s/ (start with demo_scan_bev.png: TP green, TN red, "
-      "FP blue, FN yellow)\n",
-      written.size(), images.c_str());
+  std::printf("wrote %zu pictures to %s/ (start with demo_scan_bev.png: %s)\n", written.size(),
+              images.c_str(), kScoredColours);
   return kExitOk;
 }
 

@@ -270,6 +270,7 @@ class SegmentRun {
     for (;;) {
       const SourceStep step = source_.Next(&in, &error);
       if (step == SourceStep::kEnd) break;
+      Note(in.note);
       if (step == SourceStep::kFailed) {
         while (!jobs_.empty()) Finish();
         if (mcap_) mcap_->Copy(in, false);
@@ -312,6 +313,15 @@ class SegmentRun {
     r.stamp_ns = in.stamp_ns;
     r.topic = in.topic;
     return r;
+  }
+
+  // The first reader's note of the run above the progress (a folder of files from one writer
+  // would repeat it for every file); none with --quiet.
+  void Note(const std::string& note) {
+    if (note.empty() || noted_ || a_.quiet) return;
+    noted_ = true;
+    const char* once = source_.count() == 1 ? "" : " (said for the first such file only)";
+    progress_.Print(stderr, "lpir-gseg segment: note: " + note + once + "\n");
   }
 
   // `error` (naming the frame) above the progress and in the report.
@@ -417,6 +427,7 @@ class SegmentRun {
   size_t failures_ = 0;
   size_t frames_ = 0;   // segmented and written
   size_t invalid_ = 0;  // points of those frames labelled invalid
+  bool noted_ = false;  // a reader's note was printed
 };
 
 // The frames the inputs name, read one ahead (ReadAhead): the cloud files (folders expanded), or

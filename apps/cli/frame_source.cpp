@@ -45,7 +45,7 @@ class FileSource : public FrameSource {
     in->input = file;
     in->stem = std::filesystem::path(file).stem().string();
     try {
-      in->cloud = ReadCloud(file, read_);
+      in->cloud = ReadCloud(file, read_, &in->note);
       return SourceStep::kFrame;
     } catch (const IoError& e) {  // names the file already
       *error = e.what();

@@ -24,6 +24,7 @@ struct FrameInput {
   int64_t stamp_ns = 0;      // the PointCloud2 header's stamp
   uint64_t log_time_ns = 0;  // DriveMessage::log_time_ns
   std::string topic;
+  std::string note;  // what the reader filled in that the file lacks (ReadCloud's note), or empty
   Cloud cloud;
   DriveMessage message;  // the message as logged (kept only when the source is asked to)
   PointCloud2 cloud2;    // the message decoded (kept only then)

@@ -224,13 +224,9 @@ struct FieldRoles {
 // are checked per point.
 FieldRoles AssignRoles(const std::string& where, const PointCloud2& cloud) {
   FieldRoles roles;
-  const char* const kIntensityNames[] = {"intensity", "reflectivity", "i"};
-  const char* intensity_name = nullptr;
-  for (const char* candidate : kIntensityNames) {
-    for (const PointField& field : cloud.fields) {
-      if (!intensity_name && field.name == candidate) intensity_name = candidate;
-    }
-  }
+  int intensity_rank = -1;
+  for (const PointField& field : cloud.fields)
+    intensity_rank = BetterIntensityRank(intensity_rank, field.name);
   for (const PointField& field : cloud.fields) {
     if (PointFieldSize(field.datatype) == 0) {
       throw IoError(where, "PointCloud2 field " + Quote(field.name) + " has datatype " +
@@ -241,7 +237,7 @@ FieldRoles AssignRoles(const std::string& where, const PointCloud2& cloud) {
     if (field.name == "y") slot = &roles.xyz[1];
     if (field.name == "z") slot = &roles.xyz[2];
     if (field.name == "ring") slot = &roles.ring;
-    if (intensity_name && field.name == intensity_name) slot = &roles.intensity;
+    if (intensity_rank >= 0 && IntensityRank(field.name) == intensity_rank) slot = &roles.intensity;
     if (!slot) continue;
     if (*slot) throw IoError(where, "PointCloud2 field " + Quote(field.name) + " appears twice");
     if (field.count != 1) {

@@ -57,8 +57,9 @@ PointCloud2 ParseRos1PointCloud2(const std::string& where, const uint8_t* bytes,
 std::vector<uint8_t> SerializeRos1PointCloud2(const PointCloud2& cloud);
 
 // The points as a Cloud, row by row (point (r, c) at r x row_step + c x point_step): x, y, z
-// (float32 or float64, count 1, read as float), the first of intensity / reflectivity / i
-// present (any type, count 1, converted to float; 0 when none), and ring when present (count 1,
+// (float32 or float64, count 1, read as float), the intensity under the best of
+// IntensityNames() present (host/io/point_fields.h; any type, count 1, converted to float; 0
+// when none), and ring when present (count 1,
 // any integer type, or a float holding a whole number; every value must be in [0, INT32_MAX]).
 // is_bigendian is honoured. Every point is kept (NaN included: the segmenter marks it invalid).
 // IoError naming `where` when a field's datatype is not 1-8, a used field appears twice or has

@@ -31,10 +31,14 @@ py::object ReadCloudPy(py::handle path_arg, py::handle nuscenes, bool with_ring)
   if (!nuscenes.is_none())
     options.bin_layout = nuscenes.cast<bool>() ? BinLayout::kNuScenes5 : BinLayout::kKitti4;
   Cloud cloud;
+  std::string note;
   {
     py::gil_scoped_release nogil;
-    cloud = ReadCloud(path, options);
+    cloud = ReadCloud(path, options, &note);
   }
+  // stacklevel 1: the warning names the caller's line (this function has no Python frame).
+  if (!note.empty() && PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0)
+    throw py::error_already_set();  // warnings turned into errors
   py::object ring = py::none();
   if (with_ring && !cloud.ring.empty()) ring = VectorArray(std::vector<int32_t>(cloud.ring));
   py::array points = CloudArray(std::move(cloud));
@@ -198,7 +202,9 @@ void BindFunctions(py::module_& m) {
 Reads a scan in any format the command line reads.
 
 Formats by extension: .bin (KITTI's 4 float32 a point; files named *.pcd.bin as nuScenes' 5),
-.pcd (ASCII or binary), .ply (ASCII or binary little-endian).
+.pcd (ASCII, binary or binary_compressed), .ply (ASCII or binary little-endian). A .pcd or .ply
+field named intensity, scalar_intensity, reflectivity, remission or i (in any case; the first of
+these when several) is the intensity; a file with none reads intensity 0 and warns (UserWarning).
 
 Args:
     path: the file (str or os.PathLike).

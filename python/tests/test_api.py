@@ -7,6 +7,7 @@ import subprocess
 import sys
 import threading
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -221,6 +222,41 @@ def test_read_cloud_formats_round_trip(scan, tmp_path):
     np.testing.assert_array_equal(read, points)
     assert ring.dtype == np.int32 and (ring == 3).all()
     assert lpir_gseg.read_cloud(path, ring=True)[1] is None
+
+
+def test_read_cloud_finds_the_intensity_by_other_writers_names_and_warns_without(tmp_path):
+    header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+    header += "property float z\n"
+    cloudcompare = tmp_path / "cc.ply"  # CloudCompare's name for it
+    cloudcompare.write_text(header + "property float scalar_Intensity\nend_header\n"
+                            "1 2 3 40\n4 5 6 50\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no warning when the file has an intensity
+        np.testing.assert_array_equal(lpir_gseg.read_cloud(cloudcompare)[:, 3], [40, 50])
+    bare = tmp_path / "bare.ply"
+    bare.write_text(header + "end_header\n1 2 3\n4 5 6\n")
+    with pytest.warns(UserWarning, match=f"{bare} has no intensity field .*remission") as caught:
+        points = lpir_gseg.read_cloud(bare)
+    assert caught[0].filename == __file__  # names the caller's line
+    np.testing.assert_array_equal(points[:, 3], [0, 0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match="bare.ply"):
+            lpir_gseg.read_cloud(bare)
+
+
+def test_read_cloud_reads_pcl_and_cloudcompare_files():
+    fixtures = REPO / "tests" / "data" / "clouds"  # written by PCL (tools/cloud_fixtures/)
+    compressed, ring = lpir_gseg.read_cloud(fixtures / "pcl_binary_compressed.pcd", ring=True)
+    binary, binary_ring = lpir_gseg.read_cloud(fixtures / "pcl_binary.pcd", ring=True)
+    assert compressed.shape == (640, 4)
+    assert compressed.tobytes() == binary.tobytes()  # NaN points included, bit for bit
+    np.testing.assert_array_equal(ring, binary_ring)
+    np.testing.assert_array_equal(ring, np.arange(640) // 40)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # CloudCompare's scalar_Intensity is an intensity
+        cloudcompare = lpir_gseg.read_cloud(fixtures / "cloudcompare.ply")
+    np.testing.assert_array_equal(cloudcompare, binary[~np.isnan(binary[:, 0])])
 
 
 def test_labels_round_trip_and_errors(tmp_path):
