@@ -94,8 +94,8 @@ struct LabelledDrive::State {
     return next.has_value();
   }
 
-  // Copies input records until the next is a message logged after `time_ns` (or, with `until`,
-  // until the channel of `topic` has been met), or to the end.
+  // Copies input records until the next is a message logged after `time_ns` (with
+  // `until_source`, and the channel of `topic` met), or to the end.
   void CopyUntil(uint64_t time_ns, bool until_source) {
     while (Peek()) {
       const auto* m = std::get_if<DriveRecordMessage>(&*next);
