@@ -22,6 +22,7 @@
 #include "host/drive/mcap_records.h"
 #include "host/drive/mcap_writer.h"
 #include "host/drive/pointcloud2.h"
+#include "host/drive/ros1_bag_writer.h"
 #include "host/io/file_bytes.h"
 #include "host/io/io_error.h"
 #include "host/io/kitti_bin.h"
@@ -349,7 +350,7 @@ void PointCloud2s(const std::string& dir) {
                                                                        2, 3, false)));
   const PointCloud2 plain = Message(FinitePoints(), ouster, 1, 0, false);
   Bytes(dir + "/labelled.cdr",
-        SerializeCdrPointCloud2(AddLabelField(dir, plain, Labels{1, 0, 1, 0})));
+        SerializeCdrPointCloud2(SplitByLabel(dir, plain, Labels{1, 0, 1, 0}).labelled));
   PointCloud2 empty = plain;
   empty.width = 0;
   empty.row_step = 0;
@@ -422,7 +423,22 @@ void WriteMcapDrive(const std::string& path, McapCompression compression) {
   w.Close();
 }
 
+// Channel metadata, a metadata record and an attachment between the chunks (the whole-drive
+// reader's records), profile ros1.
+void WriteMcapRecords(const std::string& path) {
+  McapWriter w(path, McapCompression::kZstd, "ros1");
+  const uint16_t pc = w.AddSchema("sensor_msgs/PointCloud2", "ros1msg", "uint8 x\n");
+  const uint16_t points = w.AddChannel("/points", pc, "ros1", {{"md5sum", "0"}, {"latching", "1"}});
+  std::vector<uint8_t> data(24, 7);
+  w.Write(points, 0, 100, 100, data.data(), data.size());
+  w.AddMetadata(DriveMetadata{"drive_info", {{"vehicle", "a"}, {"route", "b"}}});
+  w.AddAttachment(DriveAttachment{100, 0, "calib.yaml", "application/yaml", {'x', ':', '1'}});
+  w.Write(points, 1, 200, 200, data.data(), data.size());
+  w.Close();
+}
+
 void Mcap(const std::string& dir) {
+  WriteMcapRecords(dir + "/records.mcap");
   WriteMcapDrive(dir + "/none.mcap", McapCompression::kNone);
   WriteMcapDrive(dir + "/zstd.mcap", McapCompression::kZstd);
   WriteMcapDrive(dir + "/lz4.mcap", McapCompression::kLz4);
@@ -607,7 +623,25 @@ std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
   return bag;
 }
 
+// A bag from Ros1BagWriter: two connections (one latched), three messages.
+void WrittenRos1Bag(const std::string& path) {
+  Ros1BagWriter w(path);
+  const uint32_t cloud = w.AddConnection(
+      "/points",
+      {{"type", "sensor_msgs/PointCloud2"}, {"md5sum", "0"}, {"message_definition", ""}});
+  const uint32_t gps = w.AddConnection("/gps", {{"type", "std_msgs/String"},
+                                                {"md5sum", "0"},
+                                                {"message_definition", "string data\n"},
+                                                {"latching", "1"}});
+  const std::string cloud0 = Ros1Cloud(0), text = "\x02\0\0\0hi";
+  w.Write(cloud, 1000000000, reinterpret_cast<const uint8_t*>(cloud0.data()), cloud0.size());
+  w.Write(gps, 1000000001, reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  w.Write(cloud, 1100000000, reinterpret_cast<const uint8_t*>(cloud0.data()), cloud0.size());
+  w.Close();
+}
+
 void Ros1Bags(const std::string& dir) {
+  WrittenRos1Bag(dir + "/written.bag");
   for (const char* compression : {"none", "bz2", "lz4"})
     Text(dir + "/indexed_" + compression + ".bag", Ros1Bag(compression, true, true));
   Text(dir + "/unindexed_bz2.bag", Ros1Bag("bz2", false, true));

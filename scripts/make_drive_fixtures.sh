@@ -13,6 +13,9 @@
 #                             the three frames as sensor_msgs PointCloud2 on /velodyne_points,
 #                             one message per chunk (tools/drive_fixtures/pointcloud.mjs and
 #                             write_bag.py give the layout)
+#   vlp16_full.{mcap,db3,bag} the same frames among an IMU's and a GNSS receiver's messages (and,
+#                             in the MCAP, a metadata record and an attachment:
+#                             tools/drive_fixtures/extras.mjs), chunks of about 64 KiB
 # usage: scripts/make_drive_fixtures.sh [OUT_DIR]   (default tests/data/drives)
 # LPIR_CLI names the lpir-gseg binary (default build/lpir-gseg). Runs `npm ci` in
 # tools/drive_fixtures when its node_modules is missing.
@@ -57,4 +60,5 @@ PY
 done
 
 write_drives "${out}" vlp16 "${topic}" "${tmp}/cdr" 1 "${frames[@]}"
+write_full_drives "${out}" vlp16 "${topic}" "${tmp}/full" "${frames[@]}"
 say "done: $(du -sh "${out}" | cut -f1) in ${out}"

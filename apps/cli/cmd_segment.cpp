@@ -1,12 +1,12 @@
 // lpir-gseg segment INPUT... --sensor NAME --out DIR [options]: labels every point of every input
 // cloud (files, or folders of them, or every PointCloud2 message of one topic of one recorded
 // drive) and writes DIR/<stem>.label, or the cloud with a label field (a drive: also
-// DIR/index.csv, and with --format mcap one MCAP holding the labels). On Vulkan the next frame is
-// read while the device works on the previous ones (frames in flight). A frame that cannot be
-// read or segmented (a bad file, a damaged part of a drive, a message that does not decode) is
-// reported and skipped; the exit code is then 1 and the last line (stderr) counts the failures.
-// Output levels: --quiet prints errors only; the default adds the progress (stderr) and one
-// summary line at the end (stdout); --verbose adds a line first naming the backend and a line
+// DIR/index.csv, and with --format mcap|bag the whole drive with its labelled clouds). On Vulkan
+// the next frame is read while the device works on the previous ones (frames in flight). A frame
+// that cannot be read or segmented (a bad file, a damaged part of a drive, a message that does not
+// decode) is reported and skipped; the exit code is then 1 and the last line (stderr) counts the
+// failures. Output levels: --quiet prints errors only; the default adds the progress (stderr) and
+// one summary line at the end (stdout); --verbose adds a line first naming the backend and a line
 // per frame. --report writes every frame's figures to a CSV or JSON file (frame_report.h).
 #include <algorithm>
 #include <chrono>
@@ -62,8 +62,9 @@ const char kHelp[] =
     "  --sensor NAME    sensor profile (hdl64e, hdl32e, vlp32c, os1-64, ...) or a profile file\n"
     "  --out DIR        where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go\n"
     "  --format F       label (default), pcd or ply: the cloud with a label field instead;\n"
-    "                   mcap (a drive only): DIR/<drive stem>.mcap holding the topic and, on\n"
-    "                   <topic>/ground, its clouds with a uint8 label field\n"
+    "                   mcap (a drive only): DIR/<drive stem>.mcap, every topic of the drive as\n"
+    "                   it was plus <topic>/labelled (a uint32 label field), <topic>/ground\n"
+    "                   and <topic>/nonground; bag (a ROS 1 .bag only): the same as a ROS 1 bag\n"
     "  --report FILE    a .csv or .json file: per frame its input, points, ground fraction,\n"
     "                   invalid points by reason, ms, backend and device, or its error\n"
     "  --nuscenes       .bin files hold 5 floats per point (x y z intensity ring); files named\n"
@@ -202,10 +203,19 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
     a.read_threads = unsigned(n);
   }
   a.format = args.Get("--format", "label");
-  if (a.format != "label" && a.format != "pcd" && a.format != "ply" && a.format != "mcap")
-    throw std::invalid_argument("--format must be label, pcd, ply or mcap, not '" + a.format + "'");
+  if (a.format != "label" && a.format != "pcd" && a.format != "ply" && a.format != "mcap" &&
+      a.format != "bag")
+    throw std::invalid_argument("--format must be label, pcd, ply, mcap or bag, not '" + a.format +
+                                "'");
   if (a.format == "mcap" && !a.drive)
     throw std::invalid_argument("--format mcap is for a recorded drive (.mcap, .db3, .bag)");
+  if (a.format == "bag" && (!a.drive || DriveFormatOf(a.inputs[0]) != DriveFormat::kRos1Bag))
+    throw std::invalid_argument(
+        "--format bag writes a ROS 1 bag, for a ROS 1 .bag input; a ROS 2 drive (.mcap, .db3) "
+        "takes --format mcap");
+  if ((a.format == "mcap" || a.format == "bag") && args.Has("--chunks"))
+    throw std::invalid_argument("--format " + a.format +
+                                " writes the whole drive back: it takes no --chunks");
   a.report = args.Get("--report");
   if (args.Has("--report") && !FrameReport::IsReportName(a.report))
     throw std::invalid_argument("--report must name a .csv or .json file, not '" + a.report + "'");
@@ -253,13 +263,13 @@ std::string DeviceName(const Segmenter& s) {
 class SegmentRun {
  public:
   SegmentRun(const SegmentArgs& a, Segmenter& segmenter, FrameSource& source, FrameReport* report,
-             DriveIndex* index, LabelledMcap* mcap)
+             DriveIndex* index, LabelledDrive* drive_out)
       : a_(a),
         segmenter_(segmenter),
         source_(source),
         report_(report),
         index_(index),
-        mcap_(mcap),
+        drive_out_(drive_out),
         progress_(source.count(), source.count() != 1 && !a.quiet),  // 0: unknown
         timings_(segmenter.backend() == Backend::kVulkan) {}
 
@@ -273,7 +283,6 @@ class SegmentRun {
       Note(in.note);
       if (step == SourceStep::kFailed) {
         while (!jobs_.empty()) Finish();
-        if (mcap_) mcap_->Copy(in, false);
         Fail(in, error);
         continue;
       }
@@ -283,11 +292,14 @@ class SegmentRun {
         jobs_.push_back(std::move(in));
       } catch (const std::exception& e) {
         while (!jobs_.empty()) Finish();
-        if (mcap_) mcap_->Copy(in, true);
         Fail(in, Where(in) + ": " + e.what());
       }
     }
     while (!jobs_.empty()) Finish();
+    if (drive_out_) {
+      drive_out_->Close();
+      CopyProblems();
+    }
     if (a_.timings) progress_.Print(stdout, timings_.Medians());
     return failures_;
   }
@@ -336,6 +348,14 @@ class SegmentRun {
     if (in.has_message || !in.from_drive) progress_.Step();  // a damaged part is no message
   }
 
+  // The damaged parts the whole-drive output met while copying, above the progress and counted.
+  void CopyProblems() {
+    for (const std::string& problem : drive_out_->TakeProblems()) {
+      ++failures_;
+      progress_.Print(stderr, "lpir-gseg segment: error: " + problem + "\n");
+    }
+  }
+
   // Collects the oldest frame in flight and writes what it gives.
   void Finish() {
     const FrameInput job = std::move(jobs_.front());
@@ -368,6 +388,7 @@ class SegmentRun {
       else
         Fail(job, Where(job) + ": " + e.what());
     }
+    if (drive_out_) CopyProblems();
   }
 
   // The labels as a .label file, a labelled cloud or a labelled message, and with --images the
@@ -375,9 +396,8 @@ class SegmentRun {
   std::string Write(const FrameInput& job, const Frame& frame) const {
     const fs::path out(a_.out_dir);
     std::string name;
-    if (a_.format == "mcap") {
-      mcap_->Copy(job, true);
-      mcap_->AddLabelled(job, frame.label);
+    if (drive_out_) {
+      drive_out_->AddLabelled(job, frame.label);
     } else if (a_.format == "label") {
       std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
       name = job.stem + ".label";
@@ -418,9 +438,9 @@ class SegmentRun {
   const SegmentArgs& a_;
   Segmenter& segmenter_;
   FrameSource& source_;
-  FrameReport* report_;  // optional, not owned (also index_, mcap_)
+  FrameReport* report_;  // optional, not owned (also index_, drive_out_)
   DriveIndex* index_;
-  LabelledMcap* mcap_;
+  LabelledDrive* drive_out_;
   Progress progress_;
   Timings timings_;
   std::deque<FrameInput> jobs_;
@@ -454,8 +474,8 @@ std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic
   size_t count = 0;  // a range's share is unknown
   for (const DriveTopic& t : topics)
     if (t.name == *topic && a.chunks.first == 0) count = size_t(t.messages);
-  return ReadAhead(
-      OpenDriveSource(drive, std::move(reader), *topic, a.chunks, count, a.format == "mcap"));
+  return ReadAhead(OpenDriveSource(drive, std::move(reader), *topic, a.chunks, count,
+                                   a.format == "mcap" || a.format == "bag"));
 }
 
 }  // namespace
@@ -483,15 +503,17 @@ int RunSegment(int argc, char** argv) {
   if (!a.report.empty())
     report = std::make_unique<FrameReport>(a.report, BackendName(segmenter), DeviceName(segmenter));
   std::unique_ptr<DriveIndex> index;
-  std::unique_ptr<LabelledMcap> mcap;
+  std::unique_ptr<LabelledDrive> drive_out;
   if (a.drive) index = std::make_unique<DriveIndex>((out / "index.csv").string());
-  if (a.format == "mcap") {
-    const fs::path mcap_path = out / (fs::path(a.inputs[0]).stem().string() + ".mcap");
+  if (a.format == "mcap" || a.format == "bag") {
+    const fs::path path = out / (fs::path(a.inputs[0]).stem().string() + "." + a.format);
     std::error_code ec;
-    if (fs::equivalent(mcap_path, a.inputs[0], ec))
-      throw std::invalid_argument(mcap_path.string() +
-                                  " is the drive being read: give --format mcap another --out");
-    mcap = std::make_unique<LabelledMcap>(mcap_path.string(), topic);
+    if (fs::equivalent(path, a.inputs[0], ec))
+      throw std::invalid_argument(path.string() + " is the drive being read: give --format " +
+                                  a.format + " another --out");
+    drive_out = std::make_unique<LabelledDrive>(
+        a.inputs[0], path.string(), topic,
+        a.format == "bag" ? LabelledDrive::Format::kBag : LabelledDrive::Format::kMcap);
   }
   const std::string on =
       segmenter.backend() == Backend::kVulkan ? segmenter.backend_note() : "the CPU reference";
@@ -506,10 +528,9 @@ int RunSegment(int argc, char** argv) {
   size_t failures = 0;
   std::string summary;
   {
-    SegmentRun run(a, segmenter, *source, report.get(), index.get(), mcap.get());
+    SegmentRun run(a, segmenter, *source, report.get(), index.get(), drive_out.get());
     failures = run.Run();
     if (index) index->Close();
-    if (mcap) mcap->Close();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (report) report->Close(run.frames(), failures, seconds);
@@ -528,6 +549,7 @@ int RunSegment(int argc, char** argv) {
                 " invalid points (NaN/Inf, at the origin or out of range: non-ground)";
       const std::string outputs = a.format == "label"  ? "labels"
                                   : a.format == "mcap" ? "labelled MCAP"
+                                  : a.format == "bag"  ? "labelled bag"
                                                        : a.format + " clouds";
       line += "; " + outputs + " in " + a.out_dir + "\n";
       summary = line;

@@ -16,13 +16,20 @@ bool IsDriveFile(const std::string& path) {
   return ext == ".mcap" || ext == ".db3" || ext == ".bag";
 }
 
-std::unique_ptr<DriveReader> OpenDrive(const std::string& path, unsigned read_threads) {
+DriveFormat DriveFormatOf(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
-  const unsigned threads = ReadThreads(read_threads);
-  if (ext == ".mcap") return OpenMcap(path, threads);
-  if (ext == ".db3") return OpenDb3(path);
-  if (ext == ".bag") return OpenRos1Bag(path, threads);
+  if (ext == ".mcap") return DriveFormat::kMcap;
+  if (ext == ".db3") return DriveFormat::kDb3;
+  if (ext == ".bag") return DriveFormat::kRos1Bag;
   throw IoError(path, "not a recorded drive: the extension must be .mcap, .db3 or .bag");
+}
+
+std::unique_ptr<DriveReader> OpenDrive(const std::string& path, unsigned read_threads) {
+  const DriveFormat format = DriveFormatOf(path);
+  const unsigned threads = ReadThreads(read_threads);
+  if (format == DriveFormat::kMcap) return OpenMcap(path, threads);
+  if (format == DriveFormat::kDb3) return OpenDb3(path);
+  return OpenRos1Bag(path, threads);
 }
 
 Cloud DecodeDriveCloud(const std::string& where, const DriveMessage& message) {

@@ -74,6 +74,9 @@ class DriveReader {
 
 // True for the extensions OpenDrive accepts: .mcap, .db3, .bag.
 bool IsDriveFile(const std::string& path);
+enum class DriveFormat { kMcap, kDb3, kRos1Bag };
+// The format of `path` by its extension; IoError naming it for another extension.
+DriveFormat DriveFormatOf(const std::string& path);
 // The reader for `path` by its extension. IoError naming the file when it is missing, of an
 // unknown extension, or has no valid header (magic, version, schema). `read_threads`: the
 // threads that decompress chunks ahead of Next (chunk_pool.h; 1: none, Next decompresses each

@@ -41,3 +41,20 @@ write_drives() {
       --compression "${compression}" --topic "${topic}" "${bag_chunk[@]}" "$@"
   done
 }
+
+# write_full_drives DIR STEM TOPIC SCRATCH FRAME.bin...: the frames on TOPIC with the other
+# topics, metadata and attachment of extras.mjs, as DIR/STEM_full.mcap (zstd), DIR/STEM_full.db3
+# (Jazzy's schema, with message definitions) and DIR/STEM_full.bag (lz4), chunks of about 64 KiB.
+# SCRATCH holds the CDR messages the .db3 is made from, removed after.
+write_full_drives() {
+  local dir="$1" stem="$2" topic="$3" scratch="$4"
+  shift 4
+  node "${tools}/write_mcap.mjs" --out "${dir}/${stem}_full.mcap" --compression zstd \
+    --topic "${topic}" --chunk-size 65536 --extras 1 "$@"
+  node "${tools}/write_cdr.mjs" --out-dir "${scratch}/frames" --extras-dir "${scratch}/extras" "$@"
+  "${python}" "${tools}/write_db3.py" --cdr-dir "${scratch}/frames" --out "${dir}/${stem}_full.db3" \
+    --topic "${topic}" --extras-dir "${scratch}/extras"
+  rm -rf "${scratch}"
+  "${python}" "${tools}/write_bag.py" --out "${dir}/${stem}_full.bag" --compression lz4 \
+    --topic "${topic}" --chunk-threshold 65536 --extras "$@"
+}
