@@ -176,9 +176,18 @@ TEST_F(CliExitCodes, Evaluate) {
   r = Cli("evaluate" + pred + gt + " --protocol kitti");
   EXPECT_EQ(r.code, 2);
   EXPECT_TRUE(Has(r.err, "unknown protocol 'kitti'")) << r.err;
-  r = Cli("evaluate" + pred + gt);
-  EXPECT_EQ(r.code, 2);
-  EXPECT_TRUE(Has(r.err, "--protocol is required")) << r.err;
+  r = Cli("evaluate" + pred + gt);  // DG by default
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(Has(r.out, "DG")) << r.out;
+
+  // Some predictions missing: named, the rest scored.
+  fs::create_directories(Dir() + "/gt2");
+  fs::copy_file(Dir() + "/scan.label", Dir() + "/gt2/scan.label");
+  fs::copy_file(Dir() + "/scan.label", Dir() + "/gt2/other.label");
+  r = Cli("evaluate" + pred + " --gt " + Dir() + "/gt2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(Has(r.err, Dir() + "/pred/other.label")) << r.err;
+  EXPECT_TRUE(Has(r.out, "scan ")) << r.out;
 
   r = Cli("evaluate --pred " + Dir() + "/nopred" + gt + " --protocol dg");
   EXPECT_EQ(r.code, 4);
