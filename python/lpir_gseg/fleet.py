@@ -357,15 +357,14 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
     if scheduler is None and workers < 1:
         raise ValueError("workers must be at least 1")
     files = list_inputs(inputs)
-    outputs: Dict[str, str] = {}
     jobs: List[Tuple[str, str]] = []  # cloud files
     drive_jobs: List[Tuple[str, str]] = []  # drives and their folders
-    for path in files:
-        drive = lpir_gseg.is_drive_file(path)
-        target = os.path.join(out, Path(path).stem + ("" if drive else ".label"))
-        if target in outputs:
-            raise ValueError(f"{outputs[target]} and {path} would both write {target}")
-        outputs[target] = path
+    drives = [lpir_gseg.is_drive_file(path) for path in files]
+    # the command line's rule (host/io/output_paths.h): ValueError naming both inputs when two
+    # would write one output, before anything is written
+    runs = [(path, "", drive) for path, drive in zip(files, drives)]
+    targets = lpir_gseg._core._output_paths(runs, out, ".label")
+    for path, drive, target in zip(files, drives, targets):
         (drive_jobs if drive else jobs).append((path, target))
     profile_text = None
     if os.path.isfile(sensor):

@@ -1,6 +1,7 @@
 """python3 -m lpir_gseg.fleet on a 2-worker LocalCluster on 127.0.0.1: 12 scans and a truncated
 one give the command line's 12 .label files byte for byte, the bad file named, exit code 1; the
 same through --scheduler; one segmenter per worker process for the whole run."""
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 
 import lpir_gseg
-from conftest import run_cli, vulkan  # noqa: F401 (a fixture)
+from conftest import REPO, run_cli, vulkan  # noqa: F401 (a fixture)
 
 pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
 
@@ -135,8 +136,22 @@ def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
     (tmp_path / "b").mkdir()
     for folder in "ab":
         np.zeros((1, 4), np.float32).tofile(tmp_path / folder / "x.bin")
+    # two inputs of one output: both named, nothing written (the command line's rule)
     result = fleet(tmp_path / "a", tmp_path / "b", "--sensor", "hdl64e", "--out", tmp_path / "o")
-    assert result.returncode == 2 and "would both write" in result.stderr
+    assert result.returncode == 2
+    assert (f"{tmp_path / 'a' / 'x.bin'} and {tmp_path / 'b' / 'x.bin'} would both write "
+            f"{tmp_path / 'o' / 'x.label'}") in result.stderr
+    assert not (tmp_path / "o").exists()
+    # two drives of one name would share their folder and its index.csv
+    for folder in "ab":
+        shutil.copyfile(REPO / "tests" / "data" / "drives" / "vlp16_zstd.mcap",
+                        tmp_path / folder / "drive.mcap")
+    result = fleet(tmp_path / "a" / "drive.mcap", tmp_path / "b" / "drive.mcap", "--sensor",
+                   "vlp16", "--out", tmp_path / "o")
+    assert result.returncode == 2
+    assert (f"{tmp_path / 'a' / 'drive.mcap'} and {tmp_path / 'b' / 'drive.mcap'} would both "
+            f"write {tmp_path / 'o' / 'drive'}") in result.stderr
+    assert not (tmp_path / "o").exists()
     result = fleet(scans, "--sensor", "hdl64e", "--out", tmp_path / "o", "--workers", 1,
                    "--scheduler", "tcp://127.0.0.1:1")
     assert result.returncode == 2 and "not allowed with" in result.stderr
