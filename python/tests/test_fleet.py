@@ -125,6 +125,34 @@ def test_a_profile_file_travels_to_the_workers(scans, cli_out, tmp_path):
         assert (out / name).read_bytes() == (cli_out / name).read_bytes()
 
 
+def test_settings_reach_the_workers_as_segment_set_takes_them(cli, scans, tmp_path):
+    files = [scans / f"{seed:06}.bin" for seed in range(3)]
+    settings = ["--set", "sensor_height=1.9", "--set", "max_range=40", "--set", "h_athr=0.15"]
+    expected = tmp_path / "cli"
+    result = run_cli(cli, "segment", *files, "-s", "hdl64e", "-b", "cpu", "-q", "-o", expected,
+                     *settings)
+    assert result.returncode == 0, result.stderr
+    out = tmp_path / "out"
+    result = fleet(*files, "--sensor", "hdl64e", "--out", out, "--workers", 1, "--backend", "cpu",
+                   *settings)
+    assert result.returncode == 0, result.stderr
+    for f in files:
+        name = f.stem + ".label"
+        assert (out / name).read_bytes() == (expected / name).read_bytes(), name
+    plain = tmp_path / "plain"
+    assert run_cli(cli, "segment", files[0], "-s", "hdl64e", "-b", "cpu", "-q", "-o",
+                   plain).returncode == 0
+    assert (plain / "000000.label").read_bytes() != (out / "000000.label").read_bytes()
+    # a misspelt setting: the library's message, before any cluster
+    result = fleet(*files, "--sensor", "hdl64e", "--out", tmp_path / "bad", "--set",
+                   "sensr_height=1.9")
+    assert result.returncode == 2
+    assert "no setting 'sensr_height' (did you mean sensor_height?)" in result.stderr
+    assert not (tmp_path / "bad").exists()
+    result = fleet(*files, "--sensor", "hdl64e", "--out", tmp_path / "bad", "--set", "x")
+    assert result.returncode == 2 and "--set expects NAME=VALUE" in result.stderr
+
+
 def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
     result = fleet(scans, "--sensor", "nope", "--out", tmp_path / "o", "--workers", 1)
     assert result.returncode == 2 and "unknown sensor profile 'nope'" in result.stderr
