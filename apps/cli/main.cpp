@@ -41,7 +41,8 @@ const char kUsage[] =
     "  help [COMMAND|exit-codes]   a command's help (as COMMAND --help), or the exit codes\n"
     "  --version        the version, the git commit built and which backends this machine has\n"
     "options: --opt VALUE or --opt=VALUE; short forms -s --sensor, -o --out, -b --backend,\n"
-    "  -f --format, -t --topic, -p --protocol, -r --recursive, -q --quiet, -v --verbose, -h --help\n";
+    "  -f --format, -t --topic, -p --protocol, -r --recursive, -q --quiet, -v --verbose,\n"
+    "  -h --help\n";
 
 // "lpir-gseg 0.1.0 (commit abc123)", then one line per backend: the CPU reference is always
 // there; Vulkan names the device `segment --backend vulkan` takes, or says why there is none.
