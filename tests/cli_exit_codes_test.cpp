@@ -155,6 +155,9 @@ TEST_F(CliExitCodes, Segment) {
   r = Cli("segment " + Scan() + " --sensor " + Dir() + "/bad_profile.txt" + out);
   EXPECT_EQ(r.code, 4);
   EXPECT_TRUE(Has(r.err, Dir() + "/bad_profile.txt")) << r.err;
+  r = Cli("segment " + Scan() + " --sensor " + Dir() + "/missing_profile.txt" + out);
+  EXPECT_EQ(r.code, 4);
+  EXPECT_TRUE(Has(r.err, Dir() + "/missing_profile.txt: no such sensor profile file")) << r.err;
   r = Cli("segment " + Scan() + " --sensor vlp16 --backend vulkan" + out, kNoVulkan);
   EXPECT_EQ(r.code, 4);
   EXPECT_TRUE(Has(r.err, "the Vulkan backend could not be set up")) << r.err;

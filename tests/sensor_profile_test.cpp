@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -314,10 +315,17 @@ TEST(SensorProfile, MissingTableReportedAtTheEnd) {
   }
 }
 
-TEST(SensorProfile, MissingFileIsUnknownAndUnwritableFolderAnIoError) {
+TEST(SensorProfile, MissingFileAndUnwritableFolderAreIoErrorsAnUnknownNameInvalid) {
   test::ScopedDir scoped;
   const std::string& dir = scoped.path;
-  EXPECT_THROW(LoadSensorProfile(dir + "/absent.txt", dir), std::invalid_argument);
+  try {
+    LoadSensorProfile(dir + "/absent.txt", dir);
+    ADD_FAILURE() << "a missing profile file was read";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/absent.txt: no such sensor profile file");
+    EXPECT_EQ(e.error_number(), ENOENT);
+  }
+  EXPECT_THROW(LoadSensorProfile("absent", dir), std::invalid_argument);  // a name: none such
   EXPECT_THROW(WriteSensorProfile(dir + "/no/such/folder.txt",
                                   LoadSensorProfile("vlp16", test::SensorsDir())),
                IoError);

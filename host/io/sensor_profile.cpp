@@ -292,6 +292,9 @@ SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::stri
   }
   if (IsFile(name_or_path)) return LoadFile(name_or_path);
   const std::vector<std::string> names = KnownSensorProfiles(sensors_dir);
+  // a path (it names a folder) to a file that is not there: a missing file, not a bad name
+  if (name_or_path.find('/') != std::string::npos)
+    throw IoError(name_or_path, "no such sensor profile file", ENOENT);
   std::string known;
   for (const std::string& k : names) known += std::string(known.empty() ? "" : ", ") + k;
   throw std::invalid_argument(

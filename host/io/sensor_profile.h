@@ -14,9 +14,10 @@ namespace lpir {
 std::string DefaultSensorsDir();
 
 // `name_or_path` is a profile name (sensors_dir/<name>.txt) or a path to a profile file.
-// std::invalid_argument listing the known names when neither exists; IoError naming the file and
-// line for a malformed profile (unknown key, unknown parameter override, bad number, elevation
-// table not matching `beams` or not descending, ...).
+// std::invalid_argument listing the known names (and the nearest one) for a name that is none;
+// IoError (errno ENOENT) for a path, holding a '/', to a file that does not exist; IoError naming
+// the file and line for a malformed profile (unknown key, unknown parameter override, bad number,
+// elevation table not matching `beams` or not descending, ...).
 SensorProfile LoadSensorProfile(const std::string& name_or_path,
                                 const std::string& sensors_dir = DefaultSensorsDir());
 // Names of the profiles in sensors_dir (file stems), sorted.

@@ -257,6 +257,7 @@ Raises:
     ValueError: an unknown sensor name, backend or bad option; in params an unknown name (the
         message names the nearest known one) or a value it does not take.
     TypeError: params not a dict, or a value that is not a number.
+    FileNotFoundError: a profile path (holding a '/') to a file that does not exist.
     OSError: a malformed profile file (the message names the file and line).
     RuntimeError: backend="vulkan" (or a device named) and no device could be set up.
 

@@ -177,6 +177,8 @@ def test_bad_segmenter_arguments(tmp_path):
         lpir_gseg.Segmenter("hdl64e", max_points=0)
     with pytest.raises(TypeError):
         lpir_gseg.Segmenter("hdl64e", max_points=1.5)
+    with pytest.raises(FileNotFoundError, match="absent.txt: no such sensor profile file"):
+        lpir_gseg.Segmenter(tmp_path / "absent.txt")
     profile = tmp_path / "broken.txt"
     profile.write_text("name broken\nbeams sixty-four\n")
     with pytest.raises(OSError, match="broken.txt"):
