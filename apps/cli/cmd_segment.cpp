@@ -12,9 +12,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,6 +30,7 @@
 #include "apps/cli/frame_source.h"
 #include "apps/cli/invalid_reasons.h"
 #include "apps/cli/progress.h"
+#include "apps/cli/sensor_args.h"
 #include "apps/cli/timing.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
@@ -35,7 +39,7 @@
 #include "host/io/cloud_file.h"
 #include "host/io/io_error.h"
 #include "host/io/label_file.h"
-#include "host/io/sensor_profile.h"
+#include "host/io/output_paths.h"
 #include "host/segmenter.h"
 
 namespace fs = std::filesystem;
@@ -46,12 +50,18 @@ namespace {
 const char kHelp[] =
     "usage: lpir-gseg segment INPUT... --sensor NAME --out DIR [options]\n"
     "       lpir-gseg segment DRIVE [--topic T] --sensor NAME --out DIR [options]\n"
-    "  INPUT            cloud files (.bin KITTI, .pcd, .ply) or folders of them\n"
+    "  (--opt VALUE and --opt=VALUE alike; -s, -o, -b, -f, -t, -r, -q, -v: the short forms)\n"
+    "  INPUT            cloud files (.bin KITTI, .pcd, .ply) or folders of them; each writes\n"
+    "                   DIR/<its name>.label, a file found in a folder DIR/<its path below that\n"
+    "                   folder>.label. Two inputs that would write one output are refused,\n"
+    "                   naming both, before anything is written\n"
+    "  -r, --recursive  folders: also the cloud files of their subfolders, at the same paths\n"
+    "                   below DIR (kitti/00/velodyne/000000.bin -> DIR/00/velodyne/000000.label)\n"
     "  DRIVE            one recorded drive (.mcap or .db3 ROS 2, .bag ROS 1), on its own: every\n"
     "                   sensor_msgs/PointCloud2 message of the topic is labelled as\n"
     "                   DIR/<sequence, 6 digits>_<header stamp in ns>.label and listed in\n"
     "                   DIR/index.csv (sequence,stamp_ns,topic,points,ground_fraction,ms,file)\n"
-    "  --topic T        the drive's topic (needless when it has one PointCloud2 topic;\n"
+    "  -t, --topic T    the drive's topic (needless when it has one PointCloud2 topic;\n"
     "                   `lpir-gseg topics DRIVE` lists them)\n"
     "  --chunks A:B     only the messages in the drive's chunks A to B (numbered from 1;\n"
     "                   `lpir-gseg topics DRIVE --chunks` counts them), named and indexed with\n"
@@ -59,9 +69,12 @@ const char kHelp[] =
     "                   without decompressing them when the drive has an index\n"
     "  --read-threads N threads decompressing a drive's chunks ahead (1 to 64; default: the\n"
     "                   CPU count, at most 8, or LPIR_READ_THREADS; 1: decompressed in turn)\n"
-    "  --sensor NAME    sensor profile (hdl64e, hdl32e, vlp32c, os1-64, ...) or a profile file\n"
-    "  --out DIR        where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go\n"
-    "  --format F       label (default), pcd or ply: the cloud with a label field instead;\n"
+    "  -s, --sensor NAME\n"
+    "                   sensor profile (hdl64e, hdl32e, vlp32c, os1-64, ...) or a profile "
+    "file\n" LPIR_SET_HELP
+    "  -o, --out DIR    where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go;\n"
+    "                   made when the first output is written\n"
+    "  -f, --format F   label (default), pcd or ply: the cloud with a label field instead;\n"
     "                   mcap (a drive only): DIR/<drive stem>.mcap, every topic of the drive as\n"
     "                   it was plus <topic>/labelled (a uint32 label field), <topic>/ground\n"
     "                   and <topic>/nonground; bag (a ROS 1 .bag only): the same as a ROS 1 bag\n"
@@ -73,7 +86,7 @@ const char kHelp[] =
     "  --gt PATH        ground truth .label file or folder (matched by stem) for the pictures\n"
     "  --max-points N   largest cloud accepted (default: the sensor's beams x width x 2, one\n"
     "                   point a pixel and as many second returns; 262144 for hdl64e)\n"
-    "  --backend B      vulkan (any device, lavapipe included), cpu (the reference) or auto\n"
+    "  -b, --backend B  vulkan (any device, lavapipe included), cpu (the reference) or auto\n"
     "                   (default: Vulkan on a GPU, else the reference with a note saying why;\n"
     "                   a CPU driver such as lavapipe only with vulkan or --device). Both give\n"
     "                   the same bytes\n"
@@ -82,27 +95,52 @@ const char kHelp[] =
     "                   relabelling of a folder; default 1)\n"
     "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
     "                   the CPU) and their medians at the end\n"
-    "  --quiet          errors only (nothing on success)\n"
-    "  --verbose        also a line first naming the backend, and a line per frame (the figures\n"
+    "  -q, --quiet      errors only (nothing on success)\n"
+    "  -v, --verbose    also a line first naming the backend, and a line per frame (the figures\n"
     "                   of --report)\n"
     "Environment: LPIR_VK_VALIDATION=1 turns the Vulkan validation layer on.\n";
 
-// Input clouds: files as given, folders expanded to their cloud files in name order.
-std::vector<std::string> ListInputs(const std::vector<std::string>& inputs) {
-  std::vector<std::string> files;
+// The cloud files in `folder`, and with `recursive` in its subfolders too (not following links
+// to folders), sorted by path.
+std::vector<std::string> CloudFilesIn(const std::string& folder, bool recursive) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  auto take = [&found](const fs::directory_entry& entry) {
+    std::error_code file_ec;
+    if (entry.is_regular_file(file_ec) && IsCloudFile(entry.path().string()))
+      found.push_back(entry.path().string());
+  };
+  if (recursive) {
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+      take(*it);
+  } else {
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) take(*it);
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+// Input clouds: files as given, folders expanded to their cloud files in path order (with
+// `recursive`, their subfolders' too), each with the folder it was found in (OutputPath).
+// std::invalid_argument for a folder without cloud files, saying so when its subfolders hold some.
+std::vector<RunInput> ListInputs(const std::vector<std::string>& inputs, bool recursive) {
+  std::vector<RunInput> files;
   for (const std::string& in : inputs) {
     std::error_code ec;
-    if (fs::is_directory(in, ec)) {
-      std::vector<std::string> found;
-      for (const auto& entry : fs::directory_iterator(in, ec))
-        if (entry.is_regular_file() && IsCloudFile(entry.path().string()))
-          found.push_back(entry.path().string());
-      if (found.empty()) throw std::invalid_argument(in + ": folder holds no cloud files");
-      std::sort(found.begin(), found.end());
-      files.insert(files.end(), found.begin(), found.end());
-    } else {
-      files.push_back(in);  // a missing file is reported when it is read
+    if (!fs::is_directory(in, ec)) {
+      files.push_back({in, "", false});  // a missing file is reported when it is read
+      continue;
     }
+    const std::vector<std::string> found = CloudFilesIn(in, recursive);
+    if (found.empty()) {
+      const size_t below = recursive ? 0 : CloudFilesIn(in, true).size();
+      throw std::invalid_argument(
+          in + ": folder holds no cloud files" +
+          (below ? ", but its subfolders hold " + std::to_string(below) +
+                       ": --recursive (-r) segments them, each to its path below the folder"
+                 : ""));
+    }
+    for (const std::string& f : found) files.push_back({f, in, false});
   }
   return files;
 }
@@ -153,9 +191,12 @@ struct SegmentArgs {
   std::vector<std::string> inputs;
   std::string sensor, out_dir, format, gt, topic, report;
   bool images = false, has_gt = false, quiet = false, verbose = false, timings = false;
-  bool drive = false;         // inputs is one recorded drive
-  ChunkRange chunks;          // --chunks (first 0: every chunk)
-  unsigned read_threads = 0;  // --read-threads (0: DefaultReadThreads)
+  bool drive = false;                          // inputs is one recorded drive
+  bool recursive = false;                      // --recursive
+  std::vector<RunInput> files;                 // the cloud files (not for a drive)
+  std::map<std::string, std::string> outputs;  // a cloud file -> its output (OutputPaths)
+  ChunkRange chunks;                           // --chunks (first 0: every chunk)
+  unsigned read_threads = 0;                   // --read-threads (0: DefaultReadThreads)
   SegmenterOptions options;
   ReadOptions read;
 };
@@ -242,6 +283,22 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   a.verbose = args.Has("--verbose");
   if (a.quiet && a.verbose) throw std::invalid_argument("--quiet and --verbose exclude each other");
   a.timings = args.Has("--timings");
+  a.recursive = args.Has("--recursive");
+  if (a.recursive && a.drive) throw std::invalid_argument("--recursive is for folders of clouds");
+  CheckOutputFolder(a.out_dir);
+  if (!a.drive) {
+    a.files = ListInputs(a.inputs, a.recursive);
+    std::vector<std::string> outputs;
+    try {
+      outputs = OutputPaths(a.files, a.out_dir, "." + a.format);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string(e.what()) +
+                                  "; nothing written (each output is named after its input's "
+                                  "path below the folder given; --recursive keeps subfolders "
+                                  "apart)");
+    }
+    for (size_t i = 0; i < a.files.size(); ++i) a.outputs[a.files[i].path] = outputs[i];
+  }
   return a;
 }
 
@@ -392,27 +449,33 @@ class SegmentRun {
   }
 
   // The labels as a .label file, a labelled cloud or a labelled message, and with --images the
-  // pictures; returns the name written inside DIR ("" for a message).
-  std::string Write(const FrameInput& job, const Frame& frame) const {
+  // pictures; returns the name written inside DIR ("" for a message). A file's output is its
+  // OutputPath (a_.outputs), its folder made first; a message's is DIR/<stem>.
+  std::string Write(const FrameInput& job, const Frame& frame) {
     const fs::path out(a_.out_dir);
-    std::string name;
+    const auto planned = a_.outputs.find(job.input);
+    const fs::path path = planned != a_.outputs.end() && !job.from_drive
+                              ? fs::path(planned->second)
+                              : out / (job.stem + "." + a_.format);
+    const std::string name = path.lexically_relative(out).string();
+    if (!drive_out_ && made_.insert(path.parent_path().string()).second)
+      MakeOutputFolder(path.parent_path().string());
     if (drive_out_) {
       drive_out_->AddLabelled(job, frame.label);
     } else if (a_.format == "label") {
       std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
-      name = job.stem + ".label";
-      WriteLabelFile((out / name).string(), labels);
+      WriteLabelFile(path.string(), labels);
     } else {
-      name = job.stem + "." + a_.format;
-      WriteLabelledCloud((out / name).string(), job.cloud, frame.label,
+      WriteLabelledCloud(path.string(), job.cloud, frame.label,
                          a_.format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
     }
-    if (!a_.images) return name;
+    if (!a_.images) return drive_out_ ? "" : name;
     std::vector<uint8_t> truth;
     if (a_.has_gt) truth = LoadTruth(a_.gt, job.stem, job.cloud.size());
-    WriteImages((out / "images").string(), job.stem, job.cloud, frame, segmenter_.params(),
-                truth.empty() ? nullptr : &truth);
-    return name;
+    // beside the outputs' subfolders: DIR/images/<the output's folder below DIR>
+    WriteImages((out / "images" / fs::path(name).parent_path()).string(), job.stem, job.cloud,
+                frame, segmenter_.params(), truth.empty() ? nullptr : &truth);
+    return drive_out_ ? "" : name;
   }
 
   // "<stem>: N points, G % ground, T ms", and the invalid points by reason when there are any:
@@ -444,6 +507,7 @@ class SegmentRun {
   Progress progress_;
   Timings timings_;
   std::deque<FrameInput> jobs_;
+  std::set<std::string> made_;  // output folders made so far
   size_t failures_ = 0;
   size_t frames_ = 0;   // segmented and written
   size_t invalid_ = 0;  // points of those frames labelled invalid
@@ -455,7 +519,11 @@ class SegmentRun {
 // A drive whose topics cannot be listed (damage where a .db3 keeps its counts) is still read
 // up to the damage when --topic names the topic: a warning then, and no count for the progress.
 std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic) {
-  if (!a.drive) return ReadAhead(OpenFileSource(ListInputs(a.inputs), a.read));
+  if (!a.drive) {
+    std::vector<std::string> files;
+    for (const RunInput& f : a.files) files.push_back(f.path);
+    return ReadAhead(OpenFileSource(std::move(files), a.read));
+  }
   const std::string& drive = a.inputs[0];
   std::unique_ptr<DriveReader> reader = OpenDrive(drive, a.read_threads);
   std::vector<DriveTopic> topics;
@@ -481,24 +549,26 @@ std::unique_ptr<FrameSource> OpenSource(const SegmentArgs& a, std::string* topic
 }  // namespace
 
 int RunSegment(int argc, char** argv) {
-  const Args args(argc, argv,
-                  {"--images", "--nuscenes", "--quiet", "--verbose", "--timings", "--help"},
-                  {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device",
-                   "--batch", "--topic", "--report", "--chunks", "--read-threads"});
+  const Args args(
+      argc, argv,
+      {"--images", "--nuscenes", "--quiet", "--verbose", "--timings", "--recursive", "--help"},
+      {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device", "--batch",
+       "--topic", "--report", "--chunks", "--read-threads"},
+      {"--set"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(kExitCodesLine, stdout);
     return kExitOk;
   }
   const SegmentArgs a = ParseSegmentArgs(args);
-  const SensorProfile sensor = LoadSensorProfile(a.sensor, SensorsDir());
+  const SensorProfile sensor = LoadProfileWithSettings(a.sensor, args);
   std::string topic;
   std::unique_ptr<FrameSource> source = OpenSource(a, &topic);
   Segmenter segmenter(sensor, a.options);
   if (!a.quiet && a.options.backend == Backend::kAuto && segmenter.backend() == Backend::kCpu)
     std::fprintf(stderr, "lpir-gseg segment: note: %s\n", segmenter.backend_note().c_str());
-  fs::create_directories(a.out_dir);
   const fs::path out(a.out_dir);
+  if (a.drive) MakeOutputFolder(a.out_dir);  // a cloud file's folder: when its output is written
   std::unique_ptr<FrameReport> report;
   if (!a.report.empty())
     report = std::make_unique<FrameReport>(a.report, BackendName(segmenter), DeviceName(segmenter));
@@ -535,23 +605,26 @@ int RunSegment(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (report) report->Close(run.frames(), failures, seconds);
     if (!a.quiet) {
-      // "segmented 30 of 30 files with sensor 'S' on X in 1.2 s (25.0 frames/s), 0 failed, 12
-      // invalid points (...); labels in OUT"
+      // "segmented 30 of 30 files on X in 1.20 s, 25.0 frames/s, 2 failed, 12 invalid points
+      // (non-ground); labels in OUT": short, so that beside the note above it fits 120 columns
+      // with a folder of some 35 characters; the failures only when there are some (the last
+      // line counts them too); the sensor, and the invalid points by reason, with --verbose
       char buf[128];
-      std::snprintf(buf, sizeof(buf), " in %.2f s (%.1f frames/s), %zu failed", seconds,
-                    seconds > 0 ? double(run.frames()) / seconds : 0.0, failures);
+      std::snprintf(buf, sizeof(buf), " in %.2f s, %.1f frames/s", seconds,
+                    seconds > 0 ? double(run.frames()) / seconds : 0.0);
+      if (failures) std::snprintf(buf + std::strlen(buf), 32, ", %zu failed", failures);
       // a drive whose count is unknown (0): "segmented 2 messages of /points in D ..."
       const std::string of = total || !a.drive ? " of " + std::to_string(total) : "";
-      std::string line = "segmented " + std::to_string(run.frames()) + of + " " + what +
-                         " with sensor '" + segmenter.sensor().name + "' on " + on + buf;
+      std::string line =
+          "segmented " + std::to_string(run.frames()) + of + " " + what + " on " + on + buf;
       if (run.invalid())
-        line += ", " + std::to_string(run.invalid()) +
-                " invalid points (NaN/Inf, at the origin or out of range: non-ground)";
+        line += ", " + std::to_string(run.invalid()) + " invalid points (non-ground)";
       const std::string outputs = a.format == "label"  ? "labels"
                                   : a.format == "mcap" ? "labelled MCAP"
                                   : a.format == "bag"  ? "labelled bag"
                                                        : a.format + " clouds";
-      line += "; " + outputs + " in " + a.out_dir + "\n";
+      line += run.frames() || a.drive ? "; " + outputs + " in " + a.out_dir + "\n"
+                                      : "; nothing written\n";
       summary = line;
     }
   }  // the progress line ends here, above the summary

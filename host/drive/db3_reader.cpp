@@ -210,10 +210,13 @@ class Db3File {
   explicit Db3File(const std::string& path) : path_(path) {
     struct stat info;
     if (stat(path.c_str(), &info) != 0) {
-      throw IoError(path, errno == ENOENT ? std::string("no such file")
-                                          : std::string("cannot open: ") + std::strerror(errno));
+      const int error = errno;
+      throw IoError(path,
+                    error == ENOENT ? std::string("no such file")
+                                    : std::string("cannot open: ") + std::strerror(error),
+                    error);
     }
-    if (S_ISDIR(info.st_mode)) throw IoError(path, "is a folder, not a .db3 file");
+    if (S_ISDIR(info.st_mode)) throw IoError(path, "is a folder, not a .db3 file", EISDIR);
     if (info.st_size == 0) throw IoError(path, "empty file, not a ROS 2 bag");
     const int rc = sqlite3_open_v2(ImmutableUri(path).c_str(), &database_.db,
                                    SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,

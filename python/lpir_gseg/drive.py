@@ -28,9 +28,15 @@ def drive_topics(path) -> List[DriveTopic]:
     return [DriveTopic(*t) for t in _core._Drive(path).topics()]
 
 
+def _listed(topics: List[DriveTopic]) -> str:
+    """"/a (sensor_msgs/msg/PointCloud2, 3 messages), /b (...)", or "none"."""
+    return ", ".join(f"{t.name} ({t.type}, {t.messages} messages)" for t in topics) or "none"
+
+
 def cloud_topic(drive: "_core._Drive", topic: Optional[str]) -> str:
-    """`topic` when given (OSError naming the drive unless it is a PointCloud2 topic of it), else
-    the drive's only PointCloud2 topic (OSError listing them when there are none or several), as
+    """`topic` when given (ValueError naming the drive and listing its topics unless it is a
+    PointCloud2 topic of it), else the drive's only PointCloud2 topic (ValueError listing them
+    when there are several; OSError when there is none: the file, not the call, is at fault), as
     `lpir-gseg segment` chooses."""
     if topic is not None:
         try:
@@ -38,17 +44,21 @@ def cloud_topic(drive: "_core._Drive", topic: Optional[str]) -> str:
         except OSError:
             return topic  # counting failed (a damaged drive): select() and the reading report it
         known = {t.name: t.type for t in topics}
-        if topic in known and not known[topic].endswith("PointCloud2"):
-            raise OSError(f"{drive.path}: topic {topic} holds {known[topic]}, not "
-                          "sensor_msgs PointCloud2")
-        return topic  # an absent topic: select() raises, listing those there are
+        if topic not in known:
+            raise ValueError(f"{drive.path}: no topic {topic}; the drive has {_listed(topics)}")
+        if not known[topic].endswith("PointCloud2"):
+            raise ValueError(f"{drive.path}: topic {topic} holds {known[topic]}, not "
+                             "sensor_msgs PointCloud2")
+        return topic
     topics = [DriveTopic(*t) for t in drive.topics()]
-    clouds = [t.name for t in topics if t.type.endswith("PointCloud2")]
-    if len(clouds) != 1:
-        raise OSError(f"{drive.path}: {len(clouds)} PointCloud2 topics"
-                      + (f" ({', '.join(clouds)})" if clouds else "")
-                      + ": choose one with topic=")
-    return clouds[0]
+    clouds = [t for t in topics if t.type.endswith("PointCloud2")]
+    if not clouds:
+        raise OSError(f"{drive.path}: no sensor_msgs PointCloud2 topic; the drive has "
+                      f"{_listed(topics)}")
+    if len(clouds) > 1:
+        raise ValueError(f"{drive.path}: {len(clouds)} PointCloud2 topics ({_listed(clouds)}): "
+                         "choose one with topic=")
+    return clouds[0].name
 
 
 def read_drive(path, topic: Optional[str] = None, *, ring: bool = False,
@@ -75,9 +85,13 @@ def read_drive(path, topic: Optional[str] = None, *, ring: bool = False,
         (stamp_ns, points, ring), ring (N,) int32 or None when the message has no ring field.
 
     Raises:
-        OSError: at the call, for a missing file, an unknown extension, a file that is no drive,
-            an absent topic or one that is not PointCloud2; at the end, for damage (on_damage
-            "raise"). Each message names the file.
+        FileNotFoundError: at the call, for a missing file.
+        ValueError: at the call, for a topic the drive does not have or one that is not
+            PointCloud2, or topic=None on a drive with several PointCloud2 topics (the message
+            lists them); also for a bad on_damage.
+        OSError: at the call, for an unknown extension, a file that is no drive, a drive without
+            any PointCloud2 topic; at the end, for damage (on_damage "raise"). Each message names
+            the file.
     """
     if on_damage not in ("raise", "warn"):
         raise ValueError(f"on_damage must be 'raise' or 'warn', not {on_damage!r}")

@@ -1,7 +1,7 @@
 """Labels many scans on a Dask cluster: the fleet version of `lpir-gseg segment`.
 
     python3 -m lpir_gseg.fleet INPUT... --sensor NAME --out DIR [--topic T] [--drive-chunks K]
-                               [--scheduler tcp://HOST:PORT | --workers N]
+                               [--set NAME=VALUE]... [--scheduler tcp://HOST:PORT | --workers N]
 
 INPUTs are files or folders (a folder: its cloud files in name order), as `segment` takes them.
 Each file becomes DIR/<stem>.label, byte for byte what `lpir-gseg segment` writes. A recorded
@@ -51,6 +51,7 @@ class SegmenterConfig:
     device: Optional[str] = None
     max_points: Optional[int] = None
     nuscenes: Optional[bool] = None  # read_cloud's layout switch for .bin files
+    params: Tuple[Tuple[str, str], ...] = ()  # Segmenter(params=), as `segment --set` takes them
 
 
 def _worker_segmenter(config: SegmenterConfig) -> lpir_gseg.Segmenter:
@@ -65,7 +66,8 @@ def _worker_segmenter(config: SegmenterConfig) -> lpir_gseg.Segmenter:
             # A worker started with LPIR_GSEG_DEVICE set uses that device (one worker a GPU).
             device = os.environ.get("LPIR_GSEG_DEVICE") or config.device
             _segmenter = lpir_gseg.Segmenter(sensor, backend=config.backend, device=device,
-                                             max_points=config.max_points)
+                                             max_points=config.max_points,
+                                             params=dict(config.params))
             _segmenter_config = config
             _segmenters_made += 1
         return _segmenter
@@ -338,15 +340,16 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
         workers: int = 1, backend: str = "auto", device: Optional[str] = None,
         max_points: Optional[int] = None, nuscenes: Optional[bool] = None,
         chunk: Optional[int] = None, progress: bool = True, log=None,
-        topic: Optional[str] = None, drive_chunks: int = 64) -> RunStats:
+        topic: Optional[str] = None, drive_chunks: int = 64,
+        params: Optional[Dict[str, object]] = None) -> RunStats:
     """Labels every input on the cluster at `scheduler`, or on a LocalCluster of `workers`
     processes; writes out/<stem>.label, and for a drive out/<drive stem>/ (segment_drive; its
     `topic`, None: its only PointCloud2 topic), one task per drive. `chunk` cloud files make one
     task (None: about four tasks a worker, at most 32 files each, so that a task's scheduling
     costs little beside its frames even at some 15 ms a frame on the CPU). An indexed drive of
     more than `drive_chunks` chunks becomes tasks of that many chunks each (drive_ranges), whose
-    index rows are merged into one index.csv. Returns the counts and times (a drive counts as
-    one file); a failed file or damaged drive is in RunStats.failures (and printed on `log`,
+    index rows are merged into one index.csv. `params`: Segmenter(params=) of every worker.
+    Returns the counts and times (a drive counts as one file); a failed file or damaged drive is in RunStats.failures (and printed on `log`,
     stderr by default), never an exception. Raises
     ValueError for bad arguments, RuntimeError when the segmenters cannot be made."""
     log = log or sys.stderr
@@ -357,24 +360,24 @@ def run(inputs: Sequence[str], sensor: str, out: str, *, scheduler: Optional[str
     if scheduler is None and workers < 1:
         raise ValueError("workers must be at least 1")
     files = list_inputs(inputs)
-    outputs: Dict[str, str] = {}
     jobs: List[Tuple[str, str]] = []  # cloud files
     drive_jobs: List[Tuple[str, str]] = []  # drives and their folders
-    for path in files:
-        drive = lpir_gseg.is_drive_file(path)
-        target = os.path.join(out, Path(path).stem + ("" if drive else ".label"))
-        if target in outputs:
-            raise ValueError(f"{outputs[target]} and {path} would both write {target}")
-        outputs[target] = path
+    drives = [lpir_gseg.is_drive_file(path) for path in files]
+    # the command line's rule (host/io/output_paths.h): ValueError naming both inputs when two
+    # would write one output, before anything is written
+    runs = [(path, "", drive) for path, drive in zip(files, drives)]
+    targets = lpir_gseg._core._output_paths(runs, out, ".label")
+    for path, drive, target in zip(files, drives, targets):
         (drive_jobs if drive else jobs).append((path, target))
-    profile_text = None
-    if os.path.isfile(sensor):
-        profile_text = Path(sensor).read_text()
-    elif sensor not in lpir_gseg.sensors():
-        raise ValueError(f"unknown sensor profile '{sensor}'; known: "
-                         + ", ".join(lpir_gseg.sensors()))
+    # the profile and the settings, checked once here (a CPU segmenter of one point is cheap):
+    # ValueError naming the nearest sensor or setting, OSError for a profile file that does not
+    # parse
+    lpir_gseg.Segmenter(sensor, backend="cpu", max_points=1, params=params)
+    profile_text = Path(sensor).read_text() if os.path.isfile(sensor) else None
     config = SegmenterConfig(sensor=sensor, profile_text=profile_text, backend=backend,
-                             device=device, max_points=max_points, nuscenes=nuscenes)
+                             device=device, max_points=max_points, nuscenes=nuscenes,
+                             params=tuple((name, str(value))
+                                          for name, value in (params or {}).items()))
     os.makedirs(out, exist_ok=True)
 
     from dask.distributed import Client, LocalCluster, as_completed
@@ -514,14 +517,20 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--drive-chunks", type=int, metavar="K", default=64,
                         help="an indexed drive of more than K chunks is split into tasks of K "
                              "chunks each (default 64)")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="one setting of the profile, as `segment --set` (repeatable)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
+    settings = [setting.partition("=") for setting in args.set]
+    if any(not name or not eq for name, eq, _ in settings):
+        parser.error("--set expects NAME=VALUE (--set sensor_height=1.9)")
     try:
         stats = run(args.inputs, args.sensor, args.out, scheduler=args.scheduler,
                     workers=args.workers or os.cpu_count() or 1, backend=args.backend,
                     device=args.device, max_points=args.max_points, nuscenes=args.nuscenes,
                     chunk=args.chunk, progress=not args.quiet, topic=args.topic,
-                    drive_chunks=args.drive_chunks)
+                    drive_chunks=args.drive_chunks,
+                    params={name: value for name, _, value in settings})
     except (ValueError, RuntimeError, OSError) as error:
         print(f"lpir_gseg.fleet: error: {error}", file=sys.stderr)
         return 2

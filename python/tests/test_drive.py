@@ -3,6 +3,8 @@
 python3-rosbag; scripts/make_drive_fixtures.sh): every drive reads back as the frames' .bin
 files, damage is an OSError naming the file after every readable message, and the fleet labels
 every message of two drives as the Segmenter labels the frames."""
+import shutil
+import sqlite3
 import subprocess
 import warnings
 from pathlib import Path
@@ -106,10 +108,14 @@ def test_on_damage_warn_ends_the_iteration_with_a_warning(tmp_path):
 
 
 def test_bad_calls_raise_at_once_naming_the_file(tmp_path):
-    missing = tmp_path / "absent.mcap"
-    with pytest.raises(OSError, match="absent.mcap"):
-        lpir_gseg.read_drive(missing, TOPIC)
-    with pytest.raises(OSError, match="/no_such_topic"):
+    for name in ("absent.mcap", "absent.db3", "absent.bag"):
+        with pytest.raises(FileNotFoundError, match=name):
+            lpir_gseg.read_drive(tmp_path / name, TOPIC)
+    with pytest.raises(FileNotFoundError, match="absent.mcap"):
+        lpir_gseg.drive_topics(tmp_path / "absent.mcap")
+    # a topic the drive does not have is the call's mistake: ValueError listing those it has
+    with pytest.raises(ValueError, match="no topic /no_such_topic; the drive has "
+                                         "/velodyne_points"):
         lpir_gseg.read_drive(DRIVES / "vlp16_zstd.mcap", "/no_such_topic")
     with pytest.raises(OSError, match="extension"):
         lpir_gseg.read_drive(DRIVES / "frames" / "000000.bin", TOPIC)
@@ -117,6 +123,35 @@ def test_bad_calls_raise_at_once_naming_the_file(tmp_path):
         lpir_gseg.read_drive(DRIVES / "vlp16_zstd.mcap", TOPIC, on_damage="ignore")
     assert lpir_gseg.is_drive_file("a.mcap") and lpir_gseg.is_drive_file("b.db3")
     assert lpir_gseg.is_drive_file("c.bag") and not lpir_gseg.is_drive_file("d.bin")
+
+
+def test_several_cloud_topics_need_one_chosen_and_none_is_the_files_fault(tmp_path):
+    # vlp16.db3 with its messages logged again on a second PointCloud2 topic, and on a topic of
+    # another type (Python's sqlite3 writes them)
+    two = tmp_path / "two.db3"
+    shutil.copyfile(DRIVES / "vlp16.db3", two)
+    with sqlite3.connect(two) as db:
+        qos = db.execute("SELECT offered_qos_profiles FROM topics WHERE id = 1").fetchone()[0]
+        db.execute("INSERT INTO topics VALUES (2, '/front_points', 'sensor_msgs/msg/PointCloud2', "
+                   "'cdr', ?)", (qos,))
+        db.execute("INSERT INTO topics VALUES (3, '/imu', 'sensor_msgs/msg/Imu', 'cdr', ?)", (qos,))
+        db.execute("INSERT INTO messages (topic_id, timestamp, data) "
+                   "SELECT 2, timestamp, data FROM messages WHERE topic_id = 1")
+    db.close()
+    with pytest.raises(ValueError, match=r"two.db3: 2 PointCloud2 topics \(/velodyne_points "
+                                         r".*/front_points .*\): choose one with topic="):
+        lpir_gseg.read_drive(two)
+    with pytest.raises(ValueError, match="topic /imu holds sensor_msgs/msg/Imu, not"):
+        lpir_gseg.read_drive(two, "/imu")
+    assert len(list(lpir_gseg.read_drive(two, "/front_points"))) == 3
+    # no PointCloud2 topic at all: the file's fault, an OSError
+    none = tmp_path / "none.db3"
+    shutil.copyfile(DRIVES / "vlp16.db3", none)
+    with sqlite3.connect(none) as db:
+        db.execute("UPDATE topics SET type = 'sensor_msgs/msg/Imu'")
+    db.close()
+    with pytest.raises(OSError, match="none.db3: no sensor_msgs PointCloud2 topic"):
+        lpir_gseg.read_drive(none)
 
 
 def fleet_labels(folder):

@@ -1,6 +1,7 @@
 """python3 -m lpir_gseg.fleet on a 2-worker LocalCluster on 127.0.0.1: 12 scans and a truncated
 one give the command line's 12 .label files byte for byte, the bad file named, exit code 1; the
 same through --scheduler; one segmenter per worker process for the whole run."""
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 
 import lpir_gseg
-from conftest import run_cli, vulkan  # noqa: F401 (a fixture)
+from conftest import REPO, run_cli, vulkan  # noqa: F401 (a fixture)
 
 pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
 
@@ -124,6 +125,34 @@ def test_a_profile_file_travels_to_the_workers(scans, cli_out, tmp_path):
         assert (out / name).read_bytes() == (cli_out / name).read_bytes()
 
 
+def test_settings_reach_the_workers_as_segment_set_takes_them(cli, scans, tmp_path):
+    files = [scans / f"{seed:06}.bin" for seed in range(3)]
+    settings = ["--set", "sensor_height=1.9", "--set", "max_range=40", "--set", "h_athr=0.15"]
+    expected = tmp_path / "cli"
+    result = run_cli(cli, "segment", *files, "-s", "hdl64e", "-b", "cpu", "-q", "-o", expected,
+                     *settings)
+    assert result.returncode == 0, result.stderr
+    out = tmp_path / "out"
+    result = fleet(*files, "--sensor", "hdl64e", "--out", out, "--workers", 1, "--backend", "cpu",
+                   *settings)
+    assert result.returncode == 0, result.stderr
+    for f in files:
+        name = f.stem + ".label"
+        assert (out / name).read_bytes() == (expected / name).read_bytes(), name
+    plain = tmp_path / "plain"
+    assert run_cli(cli, "segment", files[0], "-s", "hdl64e", "-b", "cpu", "-q", "-o",
+                   plain).returncode == 0
+    assert (plain / "000000.label").read_bytes() != (out / "000000.label").read_bytes()
+    # a misspelt setting: the library's message, before any cluster
+    result = fleet(*files, "--sensor", "hdl64e", "--out", tmp_path / "bad", "--set",
+                   "sensr_height=1.9")
+    assert result.returncode == 2
+    assert "no setting 'sensr_height' (did you mean sensor_height?)" in result.stderr
+    assert not (tmp_path / "bad").exists()
+    result = fleet(*files, "--sensor", "hdl64e", "--out", tmp_path / "bad", "--set", "x")
+    assert result.returncode == 2 and "--set expects NAME=VALUE" in result.stderr
+
+
 def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
     result = fleet(scans, "--sensor", "nope", "--out", tmp_path / "o", "--workers", 1)
     assert result.returncode == 2 and "unknown sensor profile 'nope'" in result.stderr
@@ -135,8 +164,22 @@ def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
     (tmp_path / "b").mkdir()
     for folder in "ab":
         np.zeros((1, 4), np.float32).tofile(tmp_path / folder / "x.bin")
+    # two inputs of one output: both named, nothing written (the command line's rule)
     result = fleet(tmp_path / "a", tmp_path / "b", "--sensor", "hdl64e", "--out", tmp_path / "o")
-    assert result.returncode == 2 and "would both write" in result.stderr
+    assert result.returncode == 2
+    assert (f"{tmp_path / 'a' / 'x.bin'} and {tmp_path / 'b' / 'x.bin'} would both write "
+            f"{tmp_path / 'o' / 'x.label'}") in result.stderr
+    assert not (tmp_path / "o").exists()
+    # two drives of one name would share their folder and its index.csv
+    for folder in "ab":
+        shutil.copyfile(REPO / "tests" / "data" / "drives" / "vlp16_zstd.mcap",
+                        tmp_path / folder / "drive.mcap")
+    result = fleet(tmp_path / "a" / "drive.mcap", tmp_path / "b" / "drive.mcap", "--sensor",
+                   "vlp16", "--out", tmp_path / "o")
+    assert result.returncode == 2
+    assert (f"{tmp_path / 'a' / 'drive.mcap'} and {tmp_path / 'b' / 'drive.mcap'} would both "
+            f"write {tmp_path / 'o' / 'drive'}") in result.stderr
+    assert not (tmp_path / "o").exists()
     result = fleet(scans, "--sensor", "hdl64e", "--out", tmp_path / "o", "--workers", 1,
                    "--scheduler", "tcp://127.0.0.1:1")
     assert result.returncode == 2 and "not allowed with" in result.stderr
