@@ -27,8 +27,12 @@
 // chunk whose position is known: from the chunk infos, or the end of the damaged record when its
 // lengths lie inside the file; a scan that meets a record running past the end of the file stops
 // there. The complete message records of a truncated uncompressed chunk are still yielded; a
-// truncated compressed chunk yields none. The file is never read whole: a record's bytes are read
-// only once its lengths are checked against the bytes left in the file.
+// truncated compressed chunk yields none. A bag without an index (index_pos 0: the recorder died
+// before closing it, leaving NAME.bag.active) may end in the chunk it was writing: a chunk record
+// whose sizes are still the zeros written before its data, followed by that data. Its data is
+// taken to run to the end of the file, as a truncated chunk's: an uncompressed one's complete
+// records are yielded, a compressed one is damage. The file is never read whole: a record's bytes
+// are read only once its lengths are checked against the bytes left in the file.
 #include "host/drive/ros1_bag_reader.h"
 
 #include <algorithm>
@@ -50,6 +54,8 @@ namespace lpir {
 namespace {
 
 constexpr char kMagic[] = "#ROSBAG V2.0\n";
+// The most an unfinished chunk is read to (a recorder closes its chunks at 768 KiB by default).
+constexpr uint64_t kMaxUnfinishedBytes = uint64_t(1) << 30;
 constexpr size_t kMagicSize = sizeof(kMagic) - 1;
 
 enum Op : uint8_t {
@@ -200,6 +206,27 @@ class Ros1Bag : public DriveReader {
     } catch (const Broken& e) {
       throw IoError(path_, std::string("no valid bag header: ") + e.what());
     }
+  }
+
+  std::vector<std::string> ListingDamage() override {
+    EnsureCatalogue();
+    std::vector<std::string> damage;
+    for (const Damage& d : scan_damages_) damage.push_back(d.problem);
+    return damage;
+  }
+
+  std::vector<std::string> Notes() override {
+    EnsureCatalogue();
+    std::vector<std::string> notes;
+    if (index_pos_ == 0)
+      notes.push_back(path_ + ": no index (the recorder died before closing the bag; `rosbag " +
+                      "reindex` writes one): its " + std::to_string(chunks_.size()) + " chunk" +
+                      (chunks_.size() == 1 ? " was" : "s were") + " scanned");
+    if (unfinished_ != UINT32_MAX)
+      notes.push_back(path_ + ": " + ChunkWhere(unfinished_) +
+                      " is the one the recorder was writing (its sizes never filled in): read "
+                      "up to the end of the file");
+    return notes;
   }
 
   std::vector<DriveTopic> Topics() override {
@@ -385,6 +412,18 @@ class Ros1Bag : public DriveReader {
       throw IoError(path_, "ROS bag version '" + version + "' is not supported (only 2.0)");
     }
     throw IoError(path_, "not a ROS bag: it does not start with #ROSBAG V2.0");
+  }
+
+  // A chunk the recorder was writing when it died: the bag has no index, the chunk's size and
+  // data length are still the zeros written before its data, and bytes follow it (a finished
+  // chunk holds at least one message).
+  bool Unfinished(const Record& r, const Fields& f) const {
+    if (index_pos_ != 0 || r.data_len != 0 || r.end() >= file_.size()) return false;
+    try {
+      return f.Op() == kOpChunk && f.U32("size") == 0;
+    } catch (const Broken&) {  // a malformed chunk header: damage where it is read
+      return false;
+    }
   }
 
   std::string ChunkWhere(uint32_t c) const {
@@ -595,6 +634,7 @@ class Ros1Bag : public DriveReader {
         whole = false;
         break;
       }
+      if (unfinished_ != UINT32_MAX) break;  // its data runs to the end of the file
       pos = r.end();
     }
     for (const auto& [id, c] : connections_) message_counts_[id];
@@ -626,6 +666,7 @@ class Ros1Bag : public DriveReader {
     const Fields f = ReadFields(r, at);
     const uint8_t op = f.Op();
     if (op == kOpChunk) {
+      if (Unfinished(r, f)) unfinished_ = uint32_t(chunks_.size());
       chunks_.push_back(r.pos);
       scan_damage_known_.push_back(false);
       ScanChunk(uint32_t(chunks_.size() - 1), &scan_entries_, &scan_damages_, &scan_damage_known_,
@@ -666,10 +707,20 @@ class Ros1Bag : public DriveReader {
       const uint32_t size = f.U32("size");
       if (compression != "none" && compression != "bz2" && compression != "lz4")
         f.Fail("unknown compression '" + compression + "'");
+      const uint64_t left = file_.size() - r.data_pos;
+      if (Unfinished(r, f)) {
+        if (compression != "none")
+          f.Fail("the chunk the recorder was writing when it died (its sizes never filled in), " +
+                 compression + "-compressed: its messages cannot be read");
+        if (left > kMaxUnfinishedBytes)
+          f.Fail("the chunk the recorder was writing when it died runs " + std::to_string(left) +
+                 " bytes to the end of the file, more than a recorder's chunk");
+        out.data = file_.Bytes(r.data_pos, left);
+        return out;
+      }
       if (compression == "none" && r.data_len != size)
         f.Fail("uncompressed chunk holds " + std::to_string(r.data_len) +
                " bytes, its size field says " + std::to_string(size));
-      const uint64_t left = file_.size() - r.data_pos;
       if (r.data_truncated) {
         if (compression == "none") out.data = file_.Bytes(r.data_pos, left);
         f.Fail("the file ends inside the chunk's data (" + std::to_string(left) + " of " +
@@ -806,6 +857,7 @@ class Ros1Bag : public DriveReader {
   std::vector<Entry> scan_entries_;
   std::vector<Damage> scan_damages_;
   std::vector<bool> scan_damage_known_;
+  uint32_t unfinished_ = UINT32_MAX;  // the chunk (index) a dead recorder was writing, if any
 
   // The selected topic.
   std::string topic_;

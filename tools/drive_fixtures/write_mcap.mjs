@@ -4,9 +4,11 @@
 // all, with message indexes and the summary (schema, channel, statistics, chunk indexes).
 //
 // usage: node write_mcap.mjs --out FILE.mcap --compression zstd|lz4|none [--topic /points]
-//                            [--frame-id velodyne] [--chunk-size BYTES] FRAME.bin...
+//                            [--frame-id velodyne] [--chunk-size BYTES] [--first N] FRAME.bin...
 // A chunk is closed once it holds more than --chunk-size bytes (default 1 MiB; 1 gives one
-// message per chunk). log_time = publish_time = the header stamp.
+// message per chunk). log_time = publish_time = the header stamp. --first N: the frames are
+// frames N, N + 1, ... of the drive (their stamps and sequence numbers; default 0), as in the
+// second file of a split bag.
 import { open } from "node:fs/promises";
 
 import { McapWriter } from "@mcap/core";
@@ -33,10 +35,11 @@ class FileWritable {
 
 async function main() {
   const { options, positional } =
-      parseArgs(process.argv.slice(2), ["out", "compression", "topic", "frame-id", "chunk-size"]);
+      parseArgs(process.argv.slice(2),
+                ["out", "compression", "topic", "frame-id", "chunk-size", "first"]);
   if (!options.out || !options.compression || positional.length === 0)
     throw new Error("usage: write_mcap.mjs --out FILE.mcap --compression zstd|lz4|none " +
-                    "[--topic T] [--frame-id F] [--chunk-size BYTES] FRAME.bin...");
+                    "[--topic T] [--frame-id F] [--chunk-size BYTES] [--first N] FRAME.bin...");
   let compressChunk;
   if (options.compression === "zstd") {
     await zstd.isLoaded;
@@ -49,6 +52,7 @@ async function main() {
   const topic = options.topic ?? "/points";
   const frameId = options["frame-id"] ?? "velodyne";
   const chunkSize = Number(options["chunk-size"] ?? 1024 * 1024);
+  const first = Number(options.first ?? 0);
 
   const handle = await open(options.out, "w");
   const writer = new McapWriter({ writable: new FileWritable(handle), chunkSize, compressChunk });
@@ -65,8 +69,9 @@ async function main() {
     metadata: new Map([["offered_qos_profiles", ""]]),
   });
   const cdr = cdrWriter();
-  for (let i = 0; i < positional.length; ++i) {
-    const data = cdr.writeMessage(pointCloudMessage(positional[i], i, frameId));
+  for (let k = 0; k < positional.length; ++k) {
+    const i = first + k;
+    const data = cdr.writeMessage(pointCloudMessage(positional[k], i, frameId));
     const stamp = stampNs(i);
     await writer.addMessage({ channelId, sequence: i, logTime: stamp, publishTime: stamp, data });
   }
