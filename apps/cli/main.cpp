@@ -25,8 +25,8 @@ const char kUsage[] =
     "usage: lpir-gseg <command> [options]   (lpir-gseg help COMMAND: all of its options)\n"
     "  segment INPUT... --sensor NAME --out DIR [--backend auto|vulkan|cpu] [--device D]\n"
     "          [--timings] [--format label|pcd|ply] [--images] [--gt PATH] [--quiet|--verbose]\n"
-    "          [--report FILE.csv|.json]; or one recorded drive: segment DRIVE [--topic T]\n"
-    "          --sensor NAME --out DIR [--format label|mcap] ...\n"
+    "          [--report FILE.csv|.json]; INPUTs are clouds, recorded drives (with\n"
+    "          [--topic T] [--format mcap]) or folders of them\n"
     "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json] [--by-class]\n"
     "           [--by-range] [--ontology semantickitti|rellis3d]\n"
     "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels "
@@ -35,7 +35,7 @@ const char kUsage[] =
     "  demo [--out DIR] [--backend auto|vulkan|cpu] [--runs N]\n"
     "  devices\n"
     "  bench [--runs N] [--json]\n"
-    "  topics DRIVE     the topics of a recorded drive (.mcap, .db3, .bag)\n"
+    "  topics DRIVE...  the topics of recorded drives (.mcap, .db3, .bag, bag folders)\n"
     "  help [COMMAND|exit-codes]   a command's help (as COMMAND --help), or the exit codes\n"
     "  --version        the version, the git commit built and which backends this machine has\n";
 
