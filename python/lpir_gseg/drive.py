@@ -1,5 +1,5 @@
-"""Recorded drives (ROS 2 .mcap and .db3, ROS 1 .bag) read without ROS: the library's readers
-(host/drive/) behind read_drive and drive_topics."""
+"""Recorded drives (ROS 2 .mcap and .db3 and bag folders, ROS 1 .bag and .bag.active) read
+without ROS: the library's readers (host/drive/) behind read_drive and drive_topics."""
 import warnings
 from typing import Iterator, List, NamedTuple, Optional, Tuple
 
@@ -15,23 +15,50 @@ class DriveTopic(NamedTuple):
     messages: int
 
 
-def drive_topics(path) -> List[DriveTopic]:
-    """drive_topics(path)
+def drive_topics(path, *, on_damage: str = "raise") -> List[DriveTopic]:
+    """drive_topics(path, *, on_damage="raise")
 
     Every topic of a recorded drive with its message type, encoding and message count, as
     `lpir-gseg topics` lists them.
 
+    Args:
+        path: a drive, as read_drive takes it.
+        on_damage: "raise": damage met while listing (a truncated drive read without an index)
+            raises OSError naming each damaged part; "warn": a RuntimeWarning per damaged part
+            instead, and the topics returned count the messages that could be read.
+
     Raises:
         OSError: a missing file, an unknown extension, or a file that is no drive of its kind;
-            the message names the file.
+            damage (on_damage "raise"). The message names the file.
     """
-    return [DriveTopic(*t) for t in _core._Drive(path).topics()]
+    if on_damage not in ("raise", "warn"):
+        raise ValueError(f"on_damage must be 'raise' or 'warn', not {on_damage!r}")
+    drive = _core._Drive(path)
+    topics = [DriveTopic(*t) for t in drive.topics()]
+    damage = drive.listing_damage()
+    if damage and on_damage == "raise":
+        raise OSError(f"{drive.path}: {len(damage)} damaged part"
+                      f"{'s' if len(damage) != 1 else ''} met while listing its topics: "
+                      + "; ".join(damage))
+    for problem in damage:
+        warnings.warn(problem, RuntimeWarning, stacklevel=2)
+    return topics
 
 
-def cloud_topic(drive: "_core._Drive", topic: Optional[str]) -> str:
-    """`topic` when given (OSError naming the drive unless it is a PointCloud2 topic of it), else
-    the drive's only PointCloud2 topic (OSError listing them when there are none or several), as
-    `lpir-gseg segment` chooses."""
+def _damaged(drive: "_core._Drive") -> str:
+    """", damaged (<first damaged part>)" when the listing met damage, else ""."""
+    damage = drive.listing_damage()
+    if not damage:
+        return ""
+    more = f", and {len(damage) - 1} more damaged parts" if len(damage) > 1 else ""
+    return f" in what could be read: the drive is damaged ({damage[0]}{more})"
+
+
+def cloud_topic(drive: "_core._Drive", topic: Optional[str], option: str = "topic=") -> str:
+    """`topic` when given (OSError naming the drive unless it is a PointCloud2 topic of it, or
+    names the damage that may have taken it), else the drive's only PointCloud2 topic (OSError
+    listing them when there are several, saying to choose one with `option`; naming the damage
+    when there are none on a damaged drive), as `lpir-gseg segment` chooses."""
     if topic is not None:
         try:
             topics = [DriveTopic(*t) for t in drive.topics()]
@@ -41,13 +68,18 @@ def cloud_topic(drive: "_core._Drive", topic: Optional[str]) -> str:
         if topic in known and not known[topic].endswith("PointCloud2"):
             raise OSError(f"{drive.path}: topic {topic} holds {known[topic]}, not "
                           "sensor_msgs PointCloud2")
+        if topic not in known and _damaged(drive):
+            raise OSError(f"{drive.path}: no topic {topic}{_damaged(drive)}")
         return topic  # an absent topic: select() raises, listing those there are
     topics = [DriveTopic(*t) for t in drive.topics()]
     clouds = [t.name for t in topics if t.type.endswith("PointCloud2")]
-    if len(clouds) != 1:
-        raise OSError(f"{drive.path}: {len(clouds)} PointCloud2 topics"
-                      + (f" ({', '.join(clouds)})" if clouds else "")
-                      + ": choose one with topic=")
+    if not clouds:
+        names = ", ".join(t.name for t in topics) or "none"
+        raise OSError(f"{drive.path}: no sensor_msgs PointCloud2 topic"
+                      f"{_damaged(drive) or ''}; the drive has {names}")
+    if len(clouds) > 1:
+        raise OSError(f"{drive.path}: {len(clouds)} PointCloud2 topics ({', '.join(clouds)}): "
+                      f"choose one with {option}")
     return clouds[0]
 
 
@@ -58,8 +90,10 @@ def read_drive(path, topic: Optional[str] = None, *, ring: bool = False,
     The sensor_msgs/PointCloud2 messages of one topic of a recorded drive, in the order logged.
 
     Args:
-        path: a .mcap (ROS 2, any of zstd, lz4 or no compression), .db3 (ROS 2 SQLite) or .bag
-            (ROS 1, bz2, lz4 or none).
+        path: a .mcap (ROS 2, any of zstd, lz4 or no compression), .db3 (ROS 2 SQLite), a ROS 2
+            bag folder (metadata.yaml and its split .mcap or .db3 files, read in order as one
+            drive), a .bag (ROS 1, bz2, lz4 or none) or .bag.active (what a ROS 1 recorder that
+            died leaves: read by a scan, its unfinished last chunk up to the end of the file).
         topic: the topic; None takes the drive's only PointCloud2 topic.
         ring: also yield each message's ring field.
         on_damage: "raise": after every message that could be read has been yielded, raise
