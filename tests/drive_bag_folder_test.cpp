@@ -180,6 +180,14 @@ TEST(MiniYaml, WhatItDoesNotReadIsAnErrorNamingTheLine) {
       EXPECT_TRUE(Has(e.what(), expected)) << e.what() << "\nfor: " << text;
     }
   }
+  std::string deep;  // "- - - ... x": a sequence in a sequence 100 deep, on one line
+  for (int k = 0; k < 100; ++k) deep += "- ";
+  try {
+    ParseYaml(deep + "x\n");
+    ADD_FAILURE() << "100 levels were read";
+  } catch (const YamlError& e) {
+    EXPECT_TRUE(Has(e.what(), "line 1: nested deeper than 64 levels")) << e.what();
+  }
 }
 
 TEST(BagMetadata, RefusesMetadataThatNamesNoFiles) {

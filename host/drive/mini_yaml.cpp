@@ -154,7 +154,7 @@ class Parser {
   // The block whose first content is at or right of `min_col` (null when the next content lies
   // left of it, or at the end).
   YamlNode Block(size_t min_col, int depth) {
-    if (depth > kMaxDepth) Fail("nested deeper than " + std::to_string(kMaxDepth) + " levels");
+    CheckDepth(depth);
     if (!SkipBlank() || col_ < min_col) return YamlNode{};
     const std::string_view rest = Rest();
     if (IsDash(rest)) return Sequence(col_, depth);
@@ -162,7 +162,12 @@ class Parser {
     return InlineValue(int(min_col) - 1);
   }
 
+  void CheckDepth(int depth) const {
+    if (depth > kMaxDepth) Fail("nested deeper than " + std::to_string(kMaxDepth) + " levels");
+  }
+
   YamlNode Sequence(size_t col, int depth) {
+    CheckDepth(depth);
     YamlNode node;
     node.kind = YamlNode::Kind::kSeq;
     node.line = Line();
@@ -191,6 +196,7 @@ class Parser {
   }
 
   YamlNode Mapping(size_t col, int depth) {
+    CheckDepth(depth);
     YamlNode node;
     node.kind = YamlNode::Kind::kMap;
     node.line = Line();
