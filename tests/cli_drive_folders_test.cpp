@@ -24,9 +24,9 @@ namespace fs = std::filesystem;
 namespace lpir {
 namespace {
 
-const char kTopic[] = "/velodyne_points";
-constexpr long long kFirstStampNs = 1600000000LL * 1000000000LL;  // then 100 ms apart
-constexpr size_t kFrames = 3;
+using test::kFirstStampNs;
+const char* const kTopic = test::kFixtureTopic;
+constexpr size_t kFrames = test::kFixtureFrames;
 
 std::string Cli() { return test::CliPath(); }
 const std::string kSegment = " --sensor vlp16 --backend cpu --out ";

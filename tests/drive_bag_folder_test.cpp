@@ -30,8 +30,8 @@ namespace fs = std::filesystem;
 namespace lpir {
 namespace {
 
-const char kTopic[] = "/velodyne_points";
-constexpr long long kFirstStampNs = 1600000000LL * 1000000000LL;  // then 100 ms apart
+using test::kFirstStampNs;
+const char* const kTopic = test::kFixtureTopic;
 
 bool Has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -15,6 +15,12 @@
 
 namespace lpir::test {
 
+// What every fixture drive holds: the frames on this topic, frame i stamped kFirstStampNs + i x
+// 100 ms (scripts/make_drive_fixtures.sh).
+constexpr char kFixtureTopic[] = "/velodyne_points";
+constexpr long long kFirstStampNs = 1600000000LL * 1000000000LL;
+constexpr size_t kFixtureFrames = 3;
+
 // tests/data/drives, or $LPIR_TEST_DATA_DIR/drives.
 inline std::string DrivesDir() {
   return EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) + std::string("/drives");

@@ -442,71 +442,22 @@ class Parser {
       }
       AppendUtf8(code, Line(), out);
     };
-    switch (e) {
-      case '0':
-        *out += '\0';
-        break;
-      case 'a':
-        *out += '\a';
-        break;
-      case 'b':
-        *out += '\b';
-        break;
-      case 't':
-      case '\t':
-        *out += '\t';
-        break;
-      case 'n':
-        *out += '\n';
-        break;
-      case 'v':
-        *out += '\v';
-        break;
-      case 'f':
-        *out += '\f';
-        break;
-      case 'r':
-        *out += '\r';
-        break;
-      case 'e':
-        *out += '\x1b';
-        break;
-      case ' ':
-        *out += ' ';
-        break;
-      case '"':
-        *out += '"';
-        break;
-      case '/':
-        *out += '/';
-        break;
-      case '\\':
-        *out += '\\';
-        break;
-      case 'N':
-        AppendUtf8(0x85, Line(), out);
-        break;
-      case '_':
-        AppendUtf8(0xA0, Line(), out);
-        break;
-      case 'L':
-        AppendUtf8(0x2028, Line(), out);
-        break;
-      case 'P':
-        AppendUtf8(0x2029, Line(), out);
-        break;
-      case 'x':
-        hex(2);
-        break;
-      case 'u':
-        hex(4);
-        break;
-      case 'U':
-        hex(8);
-        break;
-      default:
-        Fail(std::string("unknown escape '\\") + e + "'");
+    // YAML 1.2's one-character escapes and what they stand for
+    static const std::pair<char, uint32_t> kEscapes[] = {
+        {'0', 0},   {'a', 7},     {'b', 8},    {'t', 9},    {'\t', 9},     {'n', 10},
+        {'v', 11},  {'f', 12},    {'r', 13},   {'e', 27},   {' ', ' '},    {'"', '"'},
+        {'/', '/'}, {'\\', '\\'}, {'N', 0x85}, {'_', 0xA0}, {'L', 0x2028}, {'P', 0x2029}};
+    for (const auto& [name, code] : kEscapes) {
+      if (e == name) {
+        AppendUtf8(code, Line(), out);
+        return;
+      }
     }
+    if (e == 'x' || e == 'u' || e == 'U') {
+      hex(e == 'x' ? 2 : e == 'u' ? 4 : 8);
+      return;
+    }
+    Fail(std::string("unknown escape '\\") + e + "'");
   }
 
   // A literal (|) or folded (>) block scalar: its header at the cursor, its lines those after it
