@@ -172,11 +172,12 @@ def test_the_fleet_writes_what_segment_writes_for_a_drive(cli, tmp_path):
             (tmp_path / "cli" / name).read_bytes(), name
 
 
-@pytest.mark.parametrize("name", DRIVE_FILES)
+@pytest.mark.parametrize("name", DRIVE_FILES + ["vlp16_split_mcap"])
 def test_chunk_ranges_and_the_fleet_split_give_the_whole_drives_files(tmp_path, name):
     """Each fixture chunk on its own (select with a range, then the fleet with one chunk a task)
     yields the whole run's messages with their sequences; the fleet's split run writes the same
-    .label files and index rows (but the ms column) as its whole-drive task."""
+    .label files and index rows (but the ms column) as its whole-drive task. A bag folder's
+    chunks are numbered on across its files."""
     pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
     from lpir_gseg import fleet
 
