@@ -191,6 +191,37 @@ void Ply(const std::string& dir) {
            "property float y\nproperty float z\nend_header\n\0\0\0\0\0\0\0\0\0\0\0\0"));
 }
 
+// metadata.yaml as rosbag2 writes it through yaml-cpp (Jazzy), as PyYAML dumps it (Humble: keys
+// sorted, sequences not indented, a long string folded over lines), and the rest of the subset.
+void BagMetadatas(const std::string& dir) {
+  Text(dir + "/rosbag2_jazzy.yaml",
+       "rosbag2_bagfile_information:\n  version: 9\n  storage_identifier: mcap\n"
+       "  duration:\n    nanoseconds: 200000000\n  starting_time:\n"
+       "    nanoseconds_since_epoch: 1600000000000000000\n  message_count: 3\n"
+       "  topics_with_message_count:\n    - topic_metadata:\n        name: /points\n"
+       "        type: sensor_msgs/msg/PointCloud2\n        serialization_format: cdr\n"
+       "        offered_qos_profiles:\n          - history: keep_last\n            depth: 5\n"
+       "            deadline:\n              sec: 9223372036\n              nsec: 854775807\n"
+       "        type_description_hash: RIHS01_00\n      message_count: 3\n"
+       "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n"
+       "    - run_0.mcap\n    - run_1.mcap\n  files:\n    - path: run_0.mcap\n"
+       "      message_count: 2\n  custom_data: ~\n  ros_distro: jazzy\n");
+  Text(dir + "/pyyaml_humble.yaml",
+       "rosbag2_bagfile_information:\n  compression_format: ''\n  compression_mode: ''\n"
+       "  message_count: 3\n  relative_file_paths:\n  - run_0.db3\n  - run_1.db3\n"
+       "  storage_identifier: sqlite3\n  topics_with_message_count:\n  - message_count: 3\n"
+       "    topic_metadata:\n      name: /points\n"
+       "      offered_qos_profiles: \"- history: 3\\n  depth: 0\\n  durability:\\\n"
+       "        \\ 2\\n  avoid_ros_namespace_conventions: false\\n\"\n"
+       "      serialization_format: cdr\n      type: sensor_msgs/msg/PointCloud2\n"
+       "  version: 5\n");
+  Text(dir + "/subset.yaml",
+       "---\n# comment\nrosbag2_bagfile_information:\n  relative_file_paths: ['a_0.mcap', b]\n"
+       "  note: |\n    literal\n     kept\n  folded: >-\n    one\n    two\n"
+       "  quoted: 'it''s'\n  escapes: \"\\t\\u00e9\\x41\"\n  empty: {}\n  none: []\n"
+       "  plain: several\n    lines\n");
+}
+
 void SensorProfiles(const std::string& dir) {
   SensorProfile small;
   small.name = "small";
@@ -672,7 +703,8 @@ int main(int argc, char** argv) {
   const struct {
     const char* target;
     void (*write)(const std::string&);
-  } kTargets[] = {{"db3", lpir::Db3s},
+  } kTargets[] = {{"bag_metadata", lpir::BagMetadatas},
+                  {"db3", lpir::Db3s},
                   {"kitti_bin", lpir::KittiBin},
                   {"label_file", lpir::LabelFile},
                   {"mcap", lpir::Mcap},

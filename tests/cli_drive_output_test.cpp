@@ -154,11 +154,13 @@ Cloud Points(const Cloud& c, const std::vector<size_t>& which) {
 
 // T/labelled, T/ground and T/nonground in `out`: 3 messages each after T's, headers and log
 // times as T's, fields aligned, the labels those of `label_dir` (segment's .label files of the
-// same drive), ground and non-ground the points labelled 1 and 0.
-void ExpectTheThreeClouds(const Content& out, const std::string& label_dir) {
+// same drive), ground and non-ground the points labelled 1 and 0, each message with more than
+// `min_ground` points labelled 1.
+void ExpectTheThreeClouds(const Content& out, const std::string& label_dir, size_t frames = kFrames,
+                          size_t min_ground = 100) {
   const Content::Topic& source = out.topics.at(kTopic);
   const std::vector<std::string> label_files = test::LabelFiles(label_dir);
-  ASSERT_EQ(label_files.size(), kFrames);
+  ASSERT_EQ(label_files.size(), frames);
   for (const char* suffix : kClouds) {
     SCOPED_TRACE(suffix);
     ASSERT_TRUE(out.topics.count(std::string(kTopic) + suffix));
@@ -166,9 +168,9 @@ void ExpectTheThreeClouds(const Content& out, const std::string& label_dir) {
     EXPECT_EQ(t.schema.name, source.schema.name);
     EXPECT_EQ(t.schema.data, source.schema.data);
     EXPECT_EQ(t.channel.message_encoding, source.channel.message_encoding);
-    ASSERT_EQ(t.messages.size(), kFrames);
+    ASSERT_EQ(t.messages.size(), frames);
   }
-  for (size_t k = 0; k < kFrames; ++k) {
+  for (size_t k = 0; k < frames; ++k) {
     SCOPED_TRACE(k);
     const PointCloud2 in = Parse(source, k);
     const Cloud points = CloudFromPointCloud2("in", in);
@@ -195,7 +197,7 @@ void ExpectTheThreeClouds(const Content& out, const std::string& label_dir) {
       (at[0] == 1 ? ones : zeros).push_back(i);
     }
     EXPECT_EQ(labels, test::ReadFileBytes(label_dir + "/" + label_files[k]));
-    EXPECT_GT(ones.size(), 100u);
+    EXPECT_GT(ones.size(), min_ground);
     EXPECT_TRUE(test::SameBits(CloudFromPointCloud2("labelled", labelled), points));
     EXPECT_TRUE(test::SameBits(CloudFromPointCloud2("ground", ground), Points(points, ones)));
     EXPECT_TRUE(
@@ -300,6 +302,8 @@ TEST(CliDriveOutputArgs, BagNeedsARos1InputAndNeitherTakesChunks) {
               std::string::npos)
         << log;
   }
+  EXPECT_EQ(Segment(test::DrivesDir() + "/vlp16_split_mcap", "bag", dir.path, &log), "2") << log;
+  EXPECT_NE(log.find("vlp16_split_mcap is a ROS 2 drive"), std::string::npos) << log;
   EXPECT_EQ(Segment(test::FixtureFrameBase(0) + ".bin", "bag", dir.path, &log), "2") << log;
   for (const char* format : {"mcap", "bag"}) {
     EXPECT_EQ(Segment(test::DrivesDir() + "/vlp16_lz4.bag --chunks 1:2", format, dir.path, &log),
@@ -346,6 +350,89 @@ TEST(CliDriveOutputDamage, ACutDriveKeepsEveryRecordBeforeTheCutAndNamesTheDamag
     for (const auto& [topic, t] : in.topics) before += t.messages.size();
     EXPECT_GT(before, 10u) << "the cut left messages to keep";
   }
+}
+
+// ---- drives as recorders leave them, and several drives ----
+
+// A ROS 2 bag folder of two split files: one MCAP holding each file's records one after another,
+// the channel and schema the files repeat written once (ReadContent fails on a second channel of
+// a topic), the sequences numbered on across the files, and the three clouds of every message.
+TEST(CliDriveOutputFolders, ABagFolderBecomesOneMcapHoldingEachFilesRecordsOnce) {
+  for (const std::string folder : {"vlp16_split_mcap", "vlp16_split_db3"}) {
+    SCOPED_TRACE(folder);
+    test::ScopedDir dir;
+    const std::string input = test::DrivesDir() + "/" + folder;
+    std::string log;
+    ASSERT_EQ(Segment(input, "mcap", dir.path + "/out", &log), "0") << log;
+    ASSERT_EQ(Segment(input, "label", dir.path + "/labels", &log), "0") << log;
+    const Content out = ReadContent(dir.path + "/out/" + folder + ".mcap");
+    EXPECT_EQ(out.damage, std::vector<std::string>{});
+    EXPECT_EQ(out.profile, "ros2");
+    const std::string ext = folder == "vlp16_split_mcap" ? ".mcap" : ".db3";
+    const Content parts[2] = {ReadContent(input + "/" + folder + "_0" + ext),
+                              ReadContent(input + "/" + folder + "_1" + ext)};
+    std::vector<DriveRecordMessage> want;
+    for (const Content& part : parts) {
+      ASSERT_EQ(part.topics.size(), 1u);
+      const Content::Topic& t = part.topics.at(kTopic);
+      EXPECT_EQ(out.topics.at(kTopic).channel.metadata, t.channel.metadata);
+      EXPECT_EQ(out.topics.at(kTopic).schema.data, t.schema.data);
+      want.insert(want.end(), t.messages.begin(), t.messages.end());
+    }
+    EXPECT_EQ(out.topics.size(), 1u + 3);
+    const std::vector<DriveRecordMessage>& got = out.topics.at(kTopic).messages;
+    ASSERT_EQ(got.size(), kFrames);
+    ASSERT_EQ(want.size(), kFrames);
+    for (size_t k = 0; k < kFrames; ++k) {
+      EXPECT_EQ(got[k].sequence, k) << k;
+      EXPECT_EQ(got[k].log_time_ns, want[k].log_time_ns) << k;
+      EXPECT_EQ(got[k].data, want[k].data) << k;
+    }
+    ExpectTheThreeClouds(out, dir.path + "/labels", kFrames, 10);
+  }
+}
+
+// What a ROS 1 recorder that died leaves: copied, as a bag or an MCAP, up to its last complete
+// message, the three clouds of the two messages it finished; the cut named, exit code 1.
+TEST(CliDriveOutputFolders, AKilledBagIsCopiedToItsLastCompleteMessage) {
+  const std::string input = test::DrivesDir() + "/vlp16_killed.bag.active";
+  const Content in = ReadContent(input);
+  EXPECT_FALSE(in.damage.empty()) << "the last message is cut";
+  ASSERT_EQ(in.topics.at(kTopic).messages.size(), 2u);
+  for (const char* format : {"bag", "mcap"}) {
+    SCOPED_TRACE(format);
+    test::ScopedDir dir;
+    std::string log;
+    EXPECT_EQ(Segment(input, format, dir.path + "/out", &log), "1") << log;
+    ASSERT_EQ(Segment(input, "label", dir.path + "/labels", &log), "1") << log;
+    const Content out = ReadContent(dir.path + "/out/vlp16_killed." + format);
+    EXPECT_EQ(out.damage, std::vector<std::string>{});
+    ExpectHoldsEveryRecordOf(out, in);
+    ExpectTheThreeClouds(out, dir.path + "/labels", 2, 10);
+  }
+}
+
+// Several drives with --format mcap: each writes <drive stem>.mcap into its own folder; cloud
+// files among them are refused, before anything is written.
+TEST(CliDriveOutputFolders, SeveralDrivesEachWriteTheirCopyIntoTheirFolder) {
+  test::ScopedDir dir;
+  const std::string drives =
+      test::DrivesDir() + "/vlp16_zstd.mcap " + test::DrivesDir() + "/vlp16_split_db3";
+  std::string log;
+  ASSERT_EQ(Segment(drives, "mcap", dir.path + "/out", &log), "0") << log;
+  for (const std::string stem : {"vlp16_zstd", "vlp16_split_db3"}) {
+    SCOPED_TRACE(stem);
+    const Content out = ReadContent(dir.path + "/out/" + stem + "/" + stem + ".mcap");
+    EXPECT_EQ(out.damage, std::vector<std::string>{});
+    EXPECT_EQ(out.topics.at(kTopic + std::string("/labelled")).messages.size(), kFrames);
+    EXPECT_TRUE(fs::exists(dir.path + "/out/" + stem + "/index.csv"));
+  }
+  EXPECT_EQ(
+      Segment(drives + " " + test::FixtureFrameBase(0) + ".bin", "mcap", dir.path + "/o2", &log),
+      "2")
+      << log;
+  EXPECT_NE(log.find("--format mcap is for recorded drives"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.path + "/o2"));
 }
 
 }  // namespace

@@ -556,19 +556,18 @@ TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles)
                         std::to_string(StampNs(2)) + " /points True True\n");
 }
 
-TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
+TEST(CliDriveArgs, McapOutputNeedsDrivesOnly) {
   test::ScopedDir dir;
   std::string log;
-  EXPECT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() + "/vlp16.db3 " +
-                                 FrameBase(0) + ".bin --sensor vlp16 --out " + dir.path,
-                             &log),
-            2);
-  EXPECT_NE(log.find("on its own"), std::string::npos) << log;
-  EXPECT_EQ(test::RunCommand(Cli() + " segment " + FrameBase(0) +
-                                 ".bin --format mcap --sensor vlp16 --out " + dir.path,
-                             &log),
-            2);
-  EXPECT_NE(log.find("--format mcap is for a recorded drive"), std::string::npos) << log;
+  for (const std::string& inputs :
+       {FrameBase(0) + ".bin", test::DrivesDir() + "/vlp16.db3 " + FrameBase(0) + ".bin"}) {
+    EXPECT_EQ(
+        test::RunCommand(
+            Cli() + " segment " + inputs + " --format mcap --sensor vlp16 --out " + dir.path, &log),
+        2);
+    EXPECT_NE(log.find("--format mcap is for recorded drives"), std::string::npos) << log;
+    EXPECT_NE(log.find(FrameBase(0) + ".bin"), std::string::npos) << log;
+  }
 }
 
 TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {

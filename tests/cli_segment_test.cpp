@@ -302,7 +302,7 @@ TEST(CliSegment, RecursiveKeepsEachFilesPathBelowTheFolder) {
   std::string log;
   // Without --recursive: no cloud files in kitti/ itself, and the hint.
   EXPECT_EQ(Segment(kitti + " -s vlp16 -o " + dir.path + "/out", &log), 2);
-  EXPECT_NE(log.find(kitti + ": folder holds no cloud files, but its subfolders hold 2: "
+  EXPECT_NE(log.find(kitti + ": folder holds no cloud files or drives, but its subfolders hold 2: "
                              "--recursive (-r)"),
             std::string::npos)
       << log;

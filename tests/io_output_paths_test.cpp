@@ -37,8 +37,22 @@ TEST(OutputPaths, AFileGivenItselfKeepsItsNameAFileFoundInAFolderItsPathBelowIt)
   EXPECT_EQ(OutputPath({"kitti/00/velodyne/000000.bin", "kitti/", false}, "out", ".label"),
             "out/00/velodyne/000000.label");
   EXPECT_EQ(OutputPath({"a/000000.bin", "a", false}, "out", ".label"), "out/000000.label");
-  // A drive writes a folder: its name without the extension.
+  // A drive writes a folder: its name without the extension (DriveStem).
   EXPECT_EQ(OutputPath({"drives/run1.mcap", "", true}, "out", ".label"), "out/run1");
+  EXPECT_EQ(OutputPath({"d/r/run.bag.active", "d", true}, "out", ".label"), "out/r/run");
+}
+
+TEST(OutputPaths, ADrivesStemIsItsNameWithoutTheDriveExtensionABagFoldersItsWholeName) {
+  EXPECT_EQ(DriveStem("/a/b/drive.mcap"), "drive");
+  EXPECT_EQ(DriveStem("/a/b/drive.bag.active"), "drive");
+  EXPECT_EQ(DriveStem("x.v2.db3"), "x.v2");
+  const test::ScopedDir dir;
+  const std::string bag = dir.path + "/rosbag2_2024.05.01";
+  fs::create_directories(bag);
+  EXPECT_EQ(DriveStem(bag), "rosbag2_2024.05.01");
+  EXPECT_EQ(DriveStem(bag + "/"), "rosbag2_2024.05.01");
+  EXPECT_EQ(OutputPath({bag + "/", "", true}, "o", ".label"), "o/rosbag2_2024.05.01");
+  EXPECT_EQ(OutputPath({bag, dir.path, true}, "o", ".label"), "o/rosbag2_2024.05.01");
 }
 
 TEST(OutputPaths, DistinctOutputsInInputOrder) {

@@ -1,8 +1,8 @@
 // A recorded drive's whole content, every topic, for writing the drive back (segment --format
 // mcap|bag): the records in file order as MCAP models them (schemas, channels, messages, metadata,
-// attachments), read from an MCAP, a ROS 2 .db3 or a ROS 1 bag. DriveReader (drive.h) yields one
-// topic's messages for segmenting; a DriveContent yields everything, each message with the
-// channel it belongs to, so that nothing of the drive is lost on the way through.
+// attachments), read from an MCAP, a ROS 2 .db3, a ROS 2 bag folder or a ROS 1 bag. DriveReader
+// (drive.h) yields one topic's messages for segmenting; a DriveContent yields everything, each
+// message with the channel it belongs to, so that nothing of the drive is lost on the way through.
 //
 // How each format maps onto the model:
 //   MCAP      its own records: ids, schema data, channel metadata, sequence and publish time as
@@ -20,6 +20,12 @@
 //             place among the rows, from 1), metadata offered_qos_profiles when the bag has it;
 //             messages ordered by timestamp then row id, sequence = the place among its topic's
 //             messages, publish time = log time = the timestamp.
+//   bag folder its files' contents one after another, each as above (bag_folder_content.cpp): a
+//             schema or channel that a later file repeats yielded once, with the id first given;
+//             a .db3's sequences counted on across the files; a metadata record repeated whole
+//             (rosbag2's own, in every file) yielded once.
+//   .bag.active a ROS 1 bag whose recorder died: its last chunk, whose sizes were never filled
+//             in, read to the end of the file (ros1::UnfinishedChunk).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -86,5 +92,6 @@ std::unique_ptr<DriveContent> OpenDriveContent(const std::string& path);
 std::unique_ptr<DriveContent> OpenMcapContent(const std::string& path);
 std::unique_ptr<DriveContent> OpenRos1BagContent(const std::string& path);
 std::unique_ptr<DriveContent> OpenDb3Content(const std::string& path);
+std::unique_ptr<DriveContent> OpenBagFolderContent(const std::string& path);
 
 }  // namespace lpir

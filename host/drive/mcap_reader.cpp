@@ -149,6 +149,8 @@ class McapReader : public DriveReader {
     ResetWalk();
   }
 
+  std::vector<std::string> ListingDamage() override { return listing_damage_; }
+
   uint64_t ChunkCount() override {
     if (indexed_) return chunks_.size();
     ListScan();
@@ -299,17 +301,24 @@ class McapReader : public DriveReader {
     channels->emplace(id, std::move(c));
   }
 
-  // Topics and counts by a scan of the whole file when the summary did not give them.
+  // Topics and counts by a scan of the whole file when the summary did not give them, the
+  // damage it meets in listing_damage_.
   void LoadTopics() {
     if (topics_loaded_) return;
     counts_.clear();
+    listing_damage_.clear();
     Scan scan{data_start_, 0};
-    std::string ignored;
+    std::string damage;
     const Sink count = [this](uint16_t channel, uint64_t, const uint8_t*, size_t) {
       ++counts_[channel];
     };
     const Defs defs{&schemas_, &channels_};
-    while (ScanStep(&scan, count, &ignored, defs)) ignored.clear();
+    bool more = true;
+    while (more) {
+      more = ScanStep(&scan, count, &damage, defs);
+      if (!damage.empty()) listing_damage_.push_back(path_ + ": " + damage);
+      damage.clear();
+    }
     topics_loaded_ = true;
   }
 
@@ -520,7 +529,8 @@ class McapReader : public DriveReader {
   std::map<uint16_t, Channel> channels_;
   std::map<uint16_t, uint64_t> counts_;
   bool topics_loaded_ = false;
-  bool indexed_ = false;  // chunks_ (from the summary) drive Next
+  std::vector<std::string> listing_damage_;  // LoadTopics' scan's
+  bool indexed_ = false;                     // chunks_ (from the summary) drive Next
   std::vector<ChunkRef> chunks_;
 
   const unsigned threads_;

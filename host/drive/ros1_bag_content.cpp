@@ -4,7 +4,9 @@
 // the end) add nothing and are skipped. Channels are numbered in the order their connections are
 // first met (a bag's conn ids are not kept: MCAP's are 16 bits); a connection repeated is yielded
 // once. A damaged part (ros1_bag_file.h's checks) is kDamage naming the file, the byte or chunk
-// and the problem; the walk goes on after it when its record's lengths lie inside the file.
+// and the problem; the walk goes on after it when its record's lengths lie inside the file. A bag
+// without an index (NAME.bag.active) may end in the chunk its recorder was writing
+// (ros1::UnfinishedChunk): read to the end of the file, as the topic reader reads it.
 #include <deque>
 #include <map>
 #include <set>
@@ -30,6 +32,7 @@ class Ros1BagContent : public DriveContent {
       const Fields f = ros1::ReadFields(file_, r, "byte " + std::to_string(r.pos));
       if (f.Op() != ros1::kOpBagHeader || r.data_truncated)
         f.Fail("not a whole bag header record (op 3)");
+      unindexed_ = f.U64("index_pos") == 0;
       pos_ = r.end();
     } catch (const Broken& e) {
       throw IoError(path_, std::string("no valid bag header: ") + e.what());
@@ -71,6 +74,7 @@ class Ros1BagContent : public DriveContent {
     const Fields f = ros1::ReadFields(file_, r, where);
     const uint8_t op = f.Op();
     if (op == ros1::kOpChunk) {
+      if (ros1::UnfinishedChunk(file_, r, f, unindexed_)) pos_ = file_.size();
       ReadChunk(at);
     } else if (op == ros1::kOpConnection) {
       const std::vector<uint8_t> data = ros1::ReadData(file_, r);
@@ -87,7 +91,7 @@ class Ros1BagContent : public DriveContent {
   void ReadChunk(uint64_t at) {
     const std::string where =
         "chunk " + std::to_string(++chunks_) + " at byte " + std::to_string(at);
-    const ros1::LoadedChunk chunk = ros1::LoadChunk(file_, at, where);
+    const ros1::LoadedChunk chunk = ros1::LoadChunk(file_, at, where, unindexed_);
     const std::vector<uint8_t>& d = chunk.data;
     try {
       for (size_t pos = 0; pos < d.size();) {
@@ -166,8 +170,9 @@ class Ros1BagContent : public DriveContent {
   const std::string path_;
   const std::string profile_ = "ros1";
   ReadOnlyFile file_;
-  uint64_t pos_ = 0;     // the next record
-  uint64_t chunks_ = 0;  // chunk records met (numbered from 1, as the topic reader does)
+  bool unindexed_ = false;  // index_pos 0: a recorder that died (its last chunk unfinished)
+  uint64_t pos_ = 0;        // the next record
+  uint64_t chunks_ = 0;     // chunk records met (numbered from 1, as the topic reader does)
   std::map<uint32_t, Channel> channels_;                             // conn -> its channel
   std::map<std::pair<std::string, std::string>, uint16_t> schemas_;  // (type, definition) -> id
   std::set<uint32_t> orphans_;  // conns whose messages came before any connection record

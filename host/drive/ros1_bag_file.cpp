@@ -8,6 +8,9 @@
 
 namespace lpir::ros1 {
 
+// The most an unfinished chunk is read to (a recorder closes its chunks at 768 KiB by default).
+constexpr uint64_t kMaxUnfinishedBytes = uint64_t(1) << 30;
+
 // The record of chunk data `d` at `pos` (at most d.size()), its lengths checked against the
 // chunk, in this order: Broken(`at` + the problem) when the chunk ends inside its lengths or its
 // header, when the header is malformed (Fields), or when the chunk ends inside its data.
@@ -74,7 +77,17 @@ std::vector<uint8_t> ReadData(const ReadOnlyFile& file, const Record& r) {
   return file.Bytes(r.data_pos, r.data_len);
 }
 
-LoadedChunk LoadChunk(const ReadOnlyFile& file, uint64_t pos, const std::string& where) {
+bool UnfinishedChunk(const ReadOnlyFile& file, const Record& r, const Fields& f, bool unindexed) {
+  if (!unindexed || r.data_len != 0 || r.end() >= file.size()) return false;
+  try {
+    return f.Op() == kOpChunk && f.U32("size") == 0;
+  } catch (const Broken&) {  // a malformed chunk header: damage where it is read
+    return false;
+  }
+}
+
+LoadedChunk LoadChunk(const ReadOnlyFile& file, uint64_t pos, const std::string& where,
+                      bool unindexed) {
   LoadedChunk out;
   try {
     const Record r = ReadRecordAt(file, pos);
@@ -85,10 +98,20 @@ LoadedChunk LoadChunk(const ReadOnlyFile& file, uint64_t pos, const std::string&
     const uint32_t size = f.U32("size");
     if (compression != "none" && compression != "bz2" && compression != "lz4")
       f.Fail("unknown compression '" + compression + "'");
+    const uint64_t left = file.size() - r.data_pos;
+    if (UnfinishedChunk(file, r, f, unindexed)) {
+      if (compression != "none")
+        f.Fail("the chunk the recorder was writing when it died (its sizes never filled in), " +
+               compression + "-compressed: its messages cannot be read");
+      if (left > kMaxUnfinishedBytes)
+        f.Fail("the chunk the recorder was writing when it died runs " + std::to_string(left) +
+               " bytes to the end of the file, more than a recorder's chunk");
+      out.data = file.Bytes(r.data_pos, left);
+      return out;
+    }
     if (compression == "none" && r.data_len != size)
       f.Fail("uncompressed chunk holds " + std::to_string(r.data_len) +
              " bytes, its size field says " + std::to_string(size));
-    const uint64_t left = file.size() - r.data_pos;
     if (r.data_truncated) {
       if (compression == "none") out.data = file.Bytes(r.data_pos, left);
       f.Fail("the file ends inside the chunk's data (" + std::to_string(left) + " of " +

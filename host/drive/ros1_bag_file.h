@@ -129,13 +129,22 @@ Fields ReadFields(const ReadOnlyFile& file, const Record& r, const std::string& 
 // The record's data; Broken when it runs past the end of the file.
 std::vector<uint8_t> ReadData(const ReadOnlyFile& file, const Record& r);
 
+// True for the chunk a recorder was writing when it died, in a bag without an index
+// (`unindexed`: index_pos 0, what a recorder leaves as NAME.bag.active): a chunk record whose size
+// and data length are still the zeros written before its data, with bytes after it (a finished
+// chunk holds at least one message).
+bool UnfinishedChunk(const ReadOnlyFile& file, const Record& r, const Fields& f, bool unindexed);
+
 struct LoadedChunk {
   std::vector<uint8_t> data;  // uncompressed (of a truncated uncompressed chunk: what is there)
   std::string damage;         // empty when whole
 };
 // The chunk record at `pos` decompressed (none, bz2, lz4); its damage ("<where>: <problem>") when
 // it is not a chunk record, has an unknown compression, a size that disagrees, data cut by the end
-// of the file or that does not decompress.
-LoadedChunk LoadChunk(const ReadOnlyFile& file, uint64_t pos, const std::string& where);
+// of the file or that does not decompress. In an `unindexed` bag an unfinished chunk
+// (UnfinishedChunk) is taken to run to the end of the file, as a truncated one: its data when
+// uncompressed (at most 1 GiB), else damage.
+LoadedChunk LoadChunk(const ReadOnlyFile& file, uint64_t pos, const std::string& where,
+                      bool unindexed);
 
 }  // namespace lpir::ros1

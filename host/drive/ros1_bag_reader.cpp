@@ -27,8 +27,12 @@
 // chunk whose position is known: from the chunk infos, or the end of the damaged record when its
 // lengths lie inside the file; a scan that meets a record running past the end of the file stops
 // there. The complete message records of a truncated uncompressed chunk are still yielded; a
-// truncated compressed chunk yields none. The file is never read whole: a record's bytes are read
-// only once its lengths are checked against the bytes left in the file.
+// truncated compressed chunk yields none. A bag without an index (index_pos 0: the recorder died
+// before closing it, leaving NAME.bag.active) may end in the chunk it was writing: a chunk record
+// whose sizes are still the zeros written before its data, followed by that data. Its data is
+// taken to run to the end of the file, as a truncated chunk's: an uncompressed one's complete
+// records are yielded, a compressed one is damage. The file is never read whole: a record's bytes
+// are read only once its lengths are checked against the bytes left in the file.
 #include "host/drive/ros1_bag_reader.h"
 
 #include <algorithm>
@@ -101,6 +105,27 @@ class Ros1Bag : public DriveReader {
     } catch (const Broken& e) {
       throw IoError(path_, std::string("no valid bag header: ") + e.what());
     }
+  }
+
+  std::vector<std::string> ListingDamage() override {
+    EnsureCatalogue();
+    std::vector<std::string> damage;
+    for (const Damage& d : scan_damages_) damage.push_back(d.problem);
+    return damage;
+  }
+
+  std::vector<std::string> Notes() override {
+    EnsureCatalogue();
+    std::vector<std::string> notes;
+    if (index_pos_ == 0)
+      notes.push_back(path_ + ": no index (the recorder died before closing the bag; `rosbag " +
+                      "reindex` writes one): its " + std::to_string(chunks_.size()) + " chunk" +
+                      (chunks_.size() == 1 ? " was" : "s were") + " scanned");
+    if (unfinished_ != UINT32_MAX)
+      notes.push_back(path_ + ": " + ChunkWhere(unfinished_) +
+                      " is the one the recorder was writing (its sizes never filled in): read "
+                      "up to the end of the file");
+    return notes;
   }
 
   std::vector<DriveTopic> Topics() override {
@@ -268,6 +293,11 @@ class Ros1Bag : public DriveReader {
     *problem = what + " (after " + std::to_string(sequence_) +
                (sequence_ == 1 ? " message" : " messages") + " of " + topic_ + ")";
     return DriveStep::kDamage;
+  }
+
+  // A chunk the recorder was writing when it died (ros1::UnfinishedChunk).
+  bool Unfinished(const Record& r, const Fields& f) const {
+    return ros1::UnfinishedChunk(file_, r, f, index_pos_ == 0);
   }
 
   std::string ChunkWhere(uint32_t c) const {
@@ -450,6 +480,7 @@ class Ros1Bag : public DriveReader {
         whole = false;
         break;
       }
+      if (unfinished_ != UINT32_MAX) break;  // its data runs to the end of the file
       pos = r.end();
     }
     for (const auto& [id, c] : connections_) message_counts_[id];
@@ -481,6 +512,7 @@ class Ros1Bag : public DriveReader {
     const Fields f = ReadFields(r, at);
     const uint8_t op = f.Op();
     if (op == kOpChunk) {
+      if (Unfinished(r, f)) unfinished_ = uint32_t(chunks_.size());
       chunks_.push_back(r.pos);
       scan_damage_known_.push_back(false);
       ScanChunk(uint32_t(chunks_.size() - 1), &scan_entries_, &scan_damages_, &scan_damage_known_,
@@ -510,7 +542,7 @@ class Ros1Bag : public DriveReader {
 
   // Chunk `c` decompressed (step 4, and the scans of steps 2 and 3).
   LoadedChunk LoadChunk(uint32_t c) const {
-    return ros1::LoadChunk(file_, chunks_[c], ChunkWhere(c));
+    return ros1::LoadChunk(file_, chunks_[c], ChunkWhere(c), index_pos_ == 0);
   }
   // The records of chunk `c` (step 2's scan, or step 3 when its index data is unusable): its
   // messages to `entries`, its connections registered when `add_connections`, its damage to
@@ -627,6 +659,7 @@ class Ros1Bag : public DriveReader {
   std::vector<Entry> scan_entries_;
   std::vector<Damage> scan_damages_;
   std::vector<bool> scan_damage_known_;
+  uint32_t unfinished_ = UINT32_MAX;  // the chunk (index) a dead recorder was writing, if any
 
   // The selected topic.
   std::string topic_;

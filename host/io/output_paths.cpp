@@ -19,14 +19,33 @@ std::string Resolved(const std::string& path) {
   return ec ? fs::path(path).lexically_normal().string() : p.string();
 }
 
+// `path` without trailing separators ("bag/" -> "bag").
+fs::path Trimmed(const std::string& path) {
+  fs::path p(path);
+  while (p.has_relative_path() && p.filename().empty()) p = p.parent_path();
+  return p;
+}
+
 }  // namespace
+
+std::string DriveStem(const std::string& path) {
+  const fs::path p = Trimmed(path);
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) return p.filename().string();
+  const fs::path stem = p.stem();
+  return p.extension() == ".active" && stem.extension() == ".bag" ? stem.stem().string()
+                                                                  : stem.string();
+}
 
 std::string OutputPath(const RunInput& input, const std::string& out_dir,
                        const std::string& extension) {
-  const fs::path path(input.path);
+  const fs::path path = Trimmed(input.path);
   fs::path below = input.folder.empty() ? path.filename() : path.lexically_relative(input.folder);
   if (below.empty() || *below.begin() == "..") below = path.filename();  // not inside its folder
-  below.replace_extension(input.drive ? "" : extension);
+  if (input.drive)
+    below.replace_filename(DriveStem(input.path));
+  else
+    below.replace_extension(extension);
   return (fs::path(out_dir) / below).lexically_normal().string();
 }
 

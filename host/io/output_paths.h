@@ -16,11 +16,18 @@ struct RunInput {
   bool drive = false;  // a recorded drive: its output is a folder (its labels and index.csv)
 };
 
+// The name a drive's outputs take (its folder among several inputs, its whole copy with
+// --format mcap|bag): a drive file's name without its extension, `.bag.active` (what a ROS 1
+// recorder writes until it closes the bag) taken whole ("run.bag.active" -> "run"); a folder's
+// (a ROS 2 bag's) name, trailing separators ignored.
+std::string DriveStem(const std::string& path);
+
 // The output of `input` in `out_dir`: out_dir/<input.path below input.folder, or its file name>
-// with the last extension replaced by `extension` (".label", ".pcd"); for a drive, without an
-// extension: the folder its messages' labels and index.csv go to. ("a/000000.bin" given itself,
-// ".label" -> "out/000000.label"; "kitti/00/velodyne/000000.bin" found in "kitti" ->
-// "out/00/velodyne/000000.label".)
+// with the last extension replaced by `extension` (".label", ".pcd"); for a drive, its name
+// replaced by its DriveStem: the folder its messages' labels and index.csv go to.
+// ("a/000000.bin" given itself, ".label" -> "out/000000.label"; "kitti/00/velodyne/000000.bin"
+// found in "kitti" -> "out/00/velodyne/000000.label"; "d/r/run.bag.active" found in "d" ->
+// "out/r/run".)
 std::string OutputPath(const RunInput& input, const std::string& out_dir,
                        const std::string& extension);
 

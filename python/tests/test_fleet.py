@@ -215,3 +215,68 @@ def test_progress_bar_shows_frames_per_second():
     for i in range(20):
         bar.step(1, 0)
     assert log.text.count("progress:") == 10 and "\r" not in log.text
+
+
+def test_a_folder_of_clouds_and_drives_is_written_as_segment_writes_it(cli, tmp_path):
+    """Two scans, an MCAP, a ROS 2 bag folder and a file that is neither: the fleet names the
+    file it skips, counts the drives' messages as frames and writes what `segment` writes."""
+    drives = Path(__file__).resolve().parents[2] / "tests" / "data" / "drives"
+    folder = tmp_path / "mixed"
+    folder.mkdir()
+    for i in range(2):
+        (folder / f"{i:06}.bin").write_bytes((drives / "narrow" / f"{i:06}.bin").read_bytes())
+    (folder / "vlp16_zstd.mcap").write_bytes((drives / "vlp16_zstd.mcap").read_bytes())
+    (folder / "bag").mkdir()
+    for f in (drives / "vlp16_split_mcap").iterdir():
+        name = f.name.replace("vlp16_split_mcap", "bag")  # a renamed folder: metadata.yaml rules
+        (folder / "bag" / name).write_bytes(f.read_bytes())
+    metadata = folder / "bag" / "metadata.yaml"
+    metadata.write_text(metadata.read_text().replace("vlp16_split_mcap", "bag"))
+    (folder / "README.txt").write_text("not a cloud")
+    result = fleet(folder, "--sensor", "vlp16", "--out", tmp_path / "fleet", "--workers", 2,
+                   "--backend", "cpu")
+    assert result.returncode == 0, result.stderr
+    assert f"lpir_gseg.fleet: skipped {folder / 'README.txt'}: neither a cloud file" \
+        in result.stderr
+    assert "wrote 8 label files" in result.stdout  # 2 scans + 3 + 3 messages
+    assert "(2 files and 2 drives, 8 frames in" in result.stdout
+    segment = run_cli(cli, "segment", folder, "--sensor", "vlp16", "--backend", "cpu", "--out",
+                      tmp_path / "cli", "--quiet")
+    assert segment.returncode == 0, segment.stderr
+    cli_files = sorted(p.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("*.label"))
+    assert len(cli_files) == 8
+    fleet_files = sorted(p.relative_to(tmp_path / "fleet")
+                         for p in (tmp_path / "fleet").rglob("*.label"))
+    assert fleet_files == cli_files
+    for name in cli_files:
+        assert (tmp_path / "fleet" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+
+
+def test_recursive_keeps_each_input_at_its_path_below_the_folder_as_segment_does(cli, tmp_path):
+    """Scans and drives of one name in two subfolders: refused without --recursive (the folder
+    holds none itself), kept apart by their paths with it, the files those of `segment -r`."""
+    drives = Path(__file__).resolve().parents[2] / "tests" / "data" / "drives"
+    root = tmp_path / "runs"
+    for sub in ("a", "b/c"):
+        (root / sub).mkdir(parents=True)
+        (root / sub / "000000.bin").write_bytes((drives / "narrow" / "000000.bin").read_bytes())
+        (root / sub / "drive.mcap").write_bytes((drives / "vlp16_zstd.mcap").read_bytes())
+    result = fleet(root, "--sensor", "vlp16", "--out", tmp_path / "fleet", "--workers", 1,
+                   "--backend", "cpu")
+    assert result.returncode == 2 and "--recursive (-r)" in result.stderr, result.stderr
+    assert not (tmp_path / "fleet").exists()
+    result = fleet(root, "-r", "--sensor", "vlp16", "--out", tmp_path / "fleet", "--workers", 2,
+                   "--backend", "cpu")
+    assert result.returncode == 0, result.stderr
+    assert "(2 files and 2 drives, 8 frames in" in result.stdout
+    segment = run_cli(cli, "segment", root, "-r", "--sensor", "vlp16", "--backend", "cpu",
+                      "--out", tmp_path / "cli", "--quiet")
+    assert segment.returncode == 0, segment.stderr
+    cli_files = sorted(p.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("*.label"))
+    assert Path("a/000000.label") in cli_files and Path("b/c/000000.label") in cli_files
+    assert len([p for p in cli_files if p.parent.name == "drive"]) == 6
+    fleet_files = sorted(p.relative_to(tmp_path / "fleet")
+                         for p in (tmp_path / "fleet").rglob("*.label"))
+    assert fleet_files == cli_files
+    for name in cli_files:
+        assert (tmp_path / "fleet" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()

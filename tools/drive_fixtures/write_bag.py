@@ -12,17 +12,23 @@ point k of n at k / n x 0.1 s). point_step 22 with ring, else 20. The message is
 stamp.
 
 usage: write_bag.py --out FILE.bag --compression bz2|lz4|none [--topic /points]
-                    [--frame-id velodyne] [--chunk-threshold BYTES] [--extras] FRAME.bin...
+                    [--frame-id velodyne] [--chunk-threshold BYTES] [--extras]
+                    [--recorder-died] FRAME.bin...
 A chunk is closed once it holds --chunk-threshold bytes (default rosbag's 768 KiB; 1 gives one
 message per chunk). --extras adds the other topics extras.mjs describes, as ROS 1 messages:
 /imu/data (sensor_msgs/Imu, 100 Hz, callerid /imu_driver) and /gps/fix (sensor_msgs/NavSatFix,
 10 Hz, latched, callerid /gps_driver), each recorded at its stamp.
+
+--recorder-died leaves what a recorder killed while writing its last frame leaves (NAME.bag.active
+from `rosbag record`): the first frame in a chunk closed at once, the others in a chunk left open
+(rosbag's default threshold), the file flushed and cut halfway through the last frame's record,
+the bag never closed: no index, and the open chunk's header still holding the zero sizes rosbag
+writes before a chunk's data (the frames only: --extras is not taken with it).
 """
 import argparse
+import math
 import os
 import sys
-
-import math
 
 import genpy
 import numpy
@@ -115,10 +121,13 @@ def main():
     parser.add_argument("--frame-id", default="velodyne")
     parser.add_argument("--chunk-threshold", type=int, default=768 * 1024)
     parser.add_argument("--extras", action="store_true")
+    parser.add_argument("--recorder-died", action="store_true")
     parser.add_argument("frames", nargs="+")
     args = parser.parse_args()
     compression = {"bz2": rosbag.Compression.BZ2, "lz4": rosbag.Compression.LZ4,
                    "none": rosbag.Compression.NONE}[args.compression]
+    if args.recorder_died:
+        die_writing(args, compression)
     with rosbag.Bag(args.out, "w", compression=compression,
                     chunk_threshold=args.chunk_threshold) as bag:
         entries = [(args.topic, cloud_message(path, i, args.frame_id), None)
@@ -135,6 +144,28 @@ def main():
                 bag.write(topic, msg, t=msg.header.stamp, connection_header=header)
     print(f"write_bag: {len(args.frames)} messages on {args.topic} ({args.compression}) -> "
           f"{args.out}")
+
+
+def die_writing(args, compression):
+    """--recorder-died: writes as rosbag does, then leaves the way a killed process does."""
+    if len(args.frames) < 2:
+        sys.exit("write_bag: --recorder-died needs two frames or more")
+    if args.extras:
+        sys.exit("write_bag: --recorder-died writes the frames only, not --extras")
+    bag = rosbag.Bag(args.out, "w", compression=compression, chunk_threshold=1)
+    for i, path in enumerate(args.frames):
+        if i == 1:
+            bag.chunk_threshold = 768 * 1024  # the rest stays in one open chunk
+        msg = cloud_message(path, i, args.frame_id)
+        before = bag._file.tell()  # the file rosbag writes (no public name for it)
+        bag.write(args.topic, msg, t=msg.header.stamp)
+    bag._file.flush()
+    after = bag._file.tell()
+    os.truncate(args.out, before + (after - before) // 2)  # killed halfway through the last one
+    print(f"write_bag: {len(args.frames)} messages on {args.topic} ({args.compression}), the "
+          f"last cut at byte {before + (after - before) // 2} of its record's {before}..{after}, "
+          f"never closed -> {args.out}", flush=True)
+    os._exit(0)  # as a killed recorder: nothing of rosbag's closing runs
 
 
 if __name__ == "__main__":
