@@ -195,6 +195,19 @@ ChunkRange ParseChunkRange(const std::string& text) {
   return r;
 }
 
+// OutputPaths of the inputs listed, for --format `format`; its refusal says how outputs are named.
+std::vector<std::string> Outputs(const std::vector<RunInput>& listed, const std::string& out_dir,
+                                 const std::string& format) {
+  try {
+    return OutputPaths(listed, out_dir, "." + format);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string(e.what()) +
+                                "; nothing written (each output is named after its input's "
+                                "path below the folder given; --recursive keeps subfolders "
+                                "apart)");
+  }
+}
+
 // The command line's options, checked; std::invalid_argument names the bad one.
 SegmentArgs ParseSegmentArgs(const Args& args) {
   SegmentArgs a;
@@ -237,7 +250,7 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
           "--format bag writes a ROS 1 bag, for a ROS 1 .bag input (.bag, .bag.active): " +
           in.path + " is a ROS 2 drive (.mcap, .db3, bag folder), which takes --format mcap");
   }
-  if ((a.format == "mcap" || a.format == "bag") && args.Has("--chunks"))
+  if (whole && args.Has("--chunks"))
     throw std::invalid_argument("--format " + a.format +
                                 " writes the whole drive back: it takes no --chunks");
   a.report = args.Get("--report");
@@ -266,15 +279,9 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   if (a.quiet && a.verbose) throw std::invalid_argument("--quiet and --verbose exclude each other");
   a.timings = args.Has("--timings");
   CheckOutputFolder(a.out_dir);
-  std::vector<std::string> outputs = {a.out_dir};  // a drive alone writes into DIR itself
-  if (!a.drive) try {
-      outputs = OutputPaths(listed, a.out_dir, "." + a.format);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(std::string(e.what()) +
-                                  "; nothing written (each output is named after its input's "
-                                  "path below the folder given; --recursive keeps subfolders "
-                                  "apart)");
-    }
+  // a drive alone writes into DIR itself (one input cannot clash)
+  const std::vector<std::string> outputs =
+      a.drive ? std::vector<std::string>{a.out_dir} : Outputs(listed, a.out_dir, a.format);
   for (size_t i = 0; i < listed.size(); ++i) {
     const RunInput& in = listed[i];
     if (!in.drive) {
