@@ -25,14 +25,16 @@ class BagFolderContent : public DriveContent {
  public:
   explicit BagFolderContent(const std::string& path) : files_(ListBagFiles(path).files) {
     // the profile is the first file's that opens: every file of one bag shares it
+    std::string first_error;
     for (const std::string& file : files_) {
       try {
         profile_ = OpenDriveContent(file)->profile();
         return;
-      } catch (const IoError&) {
+      } catch (const IoError& e) {
+        if (first_error.empty()) first_error = e.what();
       }
     }
-    throw IoError(path, "not one file of the bag can be read");
+    throw IoError(path, "not one file of the bag can be read; the first: " + first_error);
   }
 
   const std::string& profile() const override { return profile_; }
