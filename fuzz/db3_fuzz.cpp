@@ -1,9 +1,10 @@
 // Fuzz target of the ROS 2 .db3 reader (host/drive/db3_reader.h): any bytes as a bag either
 // throw IoError from OpenDb3, Topics or SelectTopic, or read as a stream of messages numbered
 // from 0 that ends (kEnd, right after a kDamage when there is one); each message's bytes go
-// through the PointCloud2 decoder too. A crash, a hang, another exception or a failed check is
-// a finding. The bytes go to a real temporary file, not FuzzFile's memfd: SQLite resolves the
-// /proc/self/fd/N link to the memfd's name, which it cannot open.
+// through the PointCloud2 decoder too; its whole-drive reader (OpenDb3Content) keeps the
+// DriveContent contract (fuzz/content_walk.h). A crash, a hang, another exception or a failed
+// check is a finding. The bytes go to a real temporary file, not FuzzFile's memfd: SQLite resolves
+// the /proc/self/fd/N link to the memfd's name, which it cannot open.
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "fuzz/cloud_checks.h"
+#include "fuzz/content_walk.h"
 #include "fuzz/fuzz_file.h"
 #include "host/drive/db3_reader.h"
 #include "host/drive/pointcloud2.h"
@@ -108,5 +110,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     names = {"/points"};  // the counts are damaged; the messages may still be read
   }
   for (const std::string& name : names) ReadTopic(reader.get(), file.path(), name);
+  fuzz::CheckContentWalk(OpenDb3Content, file.path());
   return 0;
 }

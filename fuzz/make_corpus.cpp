@@ -1,11 +1,13 @@
 // Writes the seed corpus of every fuzz target: small valid files from the project's own writers
 // and hand-made edge cases (comments, CRLF, skipped and multi-count fields, NaN/Inf, 0 points,
-// other elements, continuation lines, calibration keys; PointCloud2 layouts of every kind; small
-// .db3 bags of each rosbag2 schema; MCAP drives from the writer and by hand; ROS 1 bags indexed
-// or not, of each chunk compression, truncated), one folder per target.
+// PCD binary_compressed with LZF references, other elements, continuation lines, calibration
+// keys; PointCloud2 layouts of every kind; small .db3 bags of each rosbag2 schema; MCAP drives
+// from the writer and by hand; ROS 1 bags indexed or not, of each chunk compression, truncated),
+// one folder per target.
 // Usage: make_corpus OUT_DIR  (fuzz/corpus/ holds its output, checked by ctest: fuzz.corpus).
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -20,6 +22,7 @@
 #include "host/drive/mcap_records.h"
 #include "host/drive/mcap_writer.h"
 #include "host/drive/pointcloud2.h"
+#include "host/drive/ros1_bag_writer.h"
 #include "host/io/file_bytes.h"
 #include "host/io/io_error.h"
 #include "host/io/kitti_bin.h"
@@ -41,6 +44,57 @@ void Text(const std::string& path, const std::string& text) {
 template <size_t N>
 std::string Raw(const char (&literal)[N]) {
   return std::string(literal, N - 1);
+}
+
+template <typename T>
+void Append(std::string* out, T value) {
+  out->append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+// `bytes` as LZF (host/io/lzf.h): at each byte the longest earlier match of 3 to 264 bytes at
+// most 8192 back (found by trying every start), else a literal; literals in runs of up to 32.
+std::string Lzf(const std::string& bytes) {
+  std::string out, literal;
+  const auto flush = [&] {
+    if (literal.empty()) return;
+    out += char(literal.size() - 1);
+    out += literal;
+    literal.clear();
+  };
+  size_t i = 0;
+  while (i < bytes.size()) {
+    size_t best = 0, distance = 0;
+    for (size_t from = i > 8192 ? i - 8192 : 0; from < i; ++from) {
+      size_t n = 0;
+      while (n < 264 && i + n < bytes.size() && bytes[from + n] == bytes[i + n]) ++n;
+      if (n > best) {
+        best = n;
+        distance = i - from;
+      }
+    }
+    if (best < 3) {
+      literal += bytes[i++];
+      if (literal.size() == 32) flush();
+      continue;
+    }
+    flush();
+    const size_t length = best - 2, back = distance - 1;
+    out += char(std::min<size_t>(length, 7) << 5 | back >> 8);
+    if (length >= 7) out += char(length - 7);
+    out += char(back & 0xff);
+    i += best;
+  }
+  flush();
+  return out;
+}
+
+// What follows DATA binary_compressed: the compressed and decompressed sizes, then the LZF.
+std::string CompressedBody(const std::string& fields) {
+  const std::string stream = Lzf(fields);
+  std::string body;
+  Append(&body, uint32_t(stream.size()));
+  Append(&body, uint32_t(fields.size()));
+  return body + stream;
 }
 
 // A few points with every kind of value a scan holds: road, obstacle, NaN, Inf, the origin,
@@ -94,9 +148,27 @@ void Pcd(const std::string& dir) {
   Text(dir + "/no_intensity.pcd",
        "VERSION 0.7\nFIELDS z y x\nSIZE 2 8 1\nTYPE I F I\nWIDTH 2\nDATA ascii\n-5 0.25 -128\n"
        "32767 -1e300 127\n");
+  // DATA binary_compressed as PCL writes it: the fields one after another (padding "_" not
+  // stored), LZF with runs and references; then a multi-count field, an organised cloud and the
+  // zero bytes PCL 1.13 leaves after the data.
+  std::string soa;
+  for (int k = 0; k < 4; ++k) {
+    for (size_t i = 0; i < ring.size(); ++i) Append(&soa, ring.xyzi[4 * i + k]);
+  }
+  for (int32_t r : ring.ring) Append(&soa, r);
   Text(dir + "/compressed.pcd",
-       Raw("VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
-           "POINTS 1\nDATA binary_compressed\n\x0c\0\0\0\x0c\0\0\0"));
+       "VERSION 0.7\nFIELDS x y z intensity ring _\nSIZE 4 4 4 4 4 1\nTYPE F F F F I U\n"
+       "COUNT 1 1 1 1 1 3\nWIDTH 6\nHEIGHT 1\nPOINTS 6\nDATA binary_compressed\n" +
+           CompressedBody(soa));
+  soa.clear();
+  for (int i = 0; i < 8; ++i) Append(&soa, double(i % 3) * 0.5);
+  for (int i = 0; i < 8; ++i) Append(&soa, float(-i));
+  for (int i = 0; i < 8; ++i) Append(&soa, uint16_t(1000));
+  for (int i = 0; i < 8 * 3; ++i) Append(&soa, i % 3 == 2 ? 1.0f : 0.0f);
+  Text(dir + "/compressed_organised.pcd",
+       "VERSION 0.7\nFIELDS x y z normal\nSIZE 8 4 2 4\nTYPE F F U F\nCOUNT 1 1 1 3\nWIDTH 4\n"
+       "HEIGHT 2\nPOINTS 8\nDATA binary_compressed\n" +
+           CompressedBody(soa) + std::string(40, '\0'));
 }
 
 void Ply(const std::string& dir) {
@@ -117,6 +189,37 @@ void Ply(const std::string& dir) {
   Text(dir + "/big_endian.ply",
        Raw("ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\n"
            "property float y\nproperty float z\nend_header\n\0\0\0\0\0\0\0\0\0\0\0\0"));
+}
+
+// metadata.yaml as rosbag2 writes it through yaml-cpp (Jazzy), as PyYAML dumps it (Humble: keys
+// sorted, sequences not indented, a long string folded over lines), and the rest of the subset.
+void BagMetadatas(const std::string& dir) {
+  Text(dir + "/rosbag2_jazzy.yaml",
+       "rosbag2_bagfile_information:\n  version: 9\n  storage_identifier: mcap\n"
+       "  duration:\n    nanoseconds: 200000000\n  starting_time:\n"
+       "    nanoseconds_since_epoch: 1600000000000000000\n  message_count: 3\n"
+       "  topics_with_message_count:\n    - topic_metadata:\n        name: /points\n"
+       "        type: sensor_msgs/msg/PointCloud2\n        serialization_format: cdr\n"
+       "        offered_qos_profiles:\n          - history: keep_last\n            depth: 5\n"
+       "            deadline:\n              sec: 9223372036\n              nsec: 854775807\n"
+       "        type_description_hash: RIHS01_00\n      message_count: 3\n"
+       "  compression_format: \"\"\n  compression_mode: \"\"\n  relative_file_paths:\n"
+       "    - run_0.mcap\n    - run_1.mcap\n  files:\n    - path: run_0.mcap\n"
+       "      message_count: 2\n  custom_data: ~\n  ros_distro: jazzy\n");
+  Text(dir + "/pyyaml_humble.yaml",
+       "rosbag2_bagfile_information:\n  compression_format: ''\n  compression_mode: ''\n"
+       "  message_count: 3\n  relative_file_paths:\n  - run_0.db3\n  - run_1.db3\n"
+       "  storage_identifier: sqlite3\n  topics_with_message_count:\n  - message_count: 3\n"
+       "    topic_metadata:\n      name: /points\n"
+       "      offered_qos_profiles: \"- history: 3\\n  depth: 0\\n  durability:\\\n"
+       "        \\ 2\\n  avoid_ros_namespace_conventions: false\\n\"\n"
+       "      serialization_format: cdr\n      type: sensor_msgs/msg/PointCloud2\n"
+       "  version: 5\n");
+  Text(dir + "/subset.yaml",
+       "---\n# comment\nrosbag2_bagfile_information:\n  relative_file_paths: ['a_0.mcap', b]\n"
+       "  note: |\n    literal\n     kept\n  folded: >-\n    one\n    two\n"
+       "  quoted: 'it''s'\n  escapes: \"\\t\\u00e9\\x41\"\n  empty: {}\n  none: []\n"
+       "  plain: several\n    lines\n");
 }
 
 void SensorProfiles(const std::string& dir) {
@@ -276,7 +379,7 @@ void PointCloud2s(const std::string& dir) {
                                                                        2, 3, false)));
   const PointCloud2 plain = Message(FinitePoints(), ouster, 1, 0, false);
   Bytes(dir + "/labelled.cdr",
-        SerializeCdrPointCloud2(AddLabelField(dir, plain, Labels{1, 0, 1, 0})));
+        SerializeCdrPointCloud2(SplitByLabel(dir, plain, Labels{1, 0, 1, 0}).labelled));
   PointCloud2 empty = plain;
   empty.width = 0;
   empty.row_step = 0;
@@ -349,7 +452,22 @@ void WriteMcapDrive(const std::string& path, McapCompression compression) {
   w.Close();
 }
 
+// Channel metadata, a metadata record and an attachment between the chunks (the whole-drive
+// reader's records), profile ros1.
+void WriteMcapRecords(const std::string& path) {
+  McapWriter w(path, McapCompression::kZstd, "ros1");
+  const uint16_t pc = w.AddSchema("sensor_msgs/PointCloud2", "ros1msg", "uint8 x\n");
+  const uint16_t points = w.AddChannel("/points", pc, "ros1", {{"md5sum", "0"}, {"latching", "1"}});
+  std::vector<uint8_t> data(24, 7);
+  w.Write(points, 0, 100, 100, data.data(), data.size());
+  w.AddMetadata(DriveMetadata{"drive_info", {{"vehicle", "a"}, {"route", "b"}}});
+  w.AddAttachment(DriveAttachment{100, 0, "calib.yaml", "application/yaml", {'x', ':', '1'}});
+  w.Write(points, 1, 200, 200, data.data(), data.size());
+  w.Close();
+}
+
 void Mcap(const std::string& dir) {
+  WriteMcapRecords(dir + "/records.mcap");
   WriteMcapDrive(dir + "/none.mcap", McapCompression::kNone);
   WriteMcapDrive(dir + "/zstd.mcap", McapCompression::kZstd);
   WriteMcapDrive(dir + "/lz4.mcap", McapCompression::kLz4);
@@ -534,7 +652,25 @@ std::string Ros1Bag(const std::string& compression, bool indexed, bool padded) {
   return bag;
 }
 
+// A bag from Ros1BagWriter: two connections (one latched), three messages.
+void WrittenRos1Bag(const std::string& path) {
+  Ros1BagWriter w(path);
+  const uint32_t cloud = w.AddConnection(
+      "/points",
+      {{"type", "sensor_msgs/PointCloud2"}, {"md5sum", "0"}, {"message_definition", ""}});
+  const uint32_t gps = w.AddConnection("/gps", {{"type", "std_msgs/String"},
+                                                {"md5sum", "0"},
+                                                {"message_definition", "string data\n"},
+                                                {"latching", "1"}});
+  const std::string cloud0 = Ros1Cloud(0), text = "\x02\0\0\0hi";
+  w.Write(cloud, 1000000000, reinterpret_cast<const uint8_t*>(cloud0.data()), cloud0.size());
+  w.Write(gps, 1000000001, reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  w.Write(cloud, 1100000000, reinterpret_cast<const uint8_t*>(cloud0.data()), cloud0.size());
+  w.Close();
+}
+
 void Ros1Bags(const std::string& dir) {
+  WrittenRos1Bag(dir + "/written.bag");
   for (const char* compression : {"none", "bz2", "lz4"})
     Text(dir + "/indexed_" + compression + ".bag", Ros1Bag(compression, true, true));
   Text(dir + "/unindexed_bz2.bag", Ros1Bag("bz2", false, true));
@@ -565,7 +701,8 @@ int main(int argc, char** argv) {
   const struct {
     const char* target;
     void (*write)(const std::string&);
-  } kTargets[] = {{"db3", lpir::Db3s},
+  } kTargets[] = {{"bag_metadata", lpir::BagMetadatas},
+                  {"db3", lpir::Db3s},
                   {"kitti_bin", lpir::KittiBin},
                   {"label_file", lpir::LabelFile},
                   {"mcap", lpir::Mcap},

@@ -3,12 +3,14 @@
 // contract: it ends (kEnd within a bound, and stays ended), sequences count 0, 1, 2, ..., every
 // message carries the topic chosen, every damage names the file. Any other exception, a sanitizer
 // report, a leak or a failed check is a finding. Read again with one worker and with three
-// decompressing ahead, the file yields the same steps (fuzz/drive_transcript.h).
+// decompressing ahead, the file yields the same steps (fuzz/drive_transcript.h). Its whole-drive
+// reader (OpenMcapContent) keeps the DriveContent contract (fuzz/content_walk.h).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "fuzz/content_walk.h"
 #include "fuzz/drive_transcript.h"
 #include "fuzz/fuzz_file.h"
 #include "host/drive/mcap_reader.h"
@@ -55,5 +57,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto open = [&](unsigned threads) { return lpir::OpenMcap(in.path(), threads); };
   LPIR_FUZZ_CHECK(lpir::fuzz::TranscriptOf(open, 1, 4, size_t(1) << 20) ==
                   lpir::fuzz::TranscriptOf(open, 3, 4, size_t(1) << 20));
+  lpir::fuzz::CheckContentWalk(lpir::OpenMcapContent, in.path());
   return 0;
 }

@@ -1,5 +1,6 @@
-// Fuzz target of the PCD reader (host/io/pcd.h): any bytes either read as a well-formed cloud
-// that survives a write/read round trip through WritePcd (binary and ASCII), or throw IoError.
+// Fuzz target of the PCD reader (host/io/pcd.h; DATA ascii, binary and binary_compressed with its
+// LZF stream, host/io/lzf.h): any bytes either read as a well-formed cloud that survives a
+// write/read round trip through WritePcd (binary and ASCII), or throw IoError.
 // Any other exception, a sanitizer report, a leak or a failed check is a finding.
 #include <cstddef>
 #include <cstdint>

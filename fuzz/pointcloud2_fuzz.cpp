@@ -1,7 +1,8 @@
 // Fuzz target of the PointCloud2 CDR parser and decoder (host/drive/pointcloud2.h): any bytes as
 // one message either throw IoError or parse into a message that serializes and parses back
 // equal; a message that decodes gives one point per width x height with its ring checked, and
-// with a label field added decodes to the very same cloud. Anything else is a finding.
+// split by label (SplitByLabel) gives clouds whose fields are all aligned, as many points as it
+// had, the labelled one decoding to the very same cloud. Anything else is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -48,13 +49,23 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   fuzz::CheckCloudShape(cloud);
   LPIR_FUZZ_CHECK(cloud.size() == uint64_t(msg.width) * msg.height);
-  PointCloud2 labelled;
+  Labels labels(cloud.size());
+  for (size_t i = 0; i < labels.size(); ++i) labels[i] = uint8_t(i % 2);
+  LabelledClouds split;
   try {
-    labelled = AddLabelField(where, msg, Labels(cloud.size(), 1));
+    split = SplitByLabel(where, msg, labels);
   } catch (const IoError&) {
-    return 0;  // a `label` field already, or a row_step past 32 bits
+    return 0;  // a `label` field already, overlapping fields, or a row_step past 32 bits
   }
-  LPIR_FUZZ_CHECK(labelled.point_step == msg.point_step + 1);
-  fuzz::CheckSameCloud(cloud, CloudFromPointCloud2(where, labelled), false);
+  for (const PointCloud2* c : {&split.labelled, &split.ground, &split.nonground}) {
+    LPIR_FUZZ_CHECK(c->point_step % 4 == 0);
+    for (const PointField& f : c->fields) {
+      const uint32_t size = f.datatype <= 2 ? 1 : f.datatype <= 4 ? 2 : f.datatype <= 7 ? 4 : 8;
+      LPIR_FUZZ_CHECK(f.offset % size == 0 && c->point_step % size == 0);
+    }
+  }
+  LPIR_FUZZ_CHECK(uint64_t(split.ground.width) + split.nonground.width == cloud.size());
+  LPIR_FUZZ_CHECK(split.ground.width == cloud.size() / 2);
+  fuzz::CheckSameCloud(cloud, CloudFromPointCloud2(where, split.labelled), false);
   return 0;
 }

@@ -5,13 +5,15 @@
 // topic's count from Topics() when no damage was reported, and every damage names the file. A
 // message that parses as a PointCloud2 serializes back to the same bytes. Any other exception,
 // a sanitizer report, a leak or a failed check is a finding. Read again with one worker and with
-// three decompressing ahead, the file yields the same steps (fuzz/drive_transcript.h).
+// three decompressing ahead, the file yields the same steps (fuzz/drive_transcript.h). Its
+// whole-drive reader (OpenRos1BagContent) keeps the DriveContent contract (fuzz/content_walk.h).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "fuzz/content_walk.h"
 #include "fuzz/drive_transcript.h"
 #include "fuzz/fuzz_file.h"
 #include "host/drive/pointcloud2.h"
@@ -63,5 +65,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto open = [&](unsigned threads) { return lpir::OpenRos1Bag(file.path(), threads); };
   LPIR_FUZZ_CHECK(lpir::fuzz::TranscriptOf(open, 1, 8, size_t(1) << 20) ==
                   lpir::fuzz::TranscriptOf(open, 3, 8, size_t(1) << 20));
+  lpir::fuzz::CheckContentWalk(lpir::OpenRos1BagContent, file.path());
   return 0;
 }

@@ -6,16 +6,50 @@ The build folder of CMake is setuptools' build_temp (python/build/temp.*), kept 
 of the same checkout, so a second install recompiles only what changed. The environment's
 CMAKE_CXX_COMPILER_LAUNCHER (ccache) and CMAKE_BUILD_PARALLEL_LEVEL are honoured; LPIR_PY_DEBUG=1
 builds with debug information instead of Release.
+
+Before anything is built it checks that the Python running it has what the build needs (pybind11,
+numpy, and setuptools able to make a wheel) and stops with one message naming that Python and
+what to install when it does not: the build would otherwise fail much later, or as pip's
+"invalid command 'bdist_wheel'".
 """
+import importlib.util
 import os
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-from setuptools import Extension, setup
-from setuptools.command.build_ext import build_ext
-from setuptools.command.build_py import build_py
+
+def _check_build_requirements() -> None:
+    """Exits with a message naming the interpreter and what it lacks."""
+
+    def found(name: str) -> bool:
+        try:
+            return importlib.util.find_spec(name) is not None
+        except ImportError:  # a parent package is missing
+            return False
+
+    missing = [name for name in ("setuptools", "pybind11", "numpy") if not found(name)]
+    if not found("setuptools.command.bdist_wheel") and not found("wheel"):
+        missing.append("wheel")
+    if not missing:
+        return
+    sys.exit(
+        f"lpir_gseg: {sys.executable} has no {', '.join(missing)}, which building lpir_gseg "
+        "needs.\nUse Debian's /usr/bin/python3, whose site packages hold python3-setuptools, "
+        "python3-pybind11, python3-numpy and python3-wheel (scripts/install_deps.sh installs "
+        "them), and a venv that sees them:\n"
+        "  /usr/bin/python3 -m venv --system-site-packages venv\n"
+        "  venv/bin/pip install --no-build-isolation --no-index ./python\n"
+        "With another Python (pyenv, conda, a newer system Python), install those packages into "
+        "it first: pip install setuptools pybind11 numpy wheel (docs/python.md).")
+
+
+_check_build_requirements()
+
+from setuptools import Extension, setup  # noqa: E402 (after the check, which names what is missing)
+from setuptools.command.build_ext import build_ext  # noqa: E402
+from setuptools.command.build_py import build_py  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent

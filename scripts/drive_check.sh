@@ -7,8 +7,10 @@
 # have none, so both inputs hold the same points.
 #   1. `segment --backend cpu` on the .bin folder and on each drive; the drive's .label files,
 #      in natural name order, must equal the .bin folder's, in name order, byte for byte (cmp).
-#   2. `segment --format mcap` on the zstd MCAP, read back by read_mcap.mjs (@mcap/core): the
-#      input topic and TOPIC/ground, N messages each, every label equal to step 1's.
+#   2. `segment --format mcap` on the zstd MCAP, read back by read_mcap.mjs (@mcap/core): every
+#      record of the input as it was, TOPIC/labelled, TOPIC/ground and TOPIC/nonground with N
+#      messages each, fields aligned, every label equal to step 1's; and `segment --format bag`
+#      on the lz4 bag, read back by read_bag.py (python3-rosbag) the same way.
 #   3. Time per frame (the whole command's time / N), as wall time and as CPU time (user + sys,
 #      which other jobs on the machine disturb less): 3 runs of the .bin folder and of each drive
 #      taken in turns; the medians and each drive's ratio to the .bin folder's (goal <= 1.10).
@@ -112,19 +114,30 @@ for kind in "${kinds[@]}"; do
   say "labels ${kind}: ${same}/${frames} frames equal to the .bin folder's, byte for byte"
 done
 
-say "--format mcap on the zstd MCAP, read back by @mcap/core"
-rm -rf "${work}/out/mcap"
-"${cli}" segment "$(drive_path zstd.mcap)" --topic "${topic}" --sensor "${sensor}" \
-  --out "${work}/out/mcap" --backend cpu --format mcap --quiet || die "segment --format mcap failed"
-mapfile -t outputs < <(find "${work}/out/mcap" -name '*.mcap')
-[[ ${#outputs[@]} -eq 1 ]] || die "segment --format mcap wrote ${#outputs[@]} .mcap files, not 1"
-if node "${tools}/read_mcap.mjs" "${outputs[0]}" --expect "${topic}:${frames}" \
-  --expect "${topic}/ground:${frames}" --labels "${work}/out/bin"; then
-  say "--format mcap: read back intact, labels equal to the .bin folder's"
-else
-  say "MISMATCH --format mcap: read_mcap.mjs failed on ${outputs[0]}"
-  mismatch=1
-fi
+say "--format mcap on the zstd MCAP and --format bag on the lz4 bag, read back by @mcap/core and rosbag"
+clouds=()
+for suffix in labelled ground nonground; do clouds+=(--expect "${topic}/${suffix}:${frames}"); done
+for kind in zstd.mcap lz4.bag; do
+  format="${kind##*.}"
+  rm -rf "${work}/out/${format}"
+  "${cli}" segment "$(drive_path "${kind}")" --topic "${topic}" --sensor "${sensor}" \
+    --out "${work}/out/${format}" --backend cpu --format "${format}" --quiet ||
+    die "segment --format ${format} failed"
+  mapfile -t outputs < <(find "${work}/out/${format}" -name "*.${format}")
+  [[ ${#outputs[@]} -eq 1 ]] || die "segment --format ${format} wrote ${#outputs[@]} files, not 1"
+  if [[ "${format}" == mcap ]]; then
+    reader=(node "${tools}/read_mcap.mjs")
+  else
+    reader=("${python}" "${tools}/read_bag.py")
+  fi
+  if "${reader[@]}" "${outputs[0]}" --input "$(drive_path "${kind}")" "${clouds[@]}" \
+    --labels "${work}/out/bin"; then
+    say "--format ${format}: read back whole, labels equal to the .bin folder's"
+  else
+    say "MISMATCH --format ${format}: ${reader[*]} failed on ${outputs[0]}"
+    mismatch=1
+  fi
+done
 
 say "time per frame (median of 3, --backend cpu, ${frames} frames; load $(cut -d' ' -f1-3 /proc/loadavg)):"
 for clock in wall cpu; do

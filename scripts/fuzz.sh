@@ -4,14 +4,15 @@
 # <build>/fuzz/long/TARGET (kept between runs, seeded from fuzz/corpus/TARGET); a finding is
 # written to <build>/fuzz/artifacts/ and makes the script exit non-zero.
 # Usage: scripts/fuzz.sh TARGET [SECONDS] [libFuzzer flags...]
-#        TARGET: db3, kitti_bin, label_file, mcap, pcd, ply, pointcloud2, ros1_bag, sensor_profile
+#        TARGET: bag_metadata, db3, kitti_bin, label_file, mcap, pcd, ply, pointcloud2, ros1_bag,
+#                sensor_profile
 #                (scripts/fuzz.sh list)
 # Reproduce a finding: <build>/fuzz/TARGET_fuzz <build>/fuzz/artifacts/TARGET-crash-...
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${LPIR_FUZZ_BUILD_DIR:-${root}/build-fuzz}"
-targets=(db3 kitti_bin label_file mcap pcd ply pointcloud2 ros1_bag sensor_profile)
+targets=(bag_metadata db3 kitti_bin label_file mcap pcd ply pointcloud2 ros1_bag sensor_profile)
 say() { echo "[fuzz] $*"; }
 
 target="${1:-}"

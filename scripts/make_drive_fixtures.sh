@@ -13,6 +13,19 @@
 #                             the three frames as sensor_msgs PointCloud2 on /velodyne_points,
 #                             one message per chunk (tools/drive_fixtures/pointcloud.mjs and
 #                             write_bag.py give the layout)
+#   vlp16_full.{mcap,db3,bag} the same frames among an IMU's and a GNSS receiver's messages (and,
+#                             in the MCAP, a metadata record and an attachment:
+#                             tools/drive_fixtures/extras.mjs), chunks of about 64 KiB
+#   narrow/00000{0,1,2}.{bin,ring}
+#                             the same frames cut to the 11.25 degrees straight ahead (about 480
+#                             points each): the drives of several files below stay small
+#   vlp16_split_mcap/         a ROS 2 bag folder as `ros2 bag record` writes it: metadata.yaml
+#                             (rosbag2's yaml-cpp text, Jazzy), vlp16_split_mcap_0.mcap (narrow
+#                             frames 0 and 1) and _1.mcap (frame 2), zstd, a chunk per message
+#   vlp16_split_db3/          the same as .db3 files, metadata.yaml as PyYAML dumps it (Humble)
+#   vlp16_killed.bag.active   the narrow frames as a ROS 1 recorder killed while writing frame 2
+#                             leaves them: frame 0's chunk closed, frames 1 and 2 in a chunk never
+#                             finished, the file cut halfway through frame 2, no index
 # usage: scripts/make_drive_fixtures.sh [OUT_DIR]   (default tests/data/drives)
 # LPIR_CLI names the lpir-gseg binary (default build/lpir-gseg). Runs `npm ci` in
 # tools/drive_fixtures when its node_modules is missing.
@@ -57,4 +70,26 @@ PY
 done
 
 write_drives "${out}" vlp16 "${topic}" "${tmp}/cdr" 1 "${frames[@]}"
+write_full_drives "${out}" vlp16 "${topic}" "${tmp}/full" "${frames[@]}"
+
+mkdir -p "${out}/narrow"
+narrow=()
+for i in 0 1 2; do
+  name="$(printf '%06d' "${i}")"
+  "${python}" - "${out}/frames/${name}" "${out}/narrow/${name}" << 'PY'
+import sys
+import numpy
+points = numpy.fromfile(sys.argv[1] + ".bin", dtype="<f4").reshape(-1, 4)
+ring = numpy.fromfile(sys.argv[1] + ".ring", dtype="<u2")
+azimuth = numpy.degrees(numpy.arctan2(points[:, 1].astype(numpy.float64), points[:, 0]))
+keep = numpy.abs(azimuth) <= 5.625
+points[keep].tofile(sys.argv[2] + ".bin")
+ring[keep].tofile(sys.argv[2] + ".ring")
+print(f"  {sys.argv[2]}.bin: {keep.sum()} points")
+PY
+  narrow+=("${out}/narrow/${name}.bin")
+done
+write_bag_folder "${out}" vlp16_split_mcap mcap rosbag2 "${topic}" "${tmp}/cdr" 2 "${narrow[@]}"
+write_bag_folder "${out}" vlp16_split_db3 sqlite3 pyyaml "${topic}" "${tmp}/cdr" 2 "${narrow[@]}"
+write_killed_bag "${out}/vlp16_killed.bag.active" "${topic}" "${narrow[@]}"
 say "done: $(du -sh "${out}" | cut -f1) in ${out}"

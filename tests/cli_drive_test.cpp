@@ -1,8 +1,9 @@
 // lpir-gseg topics and segment on recorded drives, run as a user would, on the fixtures that
 // independent writers made (tests/data/drives/, README there): every message labelled as
-// `segment` labels the same frame given as a file, byte for byte; index.csv; --format mcap read
-// back; damaged copies (cut mid-chunk, a flipped byte) labelling every readable message, naming
-// the damage and exiting 1; a message without x written here with our MCAP writer.
+// `segment` labels the same frame given as a file, byte for byte; index.csv; damaged copies
+// (cut mid-chunk, a flipped byte) labelling every readable message, naming the damage and
+// exiting 1; a message without x written here with our MCAP writer. --format mcap|bag:
+// cli_drive_output_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -305,111 +306,6 @@ TEST_P(CliDrive, ChunkRangesTogetherWriteTheWholeRun) {
   }
 }
 
-// Every message of `topic` in `path`, in order (damage fails the test).
-std::vector<DriveMessage> ReadTopic(const std::string& path, const std::string& topic) {
-  std::vector<DriveMessage> messages;
-  std::unique_ptr<DriveReader> reader = OpenDrive(path);
-  reader->SelectTopic(topic);
-  DriveMessage m;
-  std::string problem;
-  for (DriveStep step; (step = reader->Next(&m, &problem)) != DriveStep::kEnd;) {
-    EXPECT_EQ(step, DriveStep::kMessage) << problem;
-    if (step == DriveStep::kMessage) messages.push_back(m);
-    if (messages.size() > 100) break;
-  }
-  return messages;
-}
-
-// The uint8 `label` field of every point of a CDR PointCloud2, as .label bytes (uint32 LE).
-std::string LabelFieldAsLabelFile(const DriveMessage& m) {
-  const PointCloud2 c = ParseCdrPointCloud2("ground message", m.data.data(), m.data.size());
-  const PointField* label = nullptr;
-  for (const PointField& f : c.fields)
-    if (f.name == "label") label = &f;
-  if (!label || label->datatype != kPfUint8) return "no uint8 label field";
-  std::string out;
-  for (uint32_t row = 0; row < c.height; ++row)
-    for (uint32_t col = 0; col < c.width; ++col) {
-      const uint8_t l =
-          c.data[size_t(row) * c.row_step + size_t(col) * c.point_step + label->offset];
-      out.append(1, char(l)).append(3, '\0');
-    }
-  return out;
-}
-
-TEST_P(CliDrive, FormatMcapHoldsTheTopicAndItsLabelsReadBackByOurReader) {
-  const std::string drive = DrivePath(GetParam());
-  test::ScopedDir out;
-  std::string log;
-  ASSERT_EQ(test::RunCommand(Cli() + " segment " + drive + " --sensor " + Sensor() +
-                                 " --backend cpu --format mcap --out " + out.path,
-                             &log),
-            0)
-      << log;
-  const std::string mcap = out.path + "/" + fs::path(drive).stem().string() + ".mcap";
-  ASSERT_TRUE(fs::exists(mcap)) << log;
-  EXPECT_EQ(test::LabelFiles(out.path), std::vector<std::string>{});
-  std::vector<DriveTopic> topics = OpenDrive(mcap)->Topics();
-  std::sort(topics.begin(), topics.end(),
-            [](const DriveTopic& a, const DriveTopic& b) { return a.name < b.name; });
-  ASSERT_EQ(topics.size(), 2u);
-  EXPECT_EQ(topics[0].name, kTopic);
-  EXPECT_EQ(topics[1].name, std::string(kTopic) + "/ground");
-  for (const DriveTopic& t : topics) {
-    EXPECT_EQ(t.type, "sensor_msgs/msg/PointCloud2");
-    EXPECT_EQ(t.encoding, "cdr");
-    EXPECT_EQ(t.messages, kFrames);
-  }
-  const std::vector<DriveMessage> input = ReadTopic(drive, kTopic);
-  const std::vector<DriveMessage> copied = ReadTopic(mcap, kTopic);
-  const std::vector<DriveMessage> ground = ReadTopic(mcap, std::string(kTopic) + "/ground");
-  ASSERT_EQ(input.size(), kFrames);
-  ASSERT_EQ(copied.size(), kFrames);
-  ASSERT_EQ(ground.size(), kFrames);
-  for (size_t i = 0; i < kFrames; ++i) {
-    EXPECT_EQ(copied[i].log_time_ns, input[i].log_time_ns);
-    EXPECT_EQ(ground[i].log_time_ns, input[i].log_time_ns);
-    if (!GetParam().bag) {
-      EXPECT_EQ(copied[i].data, input[i].data) << "copied as it was";
-    }
-    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, copied[i]), test::FixtureFrame(i)));
-    EXPECT_TRUE(test::SameBits(DecodeDriveCloud(mcap, ground[i]), test::FixtureFrame(i)));
-    EXPECT_EQ(LabelFieldAsLabelFile(ground[i]), Ref().Ring(i)) << "message " << i;
-    const PointCloud2 in =
-        GetParam().bag ? ParseRos1PointCloud2("in", input[i].data.data(), input[i].data.size())
-                       : ParseCdrPointCloud2("in", input[i].data.data(), input[i].data.size());
-    const PointCloud2 labelled =
-        ParseCdrPointCloud2("out", ground[i].data.data(), ground[i].data.size());
-    EXPECT_EQ(labelled.stamp_ns(), in.stamp_ns());
-    EXPECT_EQ(labelled.frame_id, in.frame_id);
-    EXPECT_EQ(labelled.fields.size(), in.fields.size() + 1);
-  }
-}
-
-TEST(CliDriveMcap, StandardMcapToolsReadTheLabelledOutput) {
-  // LPIR_DRIVE_TOOLS: a tools/drive_fixtures folder where `npm ci` has run, when this one has not
-  const std::string tools =
-      test::EnvOr("LPIR_DRIVE_TOOLS", (test::SensorsDir() + "/../tools/drive_fixtures").c_str());
-  if (test::RunCommand("node --version") != 0 || !fs::exists(tools + "/node_modules/@mcap/core"))
-    GTEST_SKIP() << "node or " << tools << "/node_modules absent (npm ci there)";
-  test::ScopedDir out;
-  std::string log;
-  ASSERT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() +
-                                 "/vlp16_zstd.mcap --sensor " + Sensor() +
-                                 " --backend cpu --format mcap "
-                                 "--quiet --out " +
-                                 out.path,
-                             &log),
-            0)
-      << log;
-  EXPECT_EQ(test::RunCommand("node " + tools + "/read_mcap.mjs " + out.path +
-                                 "/vlp16_zstd.mcap --expect " + kTopic + ":3 --expect " + kTopic +
-                                 "/ground:3 --labels " + Ref().RingDir(),
-                             &log),
-            0)
-      << log;
-}
-
 INSTANTIATE_TEST_SUITE_P(Fixtures, CliDrive, ::testing::ValuesIn(kKinds),
                          [](const ::testing::TestParamInfo<Kind>& info) {
                            std::string name = info.param.file;
@@ -660,19 +556,18 @@ TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles)
                         std::to_string(StampNs(2)) + " /points True True\n");
 }
 
-TEST(CliDriveArgs, ADriveGoesAloneAndMcapOutputNeedsADrive) {
+TEST(CliDriveArgs, McapOutputNeedsDrivesOnly) {
   test::ScopedDir dir;
   std::string log;
-  EXPECT_EQ(test::RunCommand(Cli() + " segment " + test::DrivesDir() + "/vlp16.db3 " +
-                                 FrameBase(0) + ".bin --sensor vlp16 --out " + dir.path,
-                             &log),
-            2);
-  EXPECT_NE(log.find("on its own"), std::string::npos) << log;
-  EXPECT_EQ(test::RunCommand(Cli() + " segment " + FrameBase(0) +
-                                 ".bin --format mcap --sensor vlp16 --out " + dir.path,
-                             &log),
-            2);
-  EXPECT_NE(log.find("--format mcap is for a recorded drive"), std::string::npos) << log;
+  for (const std::string& inputs :
+       {FrameBase(0) + ".bin", test::DrivesDir() + "/vlp16.db3 " + FrameBase(0) + ".bin"}) {
+    EXPECT_EQ(
+        test::RunCommand(
+            Cli() + " segment " + inputs + " --format mcap --sensor vlp16 --out " + dir.path, &log),
+        2);
+    EXPECT_NE(log.find("--format mcap is for recorded drives"), std::string::npos) << log;
+    EXPECT_NE(log.find(FrameBase(0) + ".bin"), std::string::npos) << log;
+  }
 }
 
 TEST(CliDriveArgs, FormatMcapNeverWritesOverTheDriveItReads) {

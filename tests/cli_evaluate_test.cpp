@@ -273,9 +273,9 @@ TEST_F(CliEvaluate, Errors) {
   const std::string pred = " --pred " + root_ + "/pred";
   const std::string gt = " --gt " + root_ + "/seq/labels";
   std::string out;
-  // Missing prediction: names both files.
+  // No prediction for any ground truth: names both files.
   fs::remove(root_ + "/pred/b.label");
-  EXPECT_NE(Evaluate(pred + gt + " --protocol dg", &out), 0);
+  EXPECT_EQ(Evaluate(pred + " --gt " + root_ + "/seq/labels/b.label", &out), 4);
   EXPECT_NE(out.find("no prediction for ground truth " + root_ + "/seq/labels/b.label"),
             std::string::npos)
       << out;
@@ -296,8 +296,6 @@ TEST_F(CliEvaluate, Errors) {
   EXPECT_NE(Evaluate(pred + gt + " --protocol kitti", &out), 0);
   EXPECT_NE(out.find("unknown protocol 'kitti'"), std::string::npos) << out;
   // Missing options and values.
-  EXPECT_NE(Evaluate(pred + gt, &out), 0);
-  EXPECT_NE(out.find("--protocol is required"), std::string::npos) << out;
   EXPECT_NE(Evaluate(pred + " --gt --protocol dg", &out), 0);
   EXPECT_NE(out.find("--gt needs at least one"), std::string::npos) << out;
   EXPECT_NE(Evaluate(gt + " --protocol dg", &out), 0);
@@ -309,6 +307,41 @@ TEST_F(CliEvaluate, Errors) {
   WriteU32(root_ + "/other/a.label", kGtA);
   EXPECT_NE(Evaluate(pred + gt + " " + root_ + "/other --protocol dg", &out), 0);
   EXPECT_NE(out.find("share the stem 'a'"), std::string::npos) << out;
+}
+
+TEST_F(CliEvaluate, DefaultsToDgAsPythonDoes) {
+  const std::string args = "--pred " + root_ + "/pred --gt " + root_ + "/seq/labels";
+  Json plain = EvaluateJson(args);
+  EXPECT_EQ(plain["total"].order, std::vector<std::string>{"dg"});
+  ExpectScores(plain["total"]["dg"], 5.0 / 11, 5.0 / 7, F1(5.0 / 11, 5.0 / 7), 5.0 / 13);
+  // --opt=value and the short form give the same.
+  std::string a, b;
+  ASSERT_EQ(Evaluate("--pred=" + root_ + "/pred --gt=" + root_ + "/seq/labels -p dg --json", &a), 0)
+      << a;
+  ASSERT_EQ(Evaluate(args + " --json", &b), 0) << b;
+  EXPECT_EQ(a, b);
+}
+
+TEST_F(CliEvaluate, MissingPredictionsAreNamedAndTheRestScored) {
+  fs::remove(root_ + "/pred/a.label");
+  const std::string args = "--pred " + root_ + "/pred --gt " + root_ + "/seq/labels --protocol dg";
+  std::string out;
+  EXPECT_EQ(Evaluate(args + " --json", &out), 1) << out;
+  EXPECT_NE(out.find("1 of 2 predictions missing"), std::string::npos) << out;
+  EXPECT_NE(out.find(root_ + "/pred/a.label"), std::string::npos) << out;
+  // b alone is scored: TP 2, FP 1, FN 0; the JSON names what is missing.
+  const size_t start = out.find('{'), end = out.find("}\n", start);
+  ASSERT_NE(start, std::string::npos) << out;
+  Json j;
+  ASSERT_TRUE(JsonReader(out.substr(start, end + 2 - start)).ReadAll(&j)) << out;
+  ASSERT_EQ(j["frames"].items.size(), 1u);
+  EXPECT_EQ(j["frames"].items[0]["name"].text, "b");
+  ExpectScores(j["total"]["dg"], 2.0 / 3, 1.0, 0.8, 2.0 / 3);
+  ASSERT_EQ(j["missing"].items.size(), 1u);
+  EXPECT_EQ(j["missing"].items[0].text, root_ + "/pred/a.label");
+  // The tables too, with the same exit code.
+  EXPECT_EQ(Evaluate(args, &out), 1) << out;
+  EXPECT_NE(out.find("DG (DipG-Seg)"), std::string::npos) << out;
 }
 
 // The whitespace-separated words of the first line of `out` that starts with `start`, ignoring
@@ -571,9 +604,9 @@ TEST_F(CliEvaluateRellis, Errors) {
   EXPECT_NE(out.find("protocol 'rellis' scores rellis3d labels, not semantickitti ones"),
             std::string::npos)
       << out;
-  // SemanticKITTI still needs --protocol.
-  EXPECT_NE(Evaluate(gt_, &out), 0);
-  EXPECT_NE(out.find("--protocol is required"), std::string::npos) << out;
+  // Without --ontology the labels are read as SemanticKITTI ones, under DG.
+  EXPECT_EQ(Evaluate(gt_, &out), 0) << out;
+  EXPECT_NE(out.find("DG (DipG-Seg)"), std::string::npos) << out;
 }
 
 TEST_F(CliEvaluate, ByRangeErrors) {

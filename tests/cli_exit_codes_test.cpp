@@ -155,6 +155,9 @@ TEST_F(CliExitCodes, Segment) {
   r = Cli("segment " + Scan() + " --sensor " + Dir() + "/bad_profile.txt" + out);
   EXPECT_EQ(r.code, 4);
   EXPECT_TRUE(Has(r.err, Dir() + "/bad_profile.txt")) << r.err;
+  r = Cli("segment " + Scan() + " --sensor " + Dir() + "/missing_profile.txt" + out);
+  EXPECT_EQ(r.code, 4);
+  EXPECT_TRUE(Has(r.err, Dir() + "/missing_profile.txt: no such sensor profile file")) << r.err;
   r = Cli("segment " + Scan() + " --sensor vlp16 --backend vulkan" + out, kNoVulkan);
   EXPECT_EQ(r.code, 4);
   EXPECT_TRUE(Has(r.err, "the Vulkan backend could not be set up")) << r.err;
@@ -176,9 +179,18 @@ TEST_F(CliExitCodes, Evaluate) {
   r = Cli("evaluate" + pred + gt + " --protocol kitti");
   EXPECT_EQ(r.code, 2);
   EXPECT_TRUE(Has(r.err, "unknown protocol 'kitti'")) << r.err;
-  r = Cli("evaluate" + pred + gt);
-  EXPECT_EQ(r.code, 2);
-  EXPECT_TRUE(Has(r.err, "--protocol is required")) << r.err;
+  r = Cli("evaluate" + pred + gt);  // DG by default
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(Has(r.out, "DG")) << r.out;
+
+  // Some predictions missing: named, the rest scored.
+  fs::create_directories(Dir() + "/gt2");
+  fs::copy_file(Dir() + "/scan.label", Dir() + "/gt2/scan.label");
+  fs::copy_file(Dir() + "/scan.label", Dir() + "/gt2/other.label");
+  r = Cli("evaluate" + pred + " --gt " + Dir() + "/gt2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(Has(r.err, Dir() + "/pred/other.label")) << r.err;
+  EXPECT_TRUE(Has(r.out, "scan ")) << r.out;
 
   r = Cli("evaluate --pred " + Dir() + "/nopred" + gt + " --protocol dg");
   EXPECT_EQ(r.code, 4);

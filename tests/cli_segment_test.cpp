@@ -76,6 +76,34 @@ TEST(CliSegment, WritesPcdAndPlyWithLabelsAndPictures) {
   EXPECT_TRUE(fs::exists(dir + "/o/images/scan_classes.png"));
 }
 
+TEST(CliSegment, AFileWithoutIntensityIsNotedOnceARun) {
+  const std::string dir = test::TempDir();
+  fs::create_directories(dir + "/in");
+  const Cloud scan = SmallScan();
+  std::string xyz = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(scan.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  for (size_t i = 0; i < scan.size(); ++i)
+    xyz += std::to_string(scan.x(i)) + " " + std::to_string(scan.y(i)) + " " +
+           std::to_string(scan.z(i)) + "\n";
+  WriteBytes(dir + "/in/a.ply", xyz);
+  WriteBytes(dir + "/in/b.ply", xyz);
+  WriteKittiBin(dir + "/in/c.bin", scan);
+  std::string log;
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --out " + dir + "/o", &log), 0) << log;
+  const std::string note = "lpir-gseg segment: note: " + dir + "/in/a.ply has no intensity field";
+  EXPECT_NE(log.find(note), std::string::npos) << log;
+  EXPECT_NE(log.find("first such file only"), std::string::npos) << log;
+  size_t notes = 0;
+  for (size_t at = log.find("no intensity field"); at != std::string::npos;
+       at = log.find("no intensity field", at + 1))
+    ++notes;
+  EXPECT_EQ(notes, 1u) << log;
+  for (const char* stem : {"a", "b", "c"})
+    EXPECT_TRUE(fs::exists(dir + "/o/" + stem + ".label")) << stem;
+  ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --quiet --out " + dir + "/q", &log), 0) << log;
+  EXPECT_EQ(log, "");
+}
+
 TEST(CliSegment, NanInfAndOriginPointsAreNonGroundAndCounted) {
   const std::string dir = test::TempDir();
   Cloud c = SmallScan();
@@ -196,10 +224,8 @@ TEST(CliSegment, QuietPrintsNothingOnSuccessAndTheDefaultOneSummary) {
   EXPECT_EQ(log.find('\r'), std::string::npos) << log;
   EXPECT_EQ(log.find(": 800 points"), std::string::npos) << log;  // no per-frame lines
   EXPECT_NE(log.find("progress: 3/3 100%"), std::string::npos) << log;
-  EXPECT_NE(log.find("segmented 3 of 3 files with sensor 'hdl64e' on the CPU reference in "),
-            std::string::npos)
-      << log;
-  EXPECT_NE(log.find(", 0 failed; labels in " + dir + "/d\n"), std::string::npos) << log;
+  EXPECT_NE(log.find("segmented 3 of 3 files on the CPU reference in "), std::string::npos) << log;
+  EXPECT_NE(log.find(" frames/s; labels in " + dir + "/d\n"), std::string::npos) << log;
   // --verbose: a line per frame too.
   ASSERT_EQ(Segment(dir + "/in --sensor hdl64e --backend cpu --verbose --out " + dir + "/v", &log),
             0)
@@ -217,6 +243,227 @@ TEST(CliSegment, VersionNamesTheVersionCommitAndBackends) {
   EXPECT_NE(log.find(" (commit "), std::string::npos) << log;
   EXPECT_NE(log.find("backend cpu: available"), std::string::npos) << log;
   EXPECT_NE(log.find("backend vulkan: "), std::string::npos) << log;
+}
+
+// A simulated VLP-16 street (a few thousand points, ground and objects): dir/name.
+void Simulate(const std::string& path, int seed) {
+  std::string log;
+  ASSERT_EQ(test::RunCommand(Cli() + " simulate --sensor vlp16 --seed " + std::to_string(seed) +
+                                 " --out " + path + " --labels " + path + ".truth",
+                             &log),
+            0)
+      << log;
+}
+
+TEST(CliSegment, TwoInputsOfOneStemAreRefusedNamingBothAndNothingIsWritten) {
+  const test::ScopedDir dir;
+  const std::string a = dir.path + "/a/000000.bin", b = dir.path + "/b/000000.bin";
+  fs::create_directories(dir.path + "/a");
+  fs::create_directories(dir.path + "/b");
+  Simulate(a, 1);
+  Simulate(b, 2);
+  for (const char* format : {"label", "pcd", "ply"}) {
+    SCOPED_TRACE(format);
+    std::string log;
+    // the folders, and the files themselves
+    for (const std::string& inputs :
+         {dir.path + "/a " + dir.path + "/b", a + " " + b, dir.path + "/a " + b}) {
+      EXPECT_EQ(
+          Segment(inputs + " -s vlp16 -b cpu -f " + format + " -o " + dir.path + "/out", &log), 2)
+          << log;
+      EXPECT_NE(
+          log.find(a + " and " + b + " would both write " + dir.path + "/out/000000." + format),
+          std::string::npos)
+          << log;
+      EXPECT_NE(log.find("nothing written"), std::string::npos) << log;
+      EXPECT_FALSE(fs::exists(dir.path + "/out")) << "nothing written, not even the folder";
+    }
+  }
+  // One file listed twice, and an output that would overwrite its input.
+  std::string log;
+  EXPECT_EQ(Segment(dir.path + "/a " + a + " -s vlp16 -o " + dir.path + "/out", &log), 2);
+  EXPECT_NE(log.find(a + " is listed twice"), std::string::npos) << log;
+  fs::create_directories(dir.path + "/p");
+  ASSERT_EQ(Segment(a + " -s vlp16 -b cpu -q -f pcd -o " + dir.path + "/p", &log), 0) << log;
+  const std::string pcd = dir.path + "/p/000000.pcd";
+  const std::string before = test::ReadFileBytes(pcd);
+  EXPECT_EQ(Segment(pcd + " -s vlp16 -b cpu -f pcd -o " + dir.path + "/p", &log), 2);
+  EXPECT_NE(log.find("would overwrite the input"), std::string::npos) << log;
+  EXPECT_EQ(test::ReadFileBytes(pcd), before);
+}
+
+TEST(CliSegment, RecursiveKeepsEachFilesPathBelowTheFolder) {
+  const test::ScopedDir dir;
+  const std::string kitti = dir.path + "/kitti";
+  fs::create_directories(kitti + "/00/velodyne");
+  fs::create_directories(kitti + "/07/velodyne");
+  Simulate(kitti + "/00/velodyne/000000.bin", 1);
+  Simulate(kitti + "/07/velodyne/000000.bin", 2);
+  std::string log;
+  // Without --recursive: no cloud files in kitti/ itself, and the hint.
+  EXPECT_EQ(Segment(kitti + " -s vlp16 -o " + dir.path + "/out", &log), 2);
+  EXPECT_NE(log.find(kitti + ": folder holds no cloud files or drives, but its subfolders hold 2: "
+                             "--recursive (-r)"),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(fs::exists(dir.path + "/out"));
+  ASSERT_EQ(Segment(kitti + " --recursive -s vlp16 -b cpu --images -o " + dir.path + "/out", &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("segmented 2 of 2 files"), std::string::npos) << log;
+  for (const char* seq : {"00", "07"}) {
+    SCOPED_TRACE(seq);
+    const std::string rel = std::string(seq) + "/velodyne/000000";
+    // each as it is labelled alone
+    const std::string alone = dir.path + "/alone" + seq;
+    ASSERT_EQ(Segment(kitti + "/" + rel + ".bin -s vlp16 -b cpu -q -o " + alone, &log), 0) << log;
+    const std::string labels = test::ReadFileBytes(dir.path + "/out/" + rel + ".label");
+    EXPECT_FALSE(labels.empty());
+    EXPECT_EQ(labels, test::ReadFileBytes(alone + "/000000.label"));
+    EXPECT_TRUE(fs::exists(dir.path + "/out/images/" + seq + "/velodyne/000000_bev.png"));
+  }
+  // Two folders whose files share their paths below them: refused, as two stems are.
+  EXPECT_EQ(Segment(kitti + "/00 " + kitti + "/07 -r -s vlp16 -o " + dir.path + "/o2", &log), 2);
+  EXPECT_NE(log.find(" would both write " + dir.path + "/o2/velodyne/000000.label"),
+            std::string::npos)
+      << log;
+}
+
+TEST(CliSegment, NoOutputFolderForNothingAndAClearErrorForAFile) {
+  const test::ScopedDir dir;
+  std::string log;
+  EXPECT_EQ(Segment(dir.path + "/nosuch.bin -s vlp16 -o " + dir.path + "/out", &log), 1);
+  EXPECT_NE(log.find(dir.path + "/nosuch.bin: no such file"), std::string::npos) << log;
+  EXPECT_NE(log.find("nothing written"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.path + "/out"));
+  // --out naming a file, or a folder below a file: named, before anything is read.
+  Simulate(dir.path + "/scan.bin", 1);
+  WriteBytes(dir.path + "/afile", "x");
+  EXPECT_EQ(Segment(dir.path + "/scan.bin -s vlp16 -o " + dir.path + "/afile", &log), 4);
+  EXPECT_NE(log.find(dir.path + "/afile: is a file, not a folder"), std::string::npos) << log;
+  EXPECT_EQ(log.find("filesystem error"), std::string::npos) << log;
+  EXPECT_EQ(Segment(dir.path + "/scan.bin -s vlp16 -o " + dir.path + "/afile/sub", &log), 4);
+  EXPECT_NE(log.find(dir.path + "/afile/sub: cannot be made: " + dir.path +
+                     "/afile is a file, not a folder"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/afile"), "x");
+}
+
+TEST(CliSegment, OptionsAsPeopleTypeThem) {
+  const test::ScopedDir dir;
+  Simulate(dir.path + "/scan.bin", 3);
+  std::string log;
+  ASSERT_EQ(Segment(dir.path + "/scan.bin --sensor vlp16 --backend cpu --out " + dir.path + "/long",
+                    &log),
+            0)
+      << log;
+  const std::string labels = test::ReadFileBytes(dir.path + "/long/scan.label");
+  ASSERT_FALSE(labels.empty());
+  for (const std::string& options :
+       {std::string("--sensor=vlp16 --backend=cpu --out=") + dir.path + "/o1",
+        std::string("-s vlp16 -b cpu -o ") + dir.path + "/o2",
+        std::string("-q -s vlp16 -b=cpu -o ") + dir.path + "/o3"}) {
+    SCOPED_TRACE(options);
+    const std::string out = options.substr(options.size() - 2);
+    ASSERT_EQ(Segment(dir.path + "/scan.bin " + options, &log), 0) << log;
+    EXPECT_EQ(test::ReadFileBytes(dir.path + "/" + out + "/scan.label"), labels);
+  }
+  EXPECT_EQ(Segment(dir.path + "/scan.bin -s vlp16 --quiet=yes -o " + dir.path + "/o4", &log), 2);
+  EXPECT_NE(log.find("--quiet takes no value"), std::string::npos) << log;
+  // `--` ends the options: a file whose name starts with '-'.
+  fs::copy_file(dir.path + "/scan.bin", dir.path + "/-scan.bin");
+  ASSERT_EQ(
+      test::RunCommand(
+          "cd " + dir.path + " && " + Cli() + " segment -s vlp16 -b cpu -o o5 -- -scan.bin", &log),
+      0)
+      << log;
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/o5/-scan.label"), labels);
+}
+
+TEST(CliSegment, TyposGetTheNearestName) {
+  const test::ScopedDir dir;
+  Simulate(dir.path + "/scan.bin", 3);
+  const std::string scan = dir.path + "/scan.bin";
+  const std::string out = " -o " + dir.path + "/out";
+  std::string log;
+  EXPECT_EQ(test::RunCommand(Cli() + " segmnet " + scan, &log), 2);
+  EXPECT_NE(log.find("unknown command 'segmnet' (did you mean segment?)"), std::string::npos)
+      << log;
+  EXPECT_EQ(test::RunCommand(Cli() + " help evalute", &log), 2);
+  EXPECT_NE(log.find("no command 'evalute' (did you mean evaluate?)"), std::string::npos) << log;
+  EXPECT_EQ(Segment(scan + " --sensr vlp16" + out, &log), 2);
+  EXPECT_NE(log.find("unknown option --sensr (did you mean --sensor?)"), std::string::npos) << log;
+  EXPECT_EQ(Segment(scan + " -sensor vlp16" + out, &log), 2);
+  EXPECT_NE(log.find("unknown option -sensor (did you mean --sensor?)"), std::string::npos) << log;
+  EXPECT_EQ(Segment(scan + " --sensor hdl-64e" + out, &log), 2);
+  EXPECT_NE(log.find("unknown sensor profile 'hdl-64e' (did you mean hdl64e?)"), std::string::npos)
+      << log;
+  EXPECT_EQ(Segment(scan + " -s vlp16 --set sensr_height=1.9" + out, &log), 2);
+  EXPECT_NE(log.find("--set sensr_height=1.9: no setting 'sensr_height' (did you mean "
+                     "sensor_height?)"),
+            std::string::npos)
+      << log;
+  // Nothing near: no guess.
+  EXPECT_EQ(Segment(scan + " -s vlp16 --frobnicate" + out, &log), 2);
+  EXPECT_NE(log.find("unknown option --frobnicate\n"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir.path + "/out"));
+}
+
+TEST(CliSegment, SetChangesTheProfileAsAProfileLineWould) {
+  const test::ScopedDir dir;
+  Simulate(dir.path + "/scan.bin", 4);
+  const std::string scan = dir.path + "/scan.bin";
+  // The shipped profile with the same changes written into it.
+  std::string profile = test::ReadFileBytes(test::SensorsDir() + "/vlp16.txt");
+  const size_t at = profile.find("sensor_height 1.73");
+  ASSERT_NE(at, std::string::npos);
+  profile.replace(at, 18, "sensor_height 1.9");
+  const size_t component = profile.find("param min_component 150");
+  ASSERT_NE(component, std::string::npos);
+  profile.replace(component, 23, "param min_component 90");
+  profile += "param h_athr 0.2\n";
+  WriteBytes(dir.path + "/mine.txt", profile);
+  std::string log;
+  ASSERT_EQ(
+      Segment(scan + " -s " + dir.path + "/mine.txt -b cpu -q -o " + dir.path + "/file", &log), 0)
+      << log;
+  ASSERT_EQ(Segment(scan +
+                        " -s vlp16 -b cpu -q --set sensor_height=1.9 --set h_athr=0.2 "
+                        "--set=min_component=90 -o " +
+                        dir.path + "/set",
+                    &log),
+            0)
+      << log;
+  ASSERT_EQ(Segment(scan + " -s vlp16 -b cpu -q -o " + dir.path + "/plain", &log), 0) << log;
+  const std::string with_file = test::ReadFileBytes(dir.path + "/file/scan.label");
+  ASSERT_FALSE(with_file.empty());
+  EXPECT_EQ(test::ReadFileBytes(dir.path + "/set/scan.label"), with_file);
+  // A setting that moves labels does: points beyond 10 m become invalid, non-ground.
+  ASSERT_EQ(Segment(scan + " -s vlp16 -b cpu -o " + dir.path + "/near --set max_range=10", &log), 0)
+      << log;
+  EXPECT_NE(log.find("invalid points"), std::string::npos) << log;
+  EXPECT_NE(test::ReadFileBytes(dir.path + "/near/scan.label"),
+            test::ReadFileBytes(dir.path + "/plain/scan.label"));
+  // Bad values and names: usage errors naming the setting, nothing written.
+  const struct {
+    const char* set;
+    const char* says;
+  } bad[] = {
+      {"sensor_height=-1", "--set sensor_height=-1: sensor_height must be > 0"},
+      {"sensor_height=high", "--set sensor_height=high: sensor_height: 'high' is not a finite"},
+      {"min_component=2.5", "--set min_component=2.5: parameter min_component expects a whole"},
+      {"max_range=1", "--set max_range=1: max_range must be larger than min_range"},
+      {"sectors_near=100", "sectors_near and sectors_far must divide the image width"},
+      {"beams=32", "--set beams=32: no setting 'beams'"},
+      {"sensor_height", "--set expects NAME=VALUE"},
+  };
+  for (const auto& b : bad) {
+    SCOPED_TRACE(b.set);
+    EXPECT_EQ(Segment(scan + " -s vlp16 --set " + b.set + " -o " + dir.path + "/bad", &log), 2);
+    EXPECT_NE(log.find(b.says), std::string::npos) << log;
+  }
+  EXPECT_FALSE(fs::exists(dir.path + "/bad"));
 }
 
 TEST(CliSegment, UsageErrorsExitNonZero) {

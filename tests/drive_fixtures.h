@@ -15,6 +15,12 @@
 
 namespace lpir::test {
 
+// What every fixture drive holds: the frames on this topic, frame i stamped kFirstStampNs + i x
+// 100 ms (scripts/make_drive_fixtures.sh).
+constexpr char kFixtureTopic[] = "/velodyne_points";
+constexpr long long kFirstStampNs = 1600000000LL * 1000000000LL;
+constexpr size_t kFixtureFrames = 3;
+
 // tests/data/drives, or $LPIR_TEST_DATA_DIR/drives.
 inline std::string DrivesDir() {
   return EnvOr("LPIR_TEST_DATA_DIR", LPIR_TEST_DATA_DIR) + std::string("/drives");
@@ -28,10 +34,18 @@ inline std::string FixtureFrameBase(size_t i) {
   return DrivesDir() + "/frames/" + name;
 }
 
-// Fixture frame i as the writers wrote it: the .bin's floats and the .ring's uint16 values.
-inline Cloud FixtureFrame(size_t i) {
-  const std::string bin = ReadRaw(FixtureFrameBase(i) + ".bin");
-  const std::string ring = ReadRaw(FixtureFrameBase(i) + ".ring");
+// "<DrivesDir>/narrow/<i %06>": fixture frame i cut to the 11.25 degrees ahead, as the drives
+// of several files (bag folders, the killed ROS 1 bag) hold it.
+inline std::string NarrowFrameBase(size_t i) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "%06zu", i);
+  return DrivesDir() + "/narrow/" + name;
+}
+
+// The frame at `base` as the writers wrote it: base.bin's floats and base.ring's uint16 values.
+inline Cloud FrameAt(const std::string& base) {
+  const std::string bin = ReadRaw(base + ".bin");
+  const std::string ring = ReadRaw(base + ".ring");
   Cloud cloud;
   cloud.xyzi.resize(bin.size() / 4);
   std::memcpy(cloud.xyzi.data(), bin.data(), cloud.xyzi.size() * 4);
@@ -39,6 +53,10 @@ inline Cloud FixtureFrame(size_t i) {
     cloud.ring.push_back(int32_t(uint8_t(ring[k])) | int32_t(uint8_t(ring[k + 1])) << 8);
   return cloud;
 }
+
+// Fixture frame i, whole or narrow.
+inline Cloud FixtureFrame(size_t i) { return FrameAt(FixtureFrameBase(i)); }
+inline Cloud NarrowFrame(size_t i) { return FrameAt(NarrowFrameBase(i)); }
 
 // The .label files in `dir`, by name ({} when it cannot be listed).
 inline std::vector<std::string> LabelFiles(const std::string& dir) {

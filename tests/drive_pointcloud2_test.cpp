@@ -377,23 +377,22 @@ TEST(DrivePointCloud2, DecodesEveryFieldLayout) {
   }
 }
 
-TEST(DrivePointCloud2, IntensityIsTheFirstOfIntensityReflectivityI) {
+TEST(DrivePointCloud2, IntensityIsTheBestOfTheIntensityNamesPresent) {
+  // Field f of point p holds 10 f + p; x, y, z are fields 0-2, the candidates 3 on. The names of
+  // IntensityNames() in any case, as the PCD and PLY readers take them.
   const auto value = [](size_t p, size_t f) { return double(10 * f + p); };
-  const PointCloud2 all = MakeCloud({{"x", kPfFloat32},
-                                     {"y", kPfFloat32},
-                                     {"z", kPfFloat32},
-                                     {"i", kPfFloat32},
-                                     {"reflectivity", kPfFloat32},
-                                     {"intensity", kPfFloat32}},
-                                    2, 1, 0, 0, false, value);
-  EXPECT_EQ(CloudFromPointCloud2(kWhere, all).intensity(1), 51.0f);
-  const PointCloud2 two = MakeCloud({{"x", kPfFloat32},
-                                     {"y", kPfFloat32},
-                                     {"z", kPfFloat32},
-                                     {"i", kPfFloat32},
-                                     {"reflectivity", kPfFloat32}},
-                                    2, 1, 0, 0, false, value);
-  EXPECT_EQ(CloudFromPointCloud2(kWhere, two).intensity(1), 41.0f);
+  const struct {
+    std::vector<std::string> names;
+    float intensity;  // of point 1
+  } cases[] = {{{"i", "reflectivity", "intensity"}, 51.0f},
+               {{"i", "reflectivity"}, 41.0f},
+               {{"Remission", "scalar_Intensity"}, 41.0f}};
+  for (const auto& c : cases) {
+    std::vector<FieldSpec> specs = {{"x", kPfFloat32}, {"y", kPfFloat32}, {"z", kPfFloat32}};
+    for (const std::string& name : c.names) specs.push_back({name, kPfFloat32});
+    const PointCloud2 msg = MakeCloud(specs, 2, 1, 0, 0, false, value);
+    EXPECT_EQ(CloudFromPointCloud2(kWhere, msg).intensity(1), c.intensity) << c.names.back();
+  }
 }
 
 TEST(DrivePointCloud2, KeepsNanPointsBitForBit) {
@@ -502,54 +501,118 @@ TEST(DrivePointCloud2, RejectsRingsThatAreNotWholeNumbersAtLeast0) {
   }
 }
 
-TEST(DrivePointCloud2, AddLabelFieldAppendsOneBytePerPointAndKeepsThePoints) {
+// The bytes of field `f` of point i of `c` (rows of row_step, points of point_step).
+std::string FieldBytes(const PointCloud2& c, const PointField& f, size_t i) {
+  const size_t row = i / c.width, col = i % c.width;
+  const uint8_t* at = c.data.data() + row * c.row_step + col * c.point_step + f.offset;
+  return std::string(reinterpret_cast<const char*>(at), TypeSize(f.datatype) * f.count);
+}
+
+TEST(DrivePointCloud2, SplitByLabelAlignsEveryFieldAndSplitsThePointsByLabel) {
   for (bool big : {false, true}) {
-    // Organised, with row padding and a gap byte per field: the result is packed densely.
-    const PointCloud2 msg = MakeCloud(
-        {{"x", kPfFloat64},
-         {"y", kPfFloat64},
-         {"z", kPfFloat64},
+    SCOPED_TRACE(big ? "big-endian" : "little-endian");
+    // Organised 5 x 3, a gap byte before each field and row padding: nothing is aligned.
+    PointCloud2 msg = MakeCloud(
+        {{"x", kPfFloat32},
+         {"y", kPfFloat32},
+         {"z", kPfFloat32},
          {"intensity", kPfUint16},
-         {"ring", kPfUint8}},
+         {"ring", kPfUint8},
+         {"t", kPfFloat64}},
         5, 3, 1, 3, big, [](size_t p, size_t f) { return f == 4 ? double(p % 16) : 0.5 * p + f; });
+    msg.seq = 7;
+    msg.stamp_sec = 1700000000;
+    msg.stamp_nanosec = 5;
+    msg.frame_id = "os_lidar";
+    msg.is_dense = true;
     Labels labels(15);
     for (size_t i = 0; i < labels.size(); ++i) labels[i] = uint8_t(i % 3 == 0);
-    const PointCloud2 out = AddLabelField(kWhere, msg, labels);
-    EXPECT_EQ(out.point_step, msg.point_step + 1);
-    EXPECT_EQ(out.row_step, 5 * out.point_step);
-    EXPECT_EQ(out.data.size(), size_t(out.row_step) * 3);
-    ASSERT_EQ(out.fields.size(), msg.fields.size() + 1);
-    EXPECT_EQ(out.fields.back().name, "label");
-    EXPECT_EQ(out.fields.back().offset, msg.point_step);
-    EXPECT_EQ(out.fields.back().datatype, kPfUint8);
-    EXPECT_EQ(out.fields.back().count, 1u);
-    EXPECT_EQ(out.is_bigendian, big);
-    for (size_t i = 0; i < labels.size(); ++i) {
-      EXPECT_EQ(out.data[i * out.point_step + msg.point_step], labels[i]) << i;
+    const LabelledClouds out = SplitByLabel(kWhere, msg, labels);
+
+    // Each field at the next multiple of its size, the uint32 label after them, the step a
+    // multiple of the widest (float64): 0 4 8 12 14 16, label 24, step 32.
+    const PointCloud2& l = out.labelled;
+    ASSERT_EQ(l.fields.size(), msg.fields.size() + 1);
+    const uint32_t offsets[] = {0, 4, 8, 12, 14, 16, 24};
+    for (size_t k = 0; k < l.fields.size(); ++k) {
+      EXPECT_EQ(l.fields[k].offset, offsets[k]) << l.fields[k].name;
+      EXPECT_EQ(l.fields[k].offset % TypeSize(l.fields[k].datatype), 0u) << l.fields[k].name;
     }
-    EXPECT_TRUE(SameBits(CloudFromPointCloud2(kWhere, out), CloudFromPointCloud2(kWhere, msg)));
-    // Through CDR and back, the labelled message decodes to the same points.
-    const PointCloud2 back = Parse(SerializeCdrPointCloud2(out));
-    EXPECT_TRUE(SameMessage(out, back));
-    EXPECT_TRUE(SameBits(CloudFromPointCloud2(kWhere, back), CloudFromPointCloud2(kWhere, msg)));
+    EXPECT_EQ(l.fields.back().name, "label");
+    EXPECT_EQ(l.fields.back().datatype, kPfUint32);
+    EXPECT_EQ(l.fields.back().count, 1u);
+    EXPECT_EQ(l.point_step, 32u);
+    EXPECT_EQ(l.height, 3u);
+    EXPECT_EQ(l.width, 5u);
+    EXPECT_EQ(l.row_step, 5u * 32u);
+    EXPECT_EQ(l.data.size(), size_t(l.row_step) * 3);
+    for (size_t i = 0; i < labels.size(); ++i) {
+      for (size_t k = 0; k < msg.fields.size(); ++k)
+        EXPECT_EQ(FieldBytes(l, l.fields[k], i), FieldBytes(msg, msg.fields[k], i)) << i;
+      const std::string label = FieldBytes(l, l.fields.back(), i);
+      const uint32_t value = big ? uint32_t(uint8_t(label[3])) | uint32_t(uint8_t(label[0])) << 24
+                                 : uint32_t(uint8_t(label[0])) | uint32_t(uint8_t(label[3])) << 24;
+      EXPECT_EQ(value, labels[i]) << i;
+    }
+    EXPECT_TRUE(SameBits(CloudFromPointCloud2(kWhere, l), CloudFromPointCloud2(kWhere, msg)));
+
+    // ground: the points labelled 1 in order, nonground the others; the same fields, no label.
+    for (const bool ground : {true, false}) {
+      const PointCloud2& part = ground ? out.ground : out.nonground;
+      ASSERT_EQ(part.fields.size(), msg.fields.size());
+      for (size_t k = 0; k < part.fields.size(); ++k) EXPECT_EQ(part.fields[k].offset, offsets[k]);
+      EXPECT_EQ(part.point_step, 24u);
+      EXPECT_EQ(part.height, 1u);
+      EXPECT_EQ(part.row_step, part.width * 24u);
+      EXPECT_EQ(part.data.size(), part.row_step);
+      size_t j = 0;
+      for (size_t i = 0; i < labels.size(); ++i) {
+        if ((labels[i] == 1) != ground) continue;
+        ASSERT_LT(j, part.width);
+        for (size_t k = 0; k < msg.fields.size(); ++k)
+          EXPECT_EQ(FieldBytes(part, part.fields[k], j), FieldBytes(msg, msg.fields[k], i));
+        ++j;
+      }
+      EXPECT_EQ(j, part.width);
+    }
+    EXPECT_EQ(out.ground.width, 5u);
+    for (const PointCloud2* c : {&out.labelled, &out.ground, &out.nonground}) {
+      EXPECT_EQ(c->seq, 7u);
+      EXPECT_EQ(c->stamp_ns(), msg.stamp_ns());
+      EXPECT_EQ(c->frame_id, "os_lidar");
+      EXPECT_EQ(c->is_bigendian, big);
+      EXPECT_TRUE(c->is_dense);
+      // Through CDR and back, unchanged.
+      EXPECT_TRUE(SameMessage(*c, Parse(SerializeCdrPointCloud2(*c))));
+    }
   }
 }
 
-TEST(DrivePointCloud2, AddLabelFieldRejectsWrongCountsAndASecondLabel) {
+TEST(DrivePointCloud2, SplitByLabelRejectsWrongCountsASecondLabelAndOverlappingFields) {
   const PointCloud2 msg = Xyz();
-  EXPECT_TRUE(ThrowsIoError([&] { AddLabelField(kWhere, msg, Labels(7)); }, kWhere,
+  EXPECT_TRUE(ThrowsIoError([&] { SplitByLabel(kWhere, msg, Labels(7)); }, kWhere,
                             {"7 labels", "8 points"}));
-  const PointCloud2 labelled = AddLabelField(kWhere, msg, Labels(8, 1));
-  EXPECT_TRUE(ThrowsIoError([&] { AddLabelField(kWhere, labelled, Labels(8, 1)); }, kWhere,
+  const PointCloud2 labelled = SplitByLabel(kWhere, msg, Labels(8, 1)).labelled;
+  EXPECT_TRUE(ThrowsIoError([&] { SplitByLabel(kWhere, labelled, Labels(8, 1)); }, kWhere,
                             {"already has a 'label' field"}));
   PointCloud2 short_data = msg;
   short_data.data.resize(10);
-  EXPECT_TRUE(ThrowsIoError([&] { AddLabelField(kWhere, short_data, Labels(8)); }, kWhere,
+  EXPECT_TRUE(ThrowsIoError([&] { SplitByLabel(kWhere, short_data, Labels(8)); }, kWhere,
                             {"data holds 10 bytes"}));
+  PointCloud2 overlap = msg;
+  overlap.fields.push_back(PointField{"rgb", 8, kPfFloat32, 1});
+  EXPECT_TRUE(ThrowsIoError([&] { SplitByLabel(kWhere, overlap, Labels(8)); }, kWhere,
+                            {"16 bytes a point", "point_step 12", "overlap"}));
+  PointCloud2 bad_type = msg;
+  bad_type.fields[1].datatype = 9;
+  EXPECT_TRUE(
+      ThrowsIoError([&] { SplitByLabel(kWhere, bad_type, Labels(8)); }, kWhere, {"datatype 9"}));
   PointCloud2 empty = msg;
   empty.width = 0;
   empty.data.clear();
-  EXPECT_EQ(AddLabelField(kWhere, empty, Labels()).data.size(), 0u);
+  const LabelledClouds none = SplitByLabel(kWhere, empty, Labels());
+  EXPECT_EQ(none.labelled.data.size() + none.ground.data.size() + none.nonground.data.size(), 0u);
+  EXPECT_EQ(none.labelled.fields.back().name, "label");
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // Tests of the pictures (apps/viz/images.h) on a small hand-made frame: which files are written,
-// their sizes, the colours of chosen pixels, skipped buffers and the errors.
+// their sizes, the colours of chosen pixels and how far apart they look to people with each kind
+// of colour vision, the legend's counts, skipped buffers and the errors.
 #include "apps/viz/images.h"
 
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -26,8 +28,10 @@ constexpr uint32_t kBeams = 4;
 constexpr uint32_t kWidth = 64;
 constexpr uint32_t kPixels = kBeams * kWidth;
 
-const cv::Vec3b kBlack(0, 0, 0), kWhite(255, 255, 255), kGreen(0, 255, 0), kRed(0, 0, 255),
-    kYellow(0, 255, 255), kBlue(255, 0, 0), kMagenta(255, 0, 255), kGrey(128, 128, 128);
+// BGR: black, white, and Okabe and Ito's colours the pictures use.
+const cv::Vec3b kBlack(0, 0, 0), kWhite(255, 255, 255), kSkyBlue(0xE9, 0xB4, 0x56),
+    kLightGrey(0x99, 0x99, 0x99), kVermilion(0x00, 0x5E, 0xD5), kYellow(0x42, 0xE4, 0xF0),
+    kOrange(0x00, 0x9F, 0xE6), kDarkGrey(0x50, 0x50, 0x50);
 
 Params SmallParams() {
   Params p{};
@@ -201,34 +205,34 @@ TEST(Images, WritesEveryPictureWithTheExpectedColours) {
 
   // Class images.
   cv::Mat classes = Read(dir + "/f0_classes.png");
-  EXPECT_EQ(RangePixel(classes, 1, 5), kGreen);
+  EXPECT_EQ(RangePixel(classes, 1, 5), kSkyBlue);
   EXPECT_EQ(RangePixel(classes, 1, 6), kYellow);
   EXPECT_EQ(RangePixel(classes, 1, 7), kBlack);
-  EXPECT_EQ(RangePixel(classes, 1, 8), kRed);
+  EXPECT_EQ(RangePixel(classes, 1, 8), kLightGrey);
   EXPECT_EQ(RangePixel(Read(dir + "/f0_fused.png"), 1, 5), kYellow);
   cv::Mat labels = Read(dir + "/f0_labels.png");
-  EXPECT_EQ(RangePixel(labels, 2, 9), kGreen);
+  EXPECT_EQ(RangePixel(labels, 2, 9), kSkyBlue);
   EXPECT_EQ(RangePixel(labels, 2, 10), kBlack);
-  EXPECT_EQ(RangePixel(labels, 3, 9), kRed);
+  EXPECT_EQ(RangePixel(labels, 3, 9), kLightGrey);
 
-  // Bird's-eye views scored against the truth: the paper's Fig. 7 colours.
+  // Bird's-eye views scored against the truth: the paper's Fig. 7 classes.
   cv::Mat bev = Read(dir + "/f0_bev.png");
-  EXPECT_EQ(BevColor(bev, 10, 0), kGreen);   // TP
-  EXPECT_EQ(BevColor(bev, 0, 10), kYellow);  // FN
-  EXPECT_EQ(BevColor(bev, -10, 0), kBlue);   // FP
-  EXPECT_EQ(BevColor(bev, 0, -10), kRed);    // TN
-  EXPECT_EQ(BevColor(bev, 20, 20), kGrey);   // not scored
-  EXPECT_EQ(BevColor(bev, 5, 5), kBlack);    // invalid: not drawn
-  EXPECT_EQ(BevColor(bev, -20, -20), kRed);  // noise, rightly non-ground
+  EXPECT_EQ(BevColor(bev, 10, 0), kSkyBlue);       // TP
+  EXPECT_EQ(BevColor(bev, 0, 10), kYellow);        // FN
+  EXPECT_EQ(BevColor(bev, -10, 0), kVermilion);    // FP
+  EXPECT_EQ(BevColor(bev, 0, -10), kLightGrey);    // TN
+  EXPECT_EQ(BevColor(bev, 20, 20), kDarkGrey);     // not scored
+  EXPECT_EQ(BevColor(bev, 5, 5), kBlack);          // invalid: not drawn
+  EXPECT_EQ(BevColor(bev, -20, -20), kLightGrey);  // noise, rightly non-ground
   int row, col;
   ASSERT_TRUE(BevPixel(10, 0, &row, &col));
-  EXPECT_EQ(bev.at<cv::Vec3b>(row + 1, col + 1), kGreen);  // dots are 2 x 2
+  EXPECT_EQ(bev.at<cv::Vec3b>(row + 1, col + 1), kSkyBlue);  // dots are 2 x 2
   // The legend (top left) is drawn.
   EXPECT_GT(cv::countNonZero(bev(cv::Rect(0, 0, 340, 140)).reshape(1)), 0);
   cv::Mat coarse = Read(dir + "/f0_coarse_bev.png");
-  EXPECT_EQ(BevColor(coarse, 0, 10), kGreen);  // the coarse stage had it right
-  EXPECT_EQ(BevColor(coarse, -10, 0), kRed);
-  EXPECT_EQ(BevColor(coarse, 10, 0), kGreen);
+  EXPECT_EQ(BevColor(coarse, 0, 10), kSkyBlue);  // the coarse stage had it right
+  EXPECT_EQ(BevColor(coarse, -10, 0), kLightGrey);
+  EXPECT_EQ(BevColor(coarse, 10, 0), kSkyBlue);
 }
 
 TEST(Images, WithoutTruthColoursByLabel) {
@@ -236,13 +240,85 @@ TEST(Images, WithoutTruthColoursByLabel) {
   const std::string dir = test::TempDir();
   WriteImages(dir, "plain", s.cloud, s.frame, SmallParams(), nullptr);
   cv::Mat bev = Read(dir + "/plain_bev.png");
-  EXPECT_EQ(BevColor(bev, 10, 0), kGreen);       // ground
-  EXPECT_EQ(BevColor(bev, 0, 10), kRed);         // non-ground
-  EXPECT_EQ(BevColor(bev, -20, -20), kMagenta);  // reflection noise
-  EXPECT_EQ(BevColor(bev, 5, 5), kBlack);        // invalid
+  EXPECT_EQ(BevColor(bev, 10, 0), kSkyBlue);    // ground
+  EXPECT_EQ(BevColor(bev, 0, 10), kLightGrey);  // non-ground
+  EXPECT_EQ(BevColor(bev, -20, -20), kOrange);  // reflection noise
+  EXPECT_EQ(BevColor(bev, 5, 5), kBlack);       // invalid
   cv::Mat coarse = Read(dir + "/plain_coarse_bev.png");
-  EXPECT_EQ(BevColor(coarse, 0, 10), kGreen);
-  EXPECT_EQ(BevColor(coarse, -10, 0), kRed);
+  EXPECT_EQ(BevColor(coarse, 0, 10), kSkyBlue);
+  EXPECT_EQ(BevColor(coarse, -10, 0), kLightGrey);
+}
+
+TEST(Images, TheLegendsTallyCountsEveryPointOnce) {
+  Scene s = MakeScene();
+  // Scored: not scored 4; TN 3 and the noise 6; TP 0, and 7 beyond the view; FP 2; FN 1.
+  const BevTally scored = TallyBev(s.cloud, s.frame, s.frame.label, &s.truth);
+  EXPECT_EQ(scored.shown, (std::vector<size_t>{1, 2, 1, 1, 1}));
+  EXPECT_EQ(scored.outside, (std::vector<size_t>{0, 0, 1, 0, 0}));
+  EXPECT_EQ(scored.invalid, 1u);  // point 5
+  // Plain: non-ground 1 and 3; ground 0, 2, 4, and 7 beyond; noise 6.
+  const BevTally plain = TallyBev(s.cloud, s.frame, s.frame.label, nullptr);
+  EXPECT_EQ(plain.shown, (std::vector<size_t>{2, 3, 1}));
+  EXPECT_EQ(plain.outside, (std::vector<size_t>{0, 1, 0}));
+  EXPECT_EQ(plain.invalid, 1u);
+  // The coarse labels: point 1 ground, 2 not.
+  const std::vector<uint8_t> coarse_labels(s.frame.coarse.begin(), s.frame.coarse.end());
+  const BevTally coarse = TallyBev(s.cloud, s.frame, coarse_labels, &s.truth);
+  EXPECT_EQ(coarse.shown, (std::vector<size_t>{1, 3, 2, 0, 0}));
+}
+
+// CIELAB of an sRGB colour (BGR) as a person with `vision` sees it: Machado, Oliveira and
+// Fernandes (2009) at full severity, applied to linear RGB.
+cv::Vec3d LabAs(const cv::Vec3b& bgr, int vision) {
+  static const double kMatrices[4][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                                            {{0.152286, 1.052583, -0.204868},
+                                             {0.114503, 0.786281, 0.099216},
+                                             {-0.003882, -0.048116, 1.051998}},  // protanopia
+                                            {{0.367322, 0.860646, -0.227968},
+                                             {0.280085, 0.672501, 0.047413},
+                                             {-0.011820, 0.042940, 0.968881}},  // deuteranopia
+                                            {{1.255528, -0.076749, -0.178779},
+                                             {-0.078411, 0.930809, 0.147602},
+                                             {0.004733, 0.691367, 0.303900}}};  // tritanopia
+  double rgb[3];
+  for (int k = 0; k < 3; ++k) {
+    const double c = bgr[2 - k] / 255.0;
+    rgb[k] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  }
+  double seen[3];
+  for (int r = 0; r < 3; ++r) {
+    seen[r] = 0;
+    for (int k = 0; k < 3; ++k) seen[r] += kMatrices[vision][r][k] * rgb[k];
+    seen[r] = std::clamp(seen[r], 0.0, 1.0);
+  }
+  const double xyz[3] = {(0.4124 * seen[0] + 0.3576 * seen[1] + 0.1805 * seen[2]) / 0.95047,
+                         0.2126 * seen[0] + 0.7152 * seen[1] + 0.0722 * seen[2],
+                         (0.0193 * seen[0] + 0.1192 * seen[1] + 0.9505 * seen[2]) / 1.08883};
+  double f[3];
+  for (int k = 0; k < 3; ++k) {
+    f[k] = xyz[k] > 216.0 / 24389.0 ? std::cbrt(xyz[k]) : xyz[k] * 841.0 / 108.0 + 4.0 / 29.0;
+  }
+  return {116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])};
+}
+
+TEST(Images, ScoredColoursStayApartForEveryColourVision) {
+  Scene s = MakeScene();
+  const std::string dir = test::TempDir();
+  WriteImages(dir, "cv", s.cloud, s.frame, SmallParams(), &s.truth);
+  const cv::Mat bev = Read(dir + "/cv_bev.png");
+  // TP, FN, FP, TN, not scored and the background, as drawn.
+  const std::vector<cv::Vec3b> drawn = {BevColor(bev, 10, 0),  BevColor(bev, 0, 10),
+                                        BevColor(bev, -10, 0), BevColor(bev, 0, -10),
+                                        BevColor(bev, 20, 20), BevColor(bev, 5, 5)};
+  for (int vision = 0; vision < 4; ++vision) {
+    for (size_t a = 0; a < drawn.size(); ++a) {
+      for (size_t b = a + 1; b < drawn.size(); ++b) {
+        // 20 CIELAB units: told apart at a glance (the old green/yellow pair was 8 for protans)
+        EXPECT_GE(cv::norm(LabAs(drawn[a], vision) - LabAs(drawn[b], vision)), 20.0)
+            << "vision " << vision << ": colours " << a << " and " << b;
+      }
+    }
+  }
 }
 
 TEST(Images, LeavesOutPicturesWhoseBuffersAreEmpty) {
@@ -256,7 +332,7 @@ TEST(Images, LeavesOutPicturesWhoseBuffersAreEmpty) {
       WriteImages(dir, "x", s.cloud, only_labels, SmallParams(), nullptr);
   ASSERT_EQ(paths.size(), 1u);
   EXPECT_EQ(paths[0], dir + "/x_bev.png");
-  EXPECT_EQ(BevColor(Read(paths[0]), 0, 10), kRed);
+  EXPECT_EQ(BevColor(Read(paths[0]), 0, 10), kLightGrey);
 }
 
 TEST(Images, RejectsInconsistentBuffers) {

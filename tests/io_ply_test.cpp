@@ -8,6 +8,7 @@
 #include "host/io/cloud_file.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/ply.h"
+#include "tests/cloud_fixtures.h"
 #include "tests/io_alloc_tracker.h"
 #include "tests/io_test_helpers.h"
 #include "tests/test_util.h"
@@ -145,24 +146,74 @@ TEST(IoPly, AsciiLaterElementsAreIgnored) {
   EXPECT_EQ(ReadPly(path).size(), 2u);
 }
 
-TEST(IoPly, ScalarIntensityIsTheIntensity) {
-  const std::string path =
-      Make(Header("ascii", "1", {"float x", "float y", "float z", "float scalar_intensity"}) +
-           "1 2 3 187\n");
-  EXPECT_EQ(ReadPly(path).intensity(0), 187.0f);
+TEST(IoPly, IntensityUnderTheNamesOtherWritersUse) {
+  // CloudCompare writes scalar_Intensity; Ouster reflectivity; KITTI converters remission.
+  for (const char* name :
+       {"intensity", "Intensity", "INTENSITY", "scalar_intensity", "scalar_Intensity",
+        "reflectivity", "Reflectivity", "remission", "i", "I"}) {
+    const std::string path = Make(
+        Header("ascii", "1",
+               {"float x", "float y", "float z", "float other", std::string("float ") + name}) +
+        "1 2 3 9 187\n");
+    std::string note = "stale";
+    EXPECT_EQ(ReadPly(path, &note).intensity(0), 187.0f) << name;
+    EXPECT_EQ(note, "") << name;
+  }
 }
 
-TEST(IoPly, IntensityWinsOverScalarIntensity) {
+TEST(IoPly, CloudComparesScalarIntensityIsTheIntensity) {
+  // CloudCompare wrote the scan's valid points; PCL the whole scan, NaN no-returns included.
+  std::string note = "stale";
+  const Cloud cc = ReadPly(test::CloudFixture("cloudcompare.ply"), &note);
+  EXPECT_EQ(note, "");
+  const Cloud pcl = ReadCloud(test::CloudFixture("pcl_binary.pcd"));
+  size_t k = 0;
+  for (size_t i = 0; i < pcl.size(); ++i) {
+    if (std::isnan(pcl.x(i))) continue;
+    ASSERT_LT(k, cc.size());
+    for (int v = 0; v < 4; ++v) ASSERT_EQ(cc.xyzi[4 * k + v], pcl.xyzi[4 * i + v]) << i << " " << v;
+    ++k;
+  }
+  EXPECT_EQ(k, cc.size());
+  EXPECT_EQ(k, 622u);
+}
+
+TEST(IoPly, TheBestIntensityNameWinsWhateverTheOrder) {
+  // Best first: intensity, scalar_intensity, reflectivity, remission, i.
+  const std::vector<std::string> names = {"i", "remission", "reflectivity", "scalar_Intensity",
+                                          "intensity"};
+  for (size_t best = 0; best < names.size(); ++best) {
+    std::vector<std::string> properties = {"float x", "float y", "float z"};
+    std::string values = "1 2 3";
+    for (size_t k = 0; k <= best; ++k) {  // names[best] is the best one present
+      properties.push_back("float " + names[k]);
+      values += " " + std::to_string(10 * k + 5);
+    }
+    const std::string path = Make(Header("ascii", "1", properties) + values + "\n");
+    EXPECT_EQ(ReadPly(path).intensity(0), float(10 * best + 5)) << names[best];
+  }
+}
+
+TEST(IoPly, TwoColumnsOfTheBestIntensityNameAreAnError) {
   const std::string path =
       Make(Header("ascii", "1",
-                  {"float scalar_intensity", "float x", "float y", "float z", "float intensity"}) +
-           "9 1 2 3 4\n");
-  EXPECT_EQ(ReadPly(path).intensity(0), 4.0f);
+                  {"float x", "float y", "float z", "float Intensity", "float intensity"}) +
+           "1 2 3 4 5\n");
+  EXPECT_TRUE(ThrowsIoError([&] { ReadPly(path); }, path, {"'intensity' appears twice"}));
 }
 
-TEST(IoPly, NoIntensityReadsZero) {
+TEST(IoPly, NoIntensityReadsZeroWithANote) {
   const std::string path = Make(XyzHeader("ascii", "1") + "1 2 3\n");
-  EXPECT_EQ(ReadPly(path).intensity(0), 0.0f);
+  std::string note;
+  EXPECT_EQ(ReadPly(path, &note).intensity(0), 0.0f);
+  EXPECT_EQ(note.find(path), 0u) << note;
+  for (const char* word :
+       {"has no intensity field", "scalar_intensity", "remission", "any case", "intensity 0"}) {
+    EXPECT_NE(note.find(word), std::string::npos) << note;
+  }
+  std::string through_read_cloud;
+  ReadCloud(path, {}, &through_read_cloud);
+  EXPECT_EQ(through_read_cloud, note);
 }
 
 TEST(IoPly, CrLfHeaderAndComments) {

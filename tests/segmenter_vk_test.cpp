@@ -56,7 +56,10 @@ TEST_F(SegmenterVk, AutoTakesAGpuElseTheReferenceVulkanTakesAnyDevice) {
     EXPECT_EQ(s.device_bytes(), 0u);
     const std::string& note = s.backend_note();
     EXPECT_EQ(note.rfind("CPU reference: the only ", 0), 0u) << note;
-    EXPECT_NE(note.find(" a CPU driver (" + device().name() + ")"), std::string::npos) << note;
+    const std::string name = device().name();  // without its details: "llvmpipe"
+    EXPECT_NE(note.find(" a CPU driver (" + name.substr(0, name.find(" (")) + ")"),
+              std::string::npos)
+        << note;
     EXPECT_EQ(note.substr(note.size() - 26), "; --backend vulkan uses it") << note;
   }
   Segmenter vulkan(Vlp16(), Options(Backend::kVulkan));

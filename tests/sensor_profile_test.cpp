@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "host/io/io_error.h"
@@ -309,10 +312,17 @@ TEST(SensorProfile, MissingTableReportedAtTheEnd) {
   }
 }
 
-TEST(SensorProfile, MissingFileIsUnknownAndUnwritableFolderAnIoError) {
+TEST(SensorProfile, MissingFileAndUnwritableFolderAreIoErrorsAnUnknownNameInvalid) {
   test::ScopedDir scoped;
   const std::string& dir = scoped.path;
-  EXPECT_THROW(LoadSensorProfile(dir + "/absent.txt", dir), std::invalid_argument);
+  try {
+    LoadSensorProfile(dir + "/absent.txt", dir);
+    ADD_FAILURE() << "a missing profile file was read";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/absent.txt: no such sensor profile file");
+    EXPECT_EQ(e.error_number(), ENOENT);
+  }
+  EXPECT_THROW(LoadSensorProfile("absent", dir), std::invalid_argument);  // a name: none such
   EXPECT_THROW(WriteSensorProfile(dir + "/no/such/folder.txt",
                                   LoadSensorProfile("vlp16", test::SensorsDir())),
                IoError);
@@ -382,6 +392,88 @@ TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
   s.min_range = 1e-20f;  // its square is subnormal
   EXPECT_NE(ParamsError(s).find("parameter min_range2 (min_range squared) is "), std::string::npos)
       << ParamsError(s);
+}
+
+// ApplySettings' std::invalid_argument message, or "no exception".
+std::string SettingsError(SensorProfile s,
+                          const std::vector<std::pair<std::string, std::string>>& settings) {
+  try {
+    ApplySettings(s, settings);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+// A setting is the profile line `NAME VALUE` or `param NAME VALUE`: the profile it gives equals
+// the one read from a file holding that line, and the reader's checks apply.
+TEST(SensorProfile, SettingsActAsProfileLines) {
+  test::ScopedDir scoped;
+  const std::string& dir = scoped.path;
+  const std::string edited =
+      WriteText(dir, "edited.txt", Edit(9, "sensor_height 1.9") + "param h_athr 0.2\n");
+  const SensorProfile expected = LoadSensorProfile(edited, dir);
+  SensorProfile s = LoadSensorProfile(WriteText(dir, "valid.txt", kValid), dir);
+  ApplySettings(s, {{"sensor_height", "1.9"}, {"h_athr", "0.5"}, {"h_athr", "0.2"}});
+  EXPECT_EQ(s.sensor_height, expected.sensor_height);
+  EXPECT_EQ(s.overrides, expected.overrides);  // the later h_athr replaces the earlier
+  const Params p = ParamsForSensor(s);
+  EXPECT_EQ(p.sensor_height, 1.9f);
+  EXPECT_EQ(p.h_athr, 0.2f);
+  EXPECT_EQ(p.h_noise, -1.9f - 1.0f);  // the noise floor follows the mount height
+  ApplySettings(s, {{"max_points", "5000"},
+                    {"ring_zero_is_top", "0"},
+                    {"k_xz", "-0.05"},
+                    {"min_range", "3"},
+                    {"max_range", "80"}});
+  EXPECT_EQ(s.max_points, 5000u);
+  EXPECT_FALSE(s.ring_zero_is_top);
+  EXPECT_EQ(s.k_xz, -0.05f);
+  EXPECT_EQ(ParamsForSensor(s).max_range2, 80.0f * 80.0f);
+  ApplySettings(s, {});  // nothing: nothing changes
+  EXPECT_EQ(s.max_points, 5000u);
+  // Every name SettingNames lists is a setting; the profile's geometry is not.
+  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", test::SensorsDir());
+  for (const std::string& name : SettingNames()) {
+    const std::string m = SettingsError(hdl64e, {{name, "1"}});
+    EXPECT_EQ(m.find("no setting"), std::string::npos) << name << ": " << m;
+  }
+  const std::vector<std::string> names = SettingNames();
+  for (const std::string& name : ParamNames())
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(SensorProfile, BadSettingsNameTheSettingAndTheProblem) {
+  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", test::SensorsDir());
+  const struct {
+    std::vector<std::pair<std::string, std::string>> settings;
+    const char* says;
+  } cases[] = {
+      {{{"sensr_height", "1.9"}},
+       "sensr_height=1.9: no setting 'sensr_height' (did you mean "
+       "sensor_height?); known: sensor_height, min_range,"},
+      {{{"xyz", "1"}}, "xyz=1: no setting 'xyz'; known: "},
+      {{{"beams", "32"}}, "beams=32: no setting 'beams'"},  // the geometry is the profile's
+      {{{"sensor_height", "0"}}, "sensor_height=0: sensor_height must be > 0"},
+      {{{"sensor_height", "1.9m"}}, "sensor_height=1.9m: sensor_height: '1.9m' is not a finite"},
+      {{{"h_athr", "nan"}}, "h_athr=nan: h_athr: 'nan' is not a finite number"},
+      {{{"min_component", "-3"}}, "min_component=-3: parameter min_component expects a whole"},
+      {{{"ring_zero_is_top", "2"}}, "ring_zero_is_top=2: ring_zero_is_top must be 0 or 1"},
+      {{{"max_points", "1.5"}}, "max_points=1.5: max_points: '1.5' is not a whole number"},
+      {{{"k_yz", "3"}}, "k_yz=3: k_yz must be within -1..1"},
+      // the profile as a whole, after every setting
+      {{{"min_range", "150"}}, "min_range=150: max_range must be larger than min_range"},
+      {{{"sectors_near", "100"}, {"h_athr", "0.2"}},
+       "sectors_near=100, h_athr=0.2: sensor profile 'hdl64e': sectors_near and sectors_far must "
+       "divide the image width"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.says);
+    const std::string m = SettingsError(hdl64e, c.settings);
+    EXPECT_EQ(m.rfind(c.says, 0), 0u) << m;
+  }
+  // settings that only hold together are checked together
+  EXPECT_EQ(SettingsError(hdl64e, {{"min_range", "150"}, {"max_range", "200"}}), "no exception");
 }
 
 }  // namespace

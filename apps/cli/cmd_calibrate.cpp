@@ -24,6 +24,7 @@ const char kHelp[] =
     "usage: lpir-gseg calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
     "                           [--set-height] [--max-b-diff M] [--min-inlier-fraction F]\n"
     "                           [--max-distance M]\n"
+    "  (--opt VALUE and --opt=VALUE alike; -s --sensor)\n"
     "  SCAN...            scans of flat, open ground (.bin, .pcd, .ply; several are pooled)\n"
     "  --sensor NAME      sensor profile (name or file): beam width, sensor_height, ranges\n"
     "  --write-profile F  on success, write the profile with k_xz k_yz b_x b_y to F\n"

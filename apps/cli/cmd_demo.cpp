@@ -17,13 +17,14 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
+#include "apps/cli/sensor_args.h"
 #include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
 #include "apps/viz/images.h"
 #include "host/eval/metrics.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
-#include "host/io/sensor_profile.h"
+#include "host/io/output_paths.h"
 #include "host/segmenter.h"
 
 namespace fs = std::filesystem;
@@ -36,15 +37,17 @@ constexpr int kWarmupFrames = 3;  // after the first: caches, lazy allocations, 
 const char kHelp[] =
     "usage: lpir-gseg demo [--out DIR (default demo_out)] [--seed N (default 1)]\n"
     "                      [--backend auto|vulkan|cpu (default auto)] [--runs N (default 20)]\n"
+    "                      [--set NAME=VALUE ...]\n"
     "  Simulates a street, segments it, checks Vulkan against the CPU reference, scores it and\n"
     "  writes pictures. Timing: set-up (device, pipelines, buffers) and the first frame are\n"
     "  stated apart; then 3 warm-up frames, then N timed frames (1 to 1000): their median wall\n"
-    "  time a frame, upload to download, and the frames per second it gives.\n";
+    "  time a frame, upload to download, and the frames per second it gives.\n"
+    "  (--opt VALUE and --opt=VALUE alike; -o --out, -b --backend)\n" LPIR_SET_HELP;
 
 }  // namespace
 
 int RunDemo(int argc, char** argv) {
-  const Args args(argc, argv, {"--help"}, {"--out", "--seed", "--backend", "--runs"});
+  const Args args(argc, argv, {"--help"}, {"--out", "--seed", "--backend", "--runs"}, {"--set"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(kExitCodesLine, stdout);
@@ -60,9 +63,9 @@ int RunDemo(int argc, char** argv) {
   const double runs = args.GetNumber("--runs", 20);
   if (!(runs >= 1 && runs <= 1000) || runs != double(int(runs)))
     throw std::invalid_argument("--runs must be a whole number from 1 to 1000");
-  fs::create_directories(out);
+  const SensorProfile sensor = LoadProfileWithSettings("hdl64e", args);
+  MakeOutputFolder(out);
 
-  const SensorProfile sensor = LoadSensorProfile("hdl64e", SensorsDir());
   SimOptions options;
   options.seed = uint32_t(seed);
   const SimScan scan = Simulate(sensor, options);
@@ -135,10 +138,8 @@ int RunDemo(int argc, char** argv) {
   const std::string images = (fs::path(out) / "images").string();
   const std::vector<std::string> written =
       WriteImages(images, "demo_scan", scan.cloud, *frame, segmenter.params(), &truth);
-  std::printf(
-      "wrote %zu pictures to %s/ (start with demo_scan_bev.png: TP green, TN red, "
-      "FP blue, FN yellow)\n",
-      written.size(), images.c_str());
+  std::printf("wrote %zu pictures to %s/ (start with demo_scan_bev.png: %s)\n", written.size(),
+              images.c_str(), kScoredColours);
   return kExitOk;
 }
 

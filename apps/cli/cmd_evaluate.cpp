@@ -1,8 +1,9 @@
-// lpir-gseg evaluate --pred DIR --gt PATH... --protocol P [--json] [--scans DIR] [--by-class]
+// lpir-gseg evaluate --pred DIR --gt PATH... [--protocol P] [--json] [--scans DIR] [--by-class]
 // [--by-range] [--ontology O]: scores predicted ground labels against SemanticKITTI ground truth
-// under the DG, PP, PW and GG protocols, or RELLIS-3D ground truth under the rellis one
-// (host/eval/metrics.h), per frame and in total, and with the flags per class and per range
-// band; printed by evaluate_output.cpp.
+// under the DG, PP, PW and GG protocols (DG by default), or RELLIS-3D ground truth under the
+// rellis one (host/eval/metrics.h), per frame and in total, and with the flags per class and per
+// range band; printed by evaluate_output.cpp. A ground truth without its prediction file is left
+// out and named, the rest scored, and the exit code is then 1.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -27,14 +28,16 @@ namespace {
 namespace fs = std::filesystem;
 
 const char kHelp[] =
-    "usage: lpir-gseg evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json]\n"
+    "usage: lpir-gseg evaluate --pred DIR --gt PATH... [--protocol dg|pp|pw|gg|all] [--json]\n"
     "                          [--scans DIR] [--by-class] [--by-range]\n"
     "                          [--ontology semantickitti|rellis3d]\n"
-    "  --pred DIR       predictions: DIR/<stem>.label, uint32 per point, 1 ground, 0 non-ground\n"
+    "  (--opt VALUE and --opt=VALUE alike; -p --protocol)\n"
+    "  --pred DIR       predictions: DIR/<stem>.label, uint32 per point, 1 ground, 0 non-ground;\n"
+    "                   a ground truth without one is named and left out, the rest scored, and\n"
+    "                   the exit code is then 1\n"
     "  --gt PATH...     ground-truth .label files and/or folders of them (every value up to the\n"
     "                   next --option); each is matched with DIR/<stem>.label\n"
-    "  --protocol P     dg, pp, pw, gg, a comma-separated list of them, or all (required but\n"
-    "                   with --ontology rellis3d):\n"
+    "  -p, --protocol P dg (default), pp, pw, gg, a comma-separated list of them, or all:\n"
     "                   dg  DipG-Seg: vegetation (70), unlabeled (0), outlier (1) are non-ground;\n"
     "                       TP/FP/FN summed over the frames\n"
     "                   pp  Patchwork++: classes 70, 0, 1 not scored; mean of per-frame scores\n"
@@ -104,19 +107,23 @@ std::vector<Protocol> ParseProtocols(const std::string& text, Ontology ontology)
   return out;
 }
 
-// --gt takes every value up to the next --option, which Args cannot; it is taken out here and
-// the rest goes through Args.
+// --gt (or --gt=PATH) takes every value up to the next option, which Args cannot; it is taken
+// out here and the rest goes through Args.
 Options ParseOptions(int argc, char** argv) {
   Options o;
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {
-    if (std::string(argv[i]) != "--gt") {
+    const std::string arg = argv[i];
+    const bool joined = arg.rfind("--gt=", 0) == 0;
+    if (arg != "--gt" && !joined) {
       rest.push_back(argv[i]);
       continue;
     }
+    if (joined) o.gt.push_back(arg.substr(5));
     int j = i + 1;
-    while (j < argc && std::string(argv[j]).rfind("--", 0) != 0) o.gt.push_back(argv[j++]);
-    if (j == i + 1) throw std::invalid_argument("--gt needs at least one .label file or folder");
+    while (j < argc && !IsOptionArgument(argv[j])) o.gt.push_back(argv[j++]);
+    if (o.gt.empty() || o.gt.back().empty())
+      throw std::invalid_argument("--gt needs at least one .label file or folder");
     i = j - 1;
   }
   Args args(int(rest.size()), rest.data(), {"--json", "--help", "--by-class", "--by-range"},
@@ -128,10 +135,10 @@ Options ParseOptions(int argc, char** argv) {
   o.pred_dir = args.Require("--pred");
   if (o.gt.empty()) throw std::invalid_argument("--gt is required");
   o.ontology = ParseOntology(args.Get("--ontology", OntologyName(Ontology::kSemanticKitti)));
-  // RELLIS-3D has one protocol, so it needs no --protocol; SemanticKITTI's choice moves F1.
-  o.protocols = o.ontology == Ontology::kRellis3d && !args.Has("--protocol")
-                    ? ProtocolsOf(o.ontology)
-                    : ParseProtocols(args.Require("--protocol"), o.ontology);
+  // By default the ontology's first protocol: DG for SemanticKITTI (the one the paper compares
+  // against), rellis for RELLIS-3D, as lpir_gseg.evaluate does.
+  o.protocols = args.Has("--protocol") ? ParseProtocols(args.Get("--protocol"), o.ontology)
+                                       : std::vector<Protocol>{ProtocolsOf(o.ontology).front()};
   o.scans_dir = args.Get("--scans");
   o.json = args.Has("--json");
   o.by_class = args.Has("--by-class");
@@ -219,10 +226,6 @@ Cloud LoadScan(const GtFile& gt, const std::string& scans_dir, size_t points,
 }
 
 Labels LoadPrediction(const std::string& path, const GtFile& gt, size_t points) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec))
-    throw std::runtime_error("no prediction for ground truth " + gt.path + ": " + path +
-                             " does not exist");
   std::vector<uint32_t> raw = ReadLabelFile(path);
   if (raw.size() != points)
     throw std::runtime_error("prediction " + path + " has " + std::to_string(raw.size()) +
@@ -245,10 +248,16 @@ std::string ScanNeeds(const Options& o) {
   return o.by_range ? "--by-range needs each point's x and y" : "";
 }
 
-// Scores one ground-truth file against its prediction into `r`; `needs`: ScanNeeds(o).
+// Scores one ground-truth file against its prediction into `r`; `needs`: ScanNeeds(o). A
+// prediction that does not exist goes into r->missing instead.
 void AddFrame(const Options& o, const GtFile& gt, const std::string& needs, EvaluateResults* r) {
-  const std::vector<uint32_t> truth = ReadLabelFile(gt.path);
   const std::string pred_path = (fs::path(o.pred_dir) / (gt.stem + ".label")).string();
+  std::error_code ec;
+  if (!fs::is_regular_file(pred_path, ec)) {
+    r->missing.push_back(pred_path);
+    return;
+  }
+  const std::vector<uint32_t> truth = ReadLabelFile(gt.path);
   const Labels pred = LoadPrediction(pred_path, gt, truth.size());
   Cloud cloud;
   if (!needs.empty()) cloud = LoadScan(gt, o.scans_dir, truth.size(), needs);
@@ -287,10 +296,25 @@ int RunEvaluate(int argc, char** argv) {
   }
   std::error_code ec;
   if (!fs::is_directory(o.pred_dir, ec)) throw IoError(o.pred_dir, "no such prediction folder");
-  const EvaluateResults r = Evaluate(o, ListGroundTruth(o.gt));
+  const std::vector<GtFile> gts = ListGroundTruth(o.gt);
+  const EvaluateResults r = Evaluate(o, gts);
+  if (r.frames.empty() && gts.size() == 1)
+    throw std::runtime_error("no prediction for ground truth " + gts[0].path + ": " + r.missing[0] +
+                             " does not exist");
+  if (r.frames.empty())
+    throw std::runtime_error("no prediction for any of the " + std::to_string(gts.size()) +
+                             " ground-truth files in " + o.pred_dir + " (looked for " +
+                             r.missing[0] + ", ...)");
   const std::string out = o.json ? FormatJson(r) : FormatTables(r);
   std::fputs(out.c_str(), stdout);
-  return kExitOk;
+  if (r.missing.empty()) return kExitOk;
+  std::string missing;
+  for (const std::string& m : r.missing) missing += "\n  " + m;
+  std::fprintf(stderr,
+               "lpir-gseg evaluate: %zu of %zu predictions missing, left out (the other %zu "
+               "scored):%s\n",
+               r.missing.size(), gts.size(), r.frames.size(), missing.c_str());
+  return kExitSomeFailed;
 }
 
 }  // namespace lpir

@@ -23,7 +23,8 @@ const char kSimulateUsage[] =
     "                          [--scene urban|flat|flat-objects] [--range-noise M]\n"
     "                          --out FILE.bin --labels FILE.label\n"
     "  Pitch and roll follow apps/sim/scene.h: positive pitch makes the ground rise ahead (+x),\n"
-    "  positive roll makes it rise to the left (+y); |angle| <= 30 degrees.\n";
+    "  positive roll makes it rise to the left (+y); |angle| <= 30 degrees.\n"
+    "  (--opt VALUE and --opt=VALUE alike; -s --sensor, -o --out)\n";
 
 uint32_t ParseSeed(const std::string& text) {
   bool digits = !text.empty() && text.size() <= 10;

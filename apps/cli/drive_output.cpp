@@ -1,11 +1,17 @@
-// segment's index and labelled MCAP for drives (see drive_output.h).
+// segment's index and labelled drive for drives (see drive_output.h).
 #include "apps/cli/drive_output.h"
 
 #include <cerrno>
 #include <cstring>
+#include <map>
+#include <optional>
+#include <variant>
 #include <vector>
 
+#include "host/drive/drive_content.h"
+#include "host/drive/mcap_writer.h"
 #include "host/drive/pointcloud2.h"
+#include "host/drive/ros1_bag_writer.h"
 #include "host/io/io_error.h"
 
 namespace lpir {
@@ -42,33 +48,151 @@ void DriveIndex::Close() {
   if (failed_write || failed_close) throw IoError(path_, "writing the index failed");
 }
 
-LabelledMcap::LabelledMcap(const std::string& path, const std::string& topic)
-    : path_(path), writer_(path, McapCompression::kZstd) {
-  const uint16_t schema =
-      writer_.AddSchema("sensor_msgs/msg/PointCloud2", "ros2msg", PointCloud2Ros2MsgDefinition());
-  topic_channel_ = writer_.AddChannel(topic, schema, "cdr");
-  ground_channel_ = writer_.AddChannel(topic + "/ground", schema, "cdr");
+namespace {
+
+// The topics a labelled message's clouds go to, after the segmented topic's name.
+const char* const kCloudSuffixes[3] = {"/labelled", "/ground", "/nonground"};
+
+// A channel's ROS 1 connection header: type from its schema, the other fields (md5sum, callerid,
+// latching, ...) from its metadata in their order, message_definition from its schema.
+DriveMap ConnectionFields(const DriveChannel& channel, const DriveSchema* schema) {
+  DriveMap fields = {{"type", schema ? schema->name : ""}};
+  fields.insert(fields.end(), channel.metadata.begin(), channel.metadata.end());
+  fields.emplace_back("message_definition", schema ? schema->data : "");
+  return fields;
 }
 
-void LabelledMcap::Copy(const FrameInput& in, bool decoded) {
-  if (!in.has_message) return;
-  const uint32_t sequence = uint32_t(in.sequence);
-  if (in.message.encoding == MessageEncoding::kCdr) {
-    writer_.Write(topic_channel_, sequence, in.log_time_ns, in.log_time_ns, in.message.data.data(),
-                  in.message.data.size());
-  } else if (decoded) {
-    const std::vector<uint8_t> cdr = SerializeCdrPointCloud2(in.cloud2);
-    writer_.Write(topic_channel_, sequence, in.log_time_ns, in.log_time_ns, cdr.data(), cdr.size());
+}  // namespace
+
+struct LabelledDrive::State {
+  std::string drive, path, topic;
+  std::unique_ptr<DriveContent> content;
+  std::unique_ptr<McapWriter> mcap;  // one of the two
+  std::unique_ptr<Ros1BagWriter> bag;
+
+  std::optional<DriveRecord> next;  // the input's next record, read ahead
+  bool ended = false;
+  std::vector<std::string> problems;
+  std::map<uint16_t, DriveSchema> schemas;    // input id -> the schema
+  std::map<uint16_t, uint16_t> schema_ids;    // input id -> output id (MCAP)
+  std::map<uint16_t, DriveChannel> channels;  // input id -> the channel
+  std::map<uint16_t, uint32_t> channel_ids;   // input id -> output channel or conn id
+  std::optional<uint16_t> source;             // the input channel of `topic` met first
+  std::vector<uint32_t> clouds;               // output ids of the three clouds' channels
+
+  // The input's next record into `next` (nothing at the end); damage goes to `problems`.
+  bool Peek() {
+    while (!next && !ended) {
+      DriveRecord record;
+      std::string problem;
+      const ContentStep step = content->Next(&record, &problem);
+      if (step == ContentStep::kRecord) next = std::move(record);
+      if (step == ContentStep::kDamage)
+        problems.push_back(problem + "; its records are not in " + path);
+      if (step == ContentStep::kEnd) ended = true;
+    }
+    return next.has_value();
+  }
+
+  // Copies input records until the next is a message logged after `time_ns` (with
+  // `until_source`, and the channel of `topic` met), or to the end.
+  void CopyUntil(uint64_t time_ns, bool until_source) {
+    while (Peek()) {
+      const auto* m = std::get_if<DriveRecordMessage>(&*next);
+      if (m && m->log_time_ns > time_ns && (!until_source || source)) return;
+      Copy(*next);
+      next.reset();
+    }
+  }
+
+  void Copy(const DriveRecord& record) {
+    if (const auto* s = std::get_if<DriveSchema>(&record)) {
+      schemas[s->id] = *s;
+      if (mcap) schema_ids[s->id] = mcap->AddSchema(s->name, s->encoding, s->data);
+    } else if (const auto* c = std::get_if<DriveChannel>(&record)) {
+      channels[c->id] = *c;
+      channel_ids[c->id] = AddChannel(c->topic, *c);
+      if (!source && c->topic == topic) source = c->id;
+    } else if (const auto* m = std::get_if<DriveRecordMessage>(&record)) {
+      const uint32_t id = channel_ids.at(m->channel_id);
+      if (mcap)
+        mcap->Write(uint16_t(id), m->sequence, m->log_time_ns, m->publish_time_ns, m->data.data(),
+                    m->data.size());
+      else
+        bag->Write(id, m->log_time_ns, m->data.data(), m->data.size());
+    } else if (mcap) {
+      if (const auto* meta = std::get_if<DriveMetadata>(&record)) mcap->AddMetadata(*meta);
+      if (const auto* a = std::get_if<DriveAttachment>(&record)) mcap->AddAttachment(*a);
+    } else {
+      problems.push_back(drive +
+                         ": a metadata or attachment record, which a ROS 1 bag cannot "
+                         "hold, is not in " +
+                         path);
+    }
+  }
+
+  // A channel like `like` (its schema, encoding and metadata) on `name`; its output id.
+  uint32_t AddChannel(const std::string& name, const DriveChannel& like) {
+    const auto schema = schemas.find(like.schema_id);
+    if (bag)
+      return bag->AddConnection(
+          name, ConnectionFields(like, schema == schemas.end() ? nullptr : &schema->second));
+    const auto id = schema_ids.find(like.schema_id);
+    return mcap->AddChannel(name, id == schema_ids.end() ? 0 : id->second, like.message_encoding,
+                            like.metadata);
+  }
+};
+
+LabelledDrive::LabelledDrive(const std::string& drive, const std::string& path,
+                             const std::string& topic, Format format)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.drive = drive;
+  s.path = path;
+  s.topic = topic;
+  s.content = OpenDriveContent(drive);
+  if (format == Format::kBag)
+    s.bag = std::make_unique<Ros1BagWriter>(path);
+  else
+    s.mcap = std::make_unique<McapWriter>(path, McapCompression::kZstd, s.content->profile());
+}
+
+LabelledDrive::~LabelledDrive() = default;
+
+void LabelledDrive::AddLabelled(const FrameInput& in, const Labels& labels) {
+  State& s = *state_;
+  s.CopyUntil(in.log_time_ns, s.clouds.empty());
+  const std::string where = in.input + ": " + in.topic + " message " + std::to_string(in.sequence);
+  const LabelledClouds clouds = SplitByLabel(where, in.cloud2, labels);
+  if (s.clouds.empty()) {
+    if (!s.source) throw IoError(where, "no channel of " + s.topic + " in the drive's records");
+    for (const char* suffix : kCloudSuffixes)
+      s.clouds.push_back(s.AddChannel(s.topic + suffix, s.channels.at(*s.source)));
+  }
+  const PointCloud2* const out[3] = {&clouds.labelled, &clouds.ground, &clouds.nonground};
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<uint8_t> bytes = in.message.encoding == MessageEncoding::kCdr
+                                           ? SerializeCdrPointCloud2(*out[k])
+                                           : SerializeRos1PointCloud2(*out[k]);
+    if (s.mcap)
+      s.mcap->Write(uint16_t(s.clouds[k]), uint32_t(in.sequence), in.log_time_ns, in.log_time_ns,
+                    bytes.data(), bytes.size());
+    else
+      s.bag->Write(s.clouds[k], in.log_time_ns, bytes.data(), bytes.size());
   }
 }
 
-void LabelledMcap::AddLabelled(const FrameInput& in, const Labels& labels) {
-  const std::string where = in.input + ": " + in.topic + " message " + std::to_string(in.sequence);
-  const std::vector<uint8_t> cdr = SerializeCdrPointCloud2(AddLabelField(where, in.cloud2, labels));
-  writer_.Write(ground_channel_, uint32_t(in.sequence), in.log_time_ns, in.log_time_ns, cdr.data(),
-                cdr.size());
+void LabelledDrive::Close() {
+  State& s = *state_;
+  s.CopyUntil(UINT64_MAX, false);
+  if (s.mcap) s.mcap->Close();
+  if (s.bag) s.bag->Close();
 }
 
-void LabelledMcap::Close() { writer_.Close(); }
+std::vector<std::string> LabelledDrive::TakeProblems() {
+  std::vector<std::string> out;
+  out.swap(state_->problems);
+  return out;
+}
 
 }  // namespace lpir

@@ -200,6 +200,12 @@ std::string FormatJson(const EvaluateResults& r) {
   out += "}";
   if (r.by_class) out += ", \"by_class\": " + JsonByClass(*r.by_class, r.ontology);
   if (r.by_range) out += ", \"by_range\": " + JsonByRange(*r.by_range);
+  if (!r.missing.empty()) {
+    out += ", \"missing\": [";
+    for (size_t k = 0; k < r.missing.size(); ++k)
+      out += std::string(k ? ", " : "") + JsonString(r.missing[k]);
+    out += "]";
+  }
   return out + "}\n";
 }
 

@@ -18,9 +18,11 @@ struct EvaluateResults {
   std::vector<std::vector<Scores>> per_frame;  // [frame][protocol]
   std::optional<ClassBreakdown> by_class;      // with --by-class
   std::optional<RangeBreakdown> by_range;      // with --by-range
+  std::vector<std::string> missing;            // predictions not found, not scored
 };
 
-// {"frames": [...], "total": {...}}, then "by_class" and "by_range" when present; one line.
+// {"frames": [...], "total": {...}}, then "by_class" and "by_range" when present, and
+// "missing" (the prediction files not found) when some were; one line.
 std::string FormatJson(const EvaluateResults& r);
 // One table per protocol (frames, then total or mean), then the per-class and per-range tables
 // when present.

@@ -29,9 +29,11 @@ class RefusedError : public std::runtime_error {
 inline constexpr char kExitCodesHelp[] =
     "exit codes (the same for every command; the reason is always on stderr):\n"
     "  0  done: every input\n"
-    "  1  done, but some inputs failed (segment: each named, every other one written)\n"
+    "  1  done, but some inputs failed (segment: each named, every other one written;\n"
+    "     evaluate: the missing predictions named, the rest scored)\n"
     "  2  usage: unknown command or option, a missing or bad value, an unknown sensor,\n"
-    "     backend or protocol name, an input folder without clouds; nothing done\n"
+    "     backend, protocol or --set name, an input folder without clouds, two inputs that\n"
+    "     would write one output; nothing done\n"
     "  3  refused: it ran, but the result fails a check and is withheld (calibrate: the scans\n"
     "     give no trustworthy tilt, no profile written; demo, bench: Vulkan's labels differ\n"
     "     from the CPU reference's)\n"

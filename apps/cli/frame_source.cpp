@@ -45,7 +45,7 @@ class FileSource : public FrameSource {
     in->input = file;
     in->stem = std::filesystem::path(file).stem().string();
     try {
-      in->cloud = ReadCloud(file, read_);
+      in->cloud = ReadCloud(file, read_, &in->note);
       return SourceStep::kFrame;
     } catch (const IoError& e) {  // names the file already
       *error = e.what();
@@ -193,7 +193,16 @@ std::unique_ptr<FrameSource> OpenFileSource(std::vector<std::string> files, Read
 }
 
 std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTopic>& topics,
-                             const std::string& topic) {
+                             const std::string& topic, const std::vector<std::string>& damage) {
+  // "; what could be read before it is damaged (<the first damage>) has <topics>"
+  const std::string where =
+      damage.empty()
+          ? "; the drive has " + ListTopics(topics)
+          : " in what could be read: the drive is damaged (" + damage.front() +
+                (damage.size() > 1
+                     ? ", and " + std::to_string(damage.size() - 1) + " more damaged parts"
+                     : std::string()) +
+                "); it has " + ListTopics(topics);
   if (!topic.empty()) {
     for (const DriveTopic& t : topics) {
       if (t.name != topic) continue;
@@ -202,15 +211,14 @@ std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTo
                                     ", not sensor_msgs/PointCloud2");
       return topic;
     }
-    throw std::invalid_argument(drive + ": no topic " + topic + "; the drive has " +
-                                ListTopics(topics));
+    if (!damage.empty()) throw IoError(drive, "no topic " + topic + where);
+    throw std::invalid_argument(drive + ": no topic " + topic + where);
   }
   std::vector<DriveTopic> clouds;
   for (const DriveTopic& t : topics)
     if (IsPointCloud2(t)) clouds.push_back(t);
   if (clouds.size() == 1) return clouds[0].name;
-  if (clouds.empty())
-    throw IoError(drive, "no sensor_msgs/PointCloud2 topic; the drive has " + ListTopics(topics));
+  if (clouds.empty()) throw IoError(drive, "no sensor_msgs/PointCloud2 topic" + where);
   throw std::invalid_argument(drive + ": --topic is needed: the drive has " +
                               std::to_string(clouds.size()) +
                               " PointCloud2 topics: " + ListTopics(clouds));

@@ -24,6 +24,7 @@ struct FrameInput {
   int64_t stamp_ns = 0;      // the PointCloud2 header's stamp
   uint64_t log_time_ns = 0;  // DriveMessage::log_time_ns
   std::string topic;
+  std::string note;  // what the reader filled in that the file lacks (ReadCloud's note), or empty
   Cloud cloud;
   DriveMessage message;  // the message as logged (kept only when the source is asked to)
   PointCloud2 cloud2;    // the message decoded (kept only then)
@@ -46,12 +47,14 @@ class FrameSource {
 // Cloud files (ReadCloud under `read`), in the order given.
 std::unique_ptr<FrameSource> OpenFileSource(std::vector<std::string> files, ReadOptions read);
 
-// The topic to segment in a drive with `topics`: `topic` when given (std::invalid_argument naming
-// `drive` unless it is there and a PointCloud2: the command line asks for what is not there),
-// else the drive's only PointCloud2 topic (std::invalid_argument listing them when there are
-// several; IoError naming `drive` when there is none: no option would help).
+// The topic to segment in a drive with `topics`, listed with `damage` (ListingDamage): `topic`
+// when given (std::invalid_argument naming `drive` unless it is there and a PointCloud2: the
+// command line asks for what is not there), else the drive's only PointCloud2 topic
+// (std::invalid_argument listing them when there are several; IoError naming `drive` when there
+// is none: no option would help). A topic that is not there on a damaged drive is an IoError
+// naming the damage, with or without `topic`: the damage may have taken it.
 std::string ChooseCloudTopic(const std::string& drive, const std::vector<DriveTopic>& topics,
-                             const std::string& topic);
+                             const std::string& topic, const std::vector<std::string>& damage);
 
 // Chunks first..last of a drive (DriveReader::SelectChunks); first 0: every chunk.
 struct ChunkRange {

@@ -7,9 +7,11 @@
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
+#include "host/suggest.h"
 #include "host/vk/device.h"
 #include "host/vk/instance.h"
 
@@ -25,19 +27,23 @@ const char kUsage[] =
     "usage: lpir-gseg <command> [options]   (lpir-gseg help COMMAND: all of its options)\n"
     "  segment INPUT... --sensor NAME --out DIR [--backend auto|vulkan|cpu] [--device D]\n"
     "          [--timings] [--format label|pcd|ply] [--images] [--gt PATH] [--quiet|--verbose]\n"
-    "          [--report FILE.csv|.json]; or one recorded drive: segment DRIVE [--topic T]\n"
-    "          --sensor NAME --out DIR [--format label|mcap] ...\n"
-    "  evaluate --pred DIR --gt PATH... --protocol dg|pp|pw|gg|all [--json] [--by-class]\n"
+    "          [--report FILE.csv|.json] [--recursive] [--set NAME=VALUE]...; INPUTs are\n"
+    "          clouds, recorded drives (with [--topic T] [--format mcap|bag]) or folders of them\n"
+    "  evaluate --pred DIR --gt PATH... [--protocol dg|pp|pw|gg|all] [--json] [--by-class]\n"
     "           [--by-range] [--ontology semantickitti|rellis3d]\n"
     "  simulate --sensor NAME --seed N [--pitch DEG --roll DEG] --out FILE.bin --labels "
     "FILE.label\n"
     "  calibrate SCAN... --sensor NAME [--write-profile FILE] [--json]\n"
-    "  demo [--out DIR] [--backend auto|vulkan|cpu] [--runs N]\n"
+    "  demo [--out DIR] [--backend auto|vulkan|cpu] [--runs N] [--set NAME=VALUE]...\n"
     "  devices\n"
     "  bench [--runs N] [--json]\n"
-    "  topics DRIVE     the topics of a recorded drive (.mcap, .db3, .bag)\n"
+    "  topics DRIVE... [--recursive]  the topics of recorded drives (.mcap, .db3, .bag, bag\n"
+    "          folders) or folders of them\n"
     "  help [COMMAND|exit-codes]   a command's help (as COMMAND --help), or the exit codes\n"
-    "  --version        the version, the git commit built and which backends this machine has\n";
+    "  --version        the version, the git commit built and which backends this machine has\n"
+    "options: --opt VALUE or --opt=VALUE; short forms -s --sensor, -o --out, -b --backend,\n"
+    "  -f --format, -t --topic, -p --protocol, -r --recursive, -q --quiet, -v --verbose,\n"
+    "  -h --help\n";
 
 // "lpir-gseg 0.1.0 (commit abc123)", then one line per backend: the CPU reference is always
 // there; Vulkan names the device `segment --backend vulkan` takes, or says why there is none.
@@ -73,6 +79,13 @@ const Command* FindCommand(const char* name) {
   for (const Command& c : kCommands)
     if (!std::strcmp(name, c.name)) return &c;
   return nullptr;
+}
+
+// " (did you mean segment?)" for a mistyped command, or "".
+std::string CommandSuggestion(const char* typed) {
+  std::vector<std::string> names;
+  for (const Command& c : kCommands) names.push_back(c.name);
+  return lpir::DidYouMean(typed, names);
 }
 
 // Runs `c` on its arguments; what it throws becomes a message on stderr and an exit code:
@@ -114,10 +127,12 @@ int Help(int argc, char** argv) {
   if (!c) {
     std::string known;
     for (const Command& k : kCommands) known += std::string(known.empty() ? "" : ", ") + k.name;
-    std::fprintf(stderr, "lpir-gseg help: %s; known: %s, exit-codes\n",
-                 argc == 1 ? ("no command '" + std::string(argv[0]) + "'").c_str()
-                           : "give one command (lpir-gseg help COMMAND)",
-                 known.c_str());
+    std::fprintf(
+        stderr, "lpir-gseg help: %s; known: %s, exit-codes\n",
+        argc == 1
+            ? ("no command '" + std::string(argv[0]) + "'" + CommandSuggestion(argv[0])).c_str()
+            : "give one command (lpir-gseg help COMMAND)",
+        known.c_str());
     return lpir::kExitUsage;
   }
   char help_flag[] = "--help";
@@ -135,6 +150,7 @@ int main(int argc, char** argv) {
   if (!std::strcmp(argv[1], "--version")) return PrintVersion();
   if (!std::strcmp(argv[1], "help")) return Help(argc - 2, argv + 2);
   if (const Command* c = FindCommand(argv[1])) return Run(*c, argc - 2, argv + 2);
-  std::fprintf(stderr, "lpir-gseg: unknown command '%s'\n%s", argv[1], kUsage);
+  std::fprintf(stderr, "lpir-gseg: unknown command '%s'%s\n%s", argv[1],
+               CommandSuggestion(argv[1]).c_str(), kUsage);
   return lpir::kExitUsage;
 }

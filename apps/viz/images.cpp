@@ -20,15 +20,17 @@
 namespace lpir {
 namespace {
 
-// BGR colours.
+// BGR colours: Okabe and Ito's palette for people with any colour vision (docs/decisions/apps.md
+// measures each pair's distance under protan, deutan and tritan vision), on black.
 const cv::Vec3b kBlack(0, 0, 0);
 const cv::Vec3b kWhite(255, 255, 255);
-const cv::Vec3b kGreen(0, 255, 0);
-const cv::Vec3b kRed(0, 0, 255);
-const cv::Vec3b kYellow(0, 255, 255);
-const cv::Vec3b kBlue(255, 0, 0);
-const cv::Vec3b kMagenta(255, 0, 255);
-const cv::Vec3b kGrey(128, 128, 128);
+const cv::Vec3b kSkyBlue(0xE9, 0xB4, 0x56);    // #56B4E9: ground
+const cv::Vec3b kLightGrey(0x99, 0x99, 0x99);  // #999999: non-ground
+const cv::Vec3b kVermilion(0x00, 0x5E, 0xD5);  // #D55E00: wrongly ground, vetoed
+const cv::Vec3b kYellow(0x42, 0xE4, 0xF0);     // #F0E442: missed ground, unknown
+const cv::Vec3b kOrange(0x00, 0x9F, 0xE6);     // #E69F00: reflection noise
+const cv::Vec3b kDarkGrey(0x50, 0x50, 0x50);   // #505050: not scored, unknown off the coarse ground
+const cv::Vec3b kBluishGreen(0x73, 0x9E, 0x00);  // #009E73: a bank
 
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 constexpr double kFontScale = 0.45;
@@ -61,6 +63,16 @@ std::string FormatNumber(double v) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%g", v);
   return buf;
+}
+
+// `n` with a comma every three digits: 109,522.
+std::string Count(size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
 }
 
 void CheckSize(const char* buffer, size_t have, size_t want) {
@@ -172,46 +184,51 @@ cv::Mat FeatureImage(const std::vector<float>& values, const std::vector<uint32_
   return color;
 }
 
-cv::Vec3b ClassColor(uint32_t pixel_class) {
-  switch (pixel_class) {
-    case kPixGround:
-      return kGreen;
-    case kPixNonGround:
-      return kRed;
-    case kPixUnknown:
-      return kYellow;
-    case kPixEmpty:
-      return kBlack;
-    case kPixVetoed:
-      return kMagenta;
-    case kPixBank:
-      return kBlue;
-    case kPixUnknownOff:
-      return kGrey;
-    default:
-      return kWhite;  // not a class: a bug upstream, make it visible
+// The classes of the class images, in legend order.
+const struct PixelClassStyle {
+  uint32_t value;
+  cv::Vec3b color;
+  const char* name;
+} kPixelClasses[] = {
+    {kPixGround, kSkyBlue, "ground"},  {kPixNonGround, kLightGrey, "non-ground"},
+    {kPixUnknown, kYellow, "unknown"}, {kPixUnknownOff, kDarkGrey, "unknown, no coarse ground"},
+    {kPixBank, kBluishGreen, "bank"},  {kPixEmpty, kBlack, "empty"},
+    {kPixVetoed, kVermilion, "vetoed"}};
+
+// The class's entry of kPixelClasses; the end for a value that is no class.
+const PixelClassStyle* StyleOf(uint32_t pixel_class) {
+  for (const PixelClassStyle& style : kPixelClasses) {
+    if (style.value == pixel_class) return &style;
   }
+  return std::end(kPixelClasses);
 }
 
 cv::Mat ClassImage(const std::vector<uint32_t>& classes, int rows, int cols) {
   cv::Mat image(rows, cols, CV_8UC3);
-  for (int p = 0; p < rows * cols; ++p)
-    image.at<cv::Vec3b>(p / cols, p % cols) = ClassColor(classes[p]);
+  for (int p = 0; p < rows * cols; ++p) {
+    const PixelClassStyle* style = StyleOf(classes[p]);
+    // not a class: a bug upstream, made visible
+    image.at<cv::Vec3b>(p / cols, p % cols) =
+        style == std::end(kPixelClasses) ? kWhite : style->color;
+  }
   return image;
 }
 
-cv::Mat ClassLegend(int width, const std::string& title) {
+// The title, then each class's swatch, name and pixel count (a value that is no class: white,
+// counted when there is one).
+cv::Mat ClassLegend(int width, const std::string& title, const std::vector<uint32_t>& classes) {
+  std::vector<size_t> counts(std::size(kPixelClasses) + 1, 0);
+  for (uint32_t c : classes) ++counts[size_t(StyleOf(c) - kPixelClasses)];
   cv::Mat legend(kLegendRows, width, CV_8UC3, cv::Scalar(0, 0, 0));
   int x = PutText(legend, title, 6, kTextBaseline) + 16;
-  const struct {
-    cv::Vec3b color;
-    const char* name;
-  } entries[] = {{kGreen, "ground"},   {kRed, "non-ground"},
-                 {kYellow, "unknown"}, {kGrey, "unknown, no coarse ground"},
-                 {kBlue, "bank"},      {kBlack, "empty"},
-                 {kMagenta, "vetoed"}, {kWhite, "invalid class value"}};
-  for (const auto& e : entries)
-    x = PutText(legend, e.name, PutSwatch(legend, e.color, x, kTextBaseline), kTextBaseline) + 16;
+  for (size_t k = 0; k <= std::size(kPixelClasses); ++k) {
+    const bool no_class = k == std::size(kPixelClasses);
+    if (no_class && counts[k] == 0) break;
+    const cv::Vec3b color = no_class ? kWhite : kPixelClasses[k].color;
+    const std::string text =
+        std::string(no_class ? "no class" : kPixelClasses[k].name) + " " + Count(counts[k]);
+    x = PutText(legend, text, PutSwatch(legend, color, x, kTextBaseline), kTextBaseline) + 16;
+  }
   return legend;
 }
 
@@ -227,6 +244,18 @@ bool IsNoise(const Frame& frame, size_t i) {
          (!frame.why.empty() && frame.why[i] == kWhyNoise);
 }
 
+// Point i's category in the legend's order (see BevTally), -1 when invalid.
+int BevCategory(const Frame& frame, const std::vector<uint8_t>& predicted,
+                const std::vector<uint8_t>* truth, size_t i) {
+  if (IsInvalid(frame, i)) return -1;
+  const bool ground = predicted[i] == 1;
+  if (!truth) return IsNoise(frame, i) ? 2 : (ground ? 1 : 0);
+  const uint8_t t = (*truth)[i];
+  if (t != 0 && t != 1) return 0;
+  if (t == 1) return ground ? 2 : 4;
+  return ground ? 3 : 1;
+}
+
 struct Category {
   cv::Vec3b color;
   const char* name;
@@ -234,12 +263,18 @@ struct Category {
 
 // Drawn in this order, so that the rarer (and more interesting) categories end up on top.
 const Category kPlainCategories[] = {
-    {kRed, "non-ground"}, {kGreen, "ground"}, {kMagenta, "reflection noise"}};
-const Category kScoredCategories[] = {{kGrey, "not scored"},
-                                      {kRed, "TN  non-ground"},
-                                      {kGreen, "TP  ground"},
-                                      {kBlue, "FP  wrongly ground"},
+    {kLightGrey, "non-ground"}, {kSkyBlue, "ground"}, {kOrange, "reflection noise"}};
+const Category kScoredCategories[] = {{kDarkGrey, "not scored"},
+                                      {kLightGrey, "TN  non-ground"},
+                                      {kSkyBlue, "TP  ground"},
+                                      {kVermilion, "FP  wrongly ground"},
                                       {kYellow, "FN  missed ground"}};
+
+// Writes `text` right-aligned to end at x.
+void PutTextRight(cv::Mat& image, const std::string& text, int x, int y,
+                  const cv::Scalar& color = cv::Scalar(255, 255, 255)) {
+  PutText(image, text, x - TextWidth(text), y, color);
+}
 
 // `predicted` holds 1 ground / 0 non-ground per point.
 cv::Mat BevImage(const Cloud& cloud, const Frame& frame, const std::vector<uint8_t>& predicted,
@@ -254,31 +289,12 @@ cv::Mat BevImage(const Cloud& cloud, const Frame& frame, const std::vector<uint8
 
   const Category* categories = truth ? kScoredCategories : kPlainCategories;
   const int num_categories = truth ? 5 : 3;
-  std::vector<int> category(cloud.size(), -1);
-  std::vector<size_t> counts(num_categories, 0);
-  for (size_t i = 0; i < cloud.size(); ++i) {
-    if (IsInvalid(frame, i)) continue;
-    bool ground = predicted[i] == 1;
-    int c;
-    if (truth) {
-      uint8_t t = (*truth)[i];
-      if (t != 0 && t != 1) {
-        c = 0;
-      } else if (t == 1) {
-        c = ground ? 2 : 4;
-      } else {
-        c = ground ? 3 : 1;
-      }
-    } else {
-      c = IsNoise(frame, i) ? 2 : (ground ? 1 : 0);
-    }
-    category[i] = c;
-    ++counts[c];
-  }
   for (int c = 0; c < num_categories; ++c) {
     for (size_t i = 0; i < cloud.size(); ++i) {
       int row, col;
-      if (category[i] != c || !BevPixel(cloud.x(i), cloud.y(i), &row, &col)) continue;
+      if (BevCategory(frame, predicted, truth, i) != c ||
+          !BevPixel(cloud.x(i), cloud.y(i), &row, &col))
+        continue;
       for (int dr = 0; dr < 2 && row + dr < kBevSize; ++dr) {
         for (int dc = 0; dc < 2 && col + dc < kBevSize; ++dc) {
           image.at<cv::Vec3b>(row + dr, col + dc) = categories[c].color;
@@ -291,26 +307,57 @@ cv::Mat BevImage(const Cloud& cloud, const Frame& frame, const std::vector<uint8
                                    center + cv::Point(5, 6)};
   cv::polylines(image, sensor, true, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
 
-  // Legend, top left, counting every valid point (also those outside the view).
+  // Legend, top left: every point counted once, shown or not (outside the view, or invalid).
+  const BevTally tally = TallyBev(cloud, frame, predicted, truth);
   const int line = 20;
-  const int box_width = std::max(300, TextWidth(title) + 24);
-  cv::rectangle(image, cv::Rect(6, 6, box_width, line * (num_categories + 1) + 12),
+  const std::string half = std::to_string(static_cast<int>(kBevHalfWidth));
+  const std::string heading = title + ", " + Count(cloud.size()) + " points";
+  const std::string note = "not shown: beyond " + half + " m, or invalid (NaN, at 0, out of range)";
+  const int box_width = std::max({380, TextWidth(heading) + 24, TextWidth(note) + 24});
+  const int shown_x = 6 + box_width - 100, not_shown_x = 6 + box_width - 10;
+  const cv::Scalar dim(170, 170, 170);
+  cv::rectangle(image, cv::Rect(6, 6, box_width, line * (num_categories + 4) + 16),
                 cv::Scalar(40, 40, 40), cv::FILLED);
-  PutText(image, title, 14, 6 + line);
+  PutText(image, heading, 14, 6 + line);
+  PutTextRight(image, "shown", shown_x, 6 + 2 * line, dim);
+  PutTextRight(image, "not shown", not_shown_x, 6 + 2 * line, dim);
   for (int c = 0; c < num_categories; ++c) {
-    int y = 6 + line * (c + 2);
+    const int y = 6 + line * (c + 3);
     PutText(image, categories[c].name, PutSwatch(image, categories[c].color, 14, y), y);
-    std::string count = std::to_string(counts[c]);
-    PutText(image, count, 6 + box_width - 10 - TextWidth(count), y);
+    PutTextRight(image, Count(tally.shown[c]), shown_x, y);
+    PutTextRight(image, Count(tally.outside[c]), not_shown_x, y);
   }
-  PutText(image,
-          "x forward = up, rings every 10 m, +-" + std::to_string(static_cast<int>(kBevHalfWidth)) +
-              " m shown",
-          10, kBevSize - 10, cv::Scalar(160, 160, 160));
+  const int invalid_y = 6 + line * (num_categories + 3);
+  PutText(image, "invalid (non-ground)", PutSwatch(image, kBlack, 14, invalid_y), invalid_y);
+  PutTextRight(image, Count(tally.invalid), not_shown_x, invalid_y);
+  PutText(image, note, 14, invalid_y + line, dim);
+  PutText(image, "x forward = up, rings every 10 m, +-" + half + " m shown", 10, kBevSize - 10,
+          cv::Scalar(160, 160, 160));
   return image;
 }
 
 }  // namespace
+
+const char kScoredColours[] = "TP sky blue, TN grey, FP vermilion, FN yellow";
+
+BevTally TallyBev(const Cloud& cloud, const Frame& frame, const std::vector<uint8_t>& predicted,
+                  const std::vector<uint8_t>* truth) {
+  BevTally tally;
+  tally.shown.assign(truth ? 5 : 3, 0);
+  tally.outside.assign(truth ? 5 : 3, 0);
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const int c = BevCategory(frame, predicted, truth, i);
+    int row, col;
+    if (c < 0) {
+      ++tally.invalid;
+    } else if (BevPixel(cloud.x(i), cloud.y(i), &row, &col)) {
+      ++tally.shown[c];
+    } else {
+      ++tally.outside[c];
+    }
+  }
+  return tally;
+}
 
 int RangeImageRowScale(uint32_t beams) {
   if (beams == 0) return 1;
@@ -410,7 +457,8 @@ std::vector<std::string> WriteImages(const std::string& dir, const std::string& 
   for (const auto& c : class_images) {
     if (c.classes->empty()) continue;
     Write(prefix + c.suffix + ".png",
-          WithLegend(ClassImage(*c.classes, rows, cols), scale, ClassLegend(cols, c.title)),
+          WithLegend(ClassImage(*c.classes, rows, cols), scale,
+                     ClassLegend(cols, c.title, *c.classes)),
           &written);
   }
 

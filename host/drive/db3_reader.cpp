@@ -10,9 +10,13 @@
 #include <cerrno>
 #include <climits>
 #include <cstring>
+#include <deque>
+#include <map>
 #include <set>
 #include <unordered_map>
 
+#include "host/drive/drive_content.h"
+#include "host/drive/mcap_writer.h"
 #include "host/io/io_error.h"
 #include "host/io/point_fields.h"
 
@@ -199,15 +203,20 @@ struct Database {
   ~Database() { sqlite3_close_v2(db); }
 };
 
-class Db3Reader : public DriveReader {
- public:
-  explicit Db3Reader(const std::string& path) : path_(path) {
+// The bag opened as OpenDb3 opens it, and the statement helpers both readers of it use (the
+// topic reader, Db3Reader, and the whole-drive one, Db3Content).
+class Db3File {
+ protected:
+  explicit Db3File(const std::string& path) : path_(path) {
     struct stat info;
     if (stat(path.c_str(), &info) != 0) {
-      throw IoError(path, errno == ENOENT ? std::string("no such file")
-                                          : std::string("cannot open: ") + std::strerror(errno));
+      const int error = errno;
+      throw IoError(path,
+                    error == ENOENT ? std::string("no such file")
+                                    : std::string("cannot open: ") + std::strerror(error),
+                    error);
     }
-    if (S_ISDIR(info.st_mode)) throw IoError(path, "is a folder, not a .db3 file");
+    if (S_ISDIR(info.st_mode)) throw IoError(path, "is a folder, not a .db3 file", EISDIR);
     if (info.st_size == 0) throw IoError(path, "empty file, not a ROS 2 bag");
     const int rc = sqlite3_open_v2(ImmutableUri(path).c_str(), &database_.db,
                                    SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX,
@@ -225,6 +234,117 @@ class Db3Reader : public DriveReader {
     sqlite3_exec(db_, "PRAGMA cell_size_check = ON", nullptr, nullptr, nullptr);
     CheckSchema();
   }
+
+  // SQLite's message for the last error, saying so when it came from the file ending early.
+  std::string Error() const {
+    std::string error = sqlite3_errmsg(db_);
+    sqlite3_file* file = nullptr;
+    if (sqlite3_file_control(db_, "main", SQLITE_FCNTL_FILE_POINTER, &file) == SQLITE_OK && file &&
+        file->pMethods == &kStrictMethods) {
+      const int64_t at = Strict(file)->short_read_at;
+      if (at >= 0) {
+        error +=
+            " (the file is truncated: a page at byte " + std::to_string(at) + " runs past its end)";
+      }
+    }
+    return error;
+  }
+
+  // IoError naming the file unless it is SQLite with the tables and columns read here.
+  void CheckSchema() {
+    const struct {
+      const char* table;
+      std::vector<const char*> columns;
+    } kTables[] = {{"topics", {"id", "name", "type", "serialization_format"}},
+                   {"messages", {"id", "topic_id", "timestamp", "data"}}};
+    for (const auto& table : kTables) {
+      const std::set<std::string> columns = Columns(table.table);
+      if (columns.empty()) {
+        throw IoError(path_, std::string("not a ROS 2 bag: no '") + table.table + "' table");
+      }
+      for (const char* column : table.columns) {
+        if (!columns.count(column)) {
+          throw IoError(path_, std::string("not a ROS 2 bag: table '") + table.table +
+                                   "' has no column '" + column + "'");
+        }
+      }
+    }
+  }
+
+  // The columns of `table` (none when there is no such table).
+  std::set<std::string> Columns(const char* table) {
+    Statement info;
+    Prepare(&info, std::string("PRAGMA table_info(") + table + ")");
+    std::set<std::string> columns;
+    while (Step(info, "reading the schema")) columns.insert(Text(info, 1));
+    return columns;
+  }
+
+  void Prepare(Statement* statement, const std::string& sql) {
+    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, statement->out(), nullptr) != SQLITE_OK) {
+      throw IoError(path_, "not a readable ROS 2 bag: " + Error());
+    }
+  }
+  // One row (true) or the end (false); IoError naming the file and `doing` on an error.
+  bool Step(const Statement& statement, const char* doing) {
+    const int rc = sqlite3_step(statement.get());
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw IoError(path_, std::string(doing) + ": " + Error());
+  }
+  static std::string Text(const Statement& statement, int column) {
+    const auto* text = sqlite3_column_text(statement.get(), column);
+    const int size = sqlite3_column_bytes(statement.get(), column);
+    return text ? std::string(reinterpret_cast<const char*>(text), size_t(size)) : std::string();
+  }
+
+  // A message row: `scan` selects id, timestamp (an integer >= 0) and topic_id in the order
+  // wanted; `fetch` selects the data (a BLOB) of the row whose id is bound as ?1.
+  struct Row {
+    int64_t id = 0, timestamp = 0, topic_id = 0;
+    std::vector<uint8_t> data;
+    std::string problem, where;  // kBad: what is wrong, and "row id N" when the row is known
+  };
+  enum class RowStep { kRow, kEnd, kBad };
+  // The next row of `scan` with its data, the end, or a row (or page) that cannot be read.
+  RowStep NextRow(const Statement& scan, const Statement& fetch, Row* row) {
+    const int rc = sqlite3_step(scan.get());
+    if (rc == SQLITE_DONE) return RowStep::kEnd;
+    if (rc != SQLITE_ROW) return Bad(row, Error());
+    row->id = sqlite3_column_int64(scan.get(), 0);
+    row->where = "row id " + std::to_string(row->id);
+    if (sqlite3_column_type(scan.get(), 1) != SQLITE_INTEGER)
+      return Bad(row, "the timestamp is not an integer");
+    row->timestamp = sqlite3_column_int64(scan.get(), 1);
+    if (row->timestamp < 0) return Bad(row, "negative timestamp " + std::to_string(row->timestamp));
+    row->topic_id = sqlite3_column_int64(scan.get(), 2);
+    sqlite3_reset(fetch.get());
+    sqlite3_bind_int64(fetch.get(), 1, row->id);
+    const int fetched = sqlite3_step(fetch.get());
+    if (fetched != SQLITE_ROW)
+      return Bad(row, fetched == SQLITE_DONE ? "the row vanished" : Error());
+    if (sqlite3_column_type(fetch.get(), 0) != SQLITE_BLOB)
+      return Bad(row, "the data is not a BLOB");
+    const auto* data = static_cast<const uint8_t*>(sqlite3_column_blob(fetch.get(), 0));
+    const int size = sqlite3_column_bytes(fetch.get(), 0);
+    if (size > 0 && !data) return Bad(row, Error());
+    row->data.assign(data, data + size);
+    sqlite3_reset(fetch.get());
+    return RowStep::kRow;
+  }
+  static RowStep Bad(Row* row, const std::string& problem) {
+    row->problem = problem;
+    return RowStep::kBad;
+  }
+
+  std::string path_;
+  Database database_;
+  sqlite3* db_ = nullptr;  // database_.db
+};
+
+class Db3Reader : public DriveReader, private Db3File {
+ public:
+  explicit Db3Reader(const std::string& path) : Db3File(path) {}
 
   std::vector<DriveTopic> Topics() override {
     Statement topics, counts;
@@ -271,7 +391,7 @@ class Db3Reader : public DriveReader {
     // Ids and timestamps only in the ordering (a sort, when no index serves it, holds no
     // message data); each message's data is fetched by id as it is yielded.
     Prepare(&scan_,
-            "SELECT id, timestamp FROM messages WHERE topic_id IN "
+            "SELECT id, timestamp, topic_id FROM messages WHERE topic_id IN "
             "(SELECT id FROM topics WHERE name = ?1) ORDER BY timestamp, id");
     sqlite3_bind_text(scan_.get(), 1, topic.c_str(), int(topic.size()), SQLITE_TRANSIENT);
     Prepare(&fetch_, "SELECT data FROM messages WHERE id = ?1");
@@ -291,38 +411,18 @@ class Db3Reader : public DriveReader {
   DriveStep Next(DriveMessage* message, std::string* problem) override {
     if (!scan_.get()) throw IoError(path_, "Next before SelectTopic");
     if (ended_) return DriveStep::kEnd;
-    const int rc = sqlite3_step(scan_.get());
-    if (rc == SQLITE_DONE) {
+    Row row;
+    const RowStep step = NextRow(scan_, fetch_, &row);
+    if (step == RowStep::kEnd) {
       ended_ = true;
       return DriveStep::kEnd;
     }
-    if (rc != SQLITE_ROW) return Damage(problem, Error(), "");
-    const int64_t id = sqlite3_column_int64(scan_.get(), 0);
-    const std::string row = "row id " + std::to_string(id);
-    if (sqlite3_column_type(scan_.get(), 1) != SQLITE_INTEGER) {
-      return Damage(problem, "the timestamp is not an integer", row);
-    }
-    const int64_t timestamp = sqlite3_column_int64(scan_.get(), 1);
-    if (timestamp < 0) {
-      return Damage(problem, "negative timestamp " + std::to_string(timestamp), row);
-    }
-    sqlite3_reset(fetch_.get());
-    sqlite3_bind_int64(fetch_.get(), 1, id);
-    const int fetched = sqlite3_step(fetch_.get());
-    if (fetched != SQLITE_ROW) {
-      return Damage(problem, fetched == SQLITE_DONE ? "the row vanished" : Error(), row);
-    }
-    const int type = sqlite3_column_type(fetch_.get(), 0);
-    if (type != SQLITE_BLOB) return Damage(problem, "the data is not a BLOB", row);
-    const auto* data = static_cast<const uint8_t*>(sqlite3_column_blob(fetch_.get(), 0));
-    const int size = sqlite3_column_bytes(fetch_.get(), 0);
-    if (size > 0 && !data) return Damage(problem, Error(), row);
+    if (step == RowStep::kBad) return Damage(problem, row.problem, row.where);
     message->sequence = sequence_++;
-    message->log_time_ns = uint64_t(timestamp);
+    message->log_time_ns = uint64_t(row.timestamp);
     message->topic = topic_;
     message->encoding = MessageEncoding::kCdr;
-    message->data.assign(data, data + size);
-    sqlite3_reset(fetch_.get());
+    message->data = std::move(row.data);
     return DriveStep::kMessage;
   }
 
@@ -336,21 +436,6 @@ class Db3Reader : public DriveReader {
     return DriveStep::kDamage;
   }
 
-  // SQLite's message for the last error, saying so when it came from the file ending early.
-  std::string Error() const {
-    std::string error = sqlite3_errmsg(db_);
-    sqlite3_file* file = nullptr;
-    if (sqlite3_file_control(db_, "main", SQLITE_FCNTL_FILE_POINTER, &file) == SQLITE_OK && file &&
-        file->pMethods == &kStrictMethods) {
-      const int64_t at = Strict(file)->short_read_at;
-      if (at >= 0) {
-        error +=
-            " (the file is truncated: a page at byte " + std::to_string(at) + " runs past its end)";
-      }
-    }
-    return error;
-  }
-
   std::vector<std::string> TopicNames() {
     Statement names;
     Prepare(&names, "SELECT name FROM topics ORDER BY id");
@@ -359,54 +444,120 @@ class Db3Reader : public DriveReader {
     return out;
   }
 
-  // IoError naming the file unless it is SQLite with the tables and columns read here.
-  void CheckSchema() {
-    const struct {
-      const char* table;
-      std::vector<const char*> columns;
-    } kTables[] = {{"topics", {"id", "name", "type", "serialization_format"}},
-                   {"messages", {"id", "topic_id", "timestamp", "data"}}};
-    for (const auto& table : kTables) {
-      Statement info;
-      Prepare(&info, std::string("PRAGMA table_info(") + table.table + ")");
-      std::set<std::string> columns;
-      while (Step(info, "reading the schema")) columns.insert(Text(info, 1));
-      if (columns.empty()) {
-        throw IoError(path_, std::string("not a ROS 2 bag: no '") + table.table + "' table");
-      }
-      for (const char* column : table.columns) {
-        if (!columns.count(column)) {
-          throw IoError(path_, std::string("not a ROS 2 bag: table '") + table.table +
-                                   "' has no column '" + column + "'");
-        }
-      }
-    }
-  }
-
-  void Prepare(Statement* statement, const std::string& sql) {
-    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, statement->out(), nullptr) != SQLITE_OK) {
-      throw IoError(path_, "not a readable ROS 2 bag: " + Error());
-    }
-  }
-  // One row (true) or the end (false); IoError naming the file and `doing` on an error.
-  bool Step(const Statement& statement, const char* doing) {
-    const int rc = sqlite3_step(statement.get());
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    throw IoError(path_, std::string(doing) + ": " + Error());
-  }
-  static std::string Text(const Statement& statement, int column) {
-    const auto* text = sqlite3_column_text(statement.get(), column);
-    const int size = sqlite3_column_bytes(statement.get(), column);
-    return text ? std::string(reinterpret_cast<const char*>(text), size_t(size)) : std::string();
-  }
-
-  std::string path_;
-  Database database_;
-  sqlite3* db_ = nullptr;  // database_.db
   Statement scan_, fetch_;
   std::string topic_;
   uint64_t sequence_ = 0;
+  bool ended_ = false;
+};
+
+// The bag's whole content (drive_content.h): a schema per type and a channel per topic row, then
+// every message by timestamp, then row id. A damaged row ends it, as it ends Db3Reader.
+class Db3Content : public DriveContent, private Db3File {
+ public:
+  explicit Db3Content(const std::string& path) : Db3File(path) {
+    const std::map<std::string, std::pair<std::string, std::string>> definitions = Definitions();
+    const bool qos = Columns("topics").count("offered_qos_profiles") > 0;
+    Statement topics;
+    Prepare(&topics, std::string("SELECT id, name, type, serialization_format") +
+                         (qos ? ", offered_qos_profiles" : "") + " FROM topics ORDER BY id");
+    std::map<std::string, uint16_t> schema_ids;  // type -> id
+    while (Step(topics, "reading the topics table")) {
+      if (channels_.size() >= UINT16_MAX)
+        throw IoError(path_, "more than 65535 topics; MCAP's channel ids are 16 bits");
+      DriveChannel c;
+      c.id = uint16_t(channels_.size() + 1);
+      c.topic = Text(topics, 1);
+      const std::string type = Text(topics, 2);
+      c.message_encoding = Text(topics, 3);
+      if (qos) c.metadata.emplace_back("offered_qos_profiles", Text(topics, 4));
+      auto [schema, fresh] = schema_ids.emplace(type, uint16_t(schema_ids.size() + 1));
+      if (fresh) {
+        const auto known = definitions.find(type);
+        DriveSchema s{schema->second, type, "", ""};
+        if (known != definitions.end()) {
+          s.encoding = known->second.first;
+          s.data = known->second.second;
+        } else if (type == "sensor_msgs/msg/PointCloud2") {
+          s.encoding = "ros2msg";
+          s.data = PointCloud2Ros2MsgDefinition();
+        }
+        queue_.push_back(std::move(s));
+      }
+      c.schema_id = schema->second;
+      channels_.emplace(sqlite3_column_int64(topics.get(), 0), Channel{c.id, 0});
+      queue_.push_back(std::move(c));
+    }
+    Prepare(&scan_, "SELECT id, timestamp, topic_id FROM messages ORDER BY timestamp, id");
+    Prepare(&fetch_, "SELECT data FROM messages WHERE id = ?1");
+  }
+
+  const std::string& profile() const override { return profile_; }
+
+  ContentStep Next(DriveRecord* record, std::string* problem) override {
+    if (!queue_.empty()) {
+      *record = std::move(queue_.front());
+      queue_.pop_front();
+      return ContentStep::kRecord;
+    }
+    for (;;) {
+      if (ended_) return ContentStep::kEnd;
+      Row row;
+      const RowStep step = NextRow(scan_, fetch_, &row);
+      if (step == RowStep::kEnd) ended_ = true;
+      if (step == RowStep::kBad) {
+        ended_ = true;
+        *problem = path_ + ": " + row.where + (row.where.empty() ? "" : ": ") + row.problem;
+        return ContentStep::kDamage;
+      }
+      if (step != RowStep::kRow) continue;
+      const auto channel = channels_.find(row.topic_id);
+      if (channel == channels_.end()) {
+        if (!orphans_.insert(row.topic_id).second) continue;
+        *problem = path_ + ": " + row.where + ": a message of topic id " +
+                   std::to_string(row.topic_id) +
+                   ", which the topics table lacks, left out with every later one of it";
+        return ContentStep::kDamage;
+      }
+      DriveRecordMessage m;
+      m.channel_id = channel->second.id;
+      m.sequence = channel->second.messages++;
+      m.log_time_ns = m.publish_time_ns = uint64_t(row.timestamp);
+      m.data = std::move(row.data);
+      *record = std::move(m);
+      return ContentStep::kRecord;
+    }
+  }
+
+ private:
+  struct Channel {
+    uint16_t id;
+    uint32_t messages;  // yielded so far: the next one's sequence
+  };
+
+  // type -> (encoding, definition) from rosbag2's message_definitions table (Iron and later), when
+  // the bag has it and the encoding is ros2msg or ros2idl.
+  std::map<std::string, std::pair<std::string, std::string>> Definitions() {
+    std::map<std::string, std::pair<std::string, std::string>> out;
+    const std::set<std::string> columns = Columns("message_definitions");
+    if (!columns.count("topic_type") || !columns.count("encoding") ||
+        !columns.count("encoded_message_definition"))
+      return out;
+    Statement rows;
+    Prepare(&rows,
+            "SELECT topic_type, encoding, encoded_message_definition FROM message_definitions");
+    while (Step(rows, "reading the message_definitions table")) {
+      const std::string encoding = Text(rows, 1);
+      if (encoding == "ros2msg" || encoding == "ros2idl")
+        out.emplace(Text(rows, 0), std::make_pair(encoding, Text(rows, 2)));
+    }
+    return out;
+  }
+
+  const std::string profile_ = "ros2";
+  std::map<int64_t, Channel> channels_;  // topic row id -> its channel
+  std::set<int64_t> orphans_;            // topic ids of messages without a topic row, reported
+  std::deque<DriveRecord> queue_;        // the schemas and channels, first
+  Statement scan_, fetch_;
   bool ended_ = false;
 };
 
@@ -414,6 +565,10 @@ class Db3Reader : public DriveReader {
 
 std::unique_ptr<DriveReader> OpenDb3(const std::string& path) {
   return std::make_unique<Db3Reader>(path);
+}
+
+std::unique_ptr<DriveContent> OpenDb3Content(const std::string& path) {
+  return std::make_unique<Db3Content>(path);
 }
 
 }  // namespace lpir

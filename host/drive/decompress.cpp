@@ -179,8 +179,9 @@ std::vector<uint8_t> CompressZstd(const uint8_t* data, size_t size) {
 }
 
 std::vector<uint8_t> CompressLz4Frame(const uint8_t* data, size_t size) {
-  LZ4F_preferences_t prefs{};
-  prefs.frameInfo.contentSize = size;
+  LZ4F_preferences_t prefs{};  // roslz4 needs independent blocks and the content checksum
+  prefs.frameInfo.blockMode = LZ4F_blockIndependent;
+  prefs.frameInfo.contentChecksumFlag = LZ4F_contentChecksumEnabled;
   std::vector<uint8_t> out(LZ4F_compressFrameBound(size, &prefs));
   const size_t n = LZ4F_compressFrame(out.data(), out.size(), data, size, &prefs);
   if (LZ4F_isError(n)) throw std::runtime_error(std::string("lz4: ") + LZ4F_getErrorName(n));

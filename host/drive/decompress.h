@@ -17,7 +17,9 @@ std::vector<uint8_t> DecompressLz4Frame(const std::string& where, const uint8_t*
 std::vector<uint8_t> DecompressBz2(const std::string& where, const uint8_t* data, size_t size,
                                    size_t expected_size);
 
-// Compressors for the writers (MCAP output chunks) and for tests.
+// Compressors for the writers (MCAP and ROS 1 bag chunks) and for tests. The LZ4 frame is the one
+// ROS 1's roslz4 reads (it refuses others): independent blocks, a content checksum, no content
+// size; MCAP readers read it too.
 std::vector<uint8_t> CompressZstd(const uint8_t* data, size_t size);
 std::vector<uint8_t> CompressLz4Frame(const uint8_t* data, size_t size);
 

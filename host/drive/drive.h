@@ -1,6 +1,8 @@
-// A recorded drive: a ROS 2 MCAP file (.mcap), a ROS 2 SQLite bag (.db3) or a ROS 1 bag 2.0
-// (.bag), read without ROS. A reader yields the serialized messages of one topic in the order
-// they were logged; DecodeDriveCloud turns a sensor_msgs PointCloud2 message into a Cloud.
+// A recorded drive: a ROS 2 MCAP file (.mcap), a ROS 2 SQLite bag (.db3), a ROS 2 bag folder
+// (metadata.yaml and its split .mcap or .db3 files: bag_folder.h) or a ROS 1 bag 2.0 (.bag, and
+// .bag.active, the file a ROS 1 recorder leaves when it dies), read without ROS. A reader yields
+// the serialized messages of one topic in the order they were logged; DecodeDriveCloud turns a
+// sensor_msgs PointCloud2 message into a Cloud.
 //
 // Damage: Next reports a damaged part (truncated record or chunk, CRC mismatch, unknown
 // compression, a malformed record) as DriveStep::kDamage with a problem naming the file, where
@@ -70,14 +72,29 @@ class DriveReader {
   // before it (the first range: before every chunk). IoError naming the file for a drive without
   // chunks or a range outside 1..ChunkCount().
   virtual void SelectChunks(uint64_t first, uint64_t last) = 0;
+
+  // The damaged parts the listing of Topics met, in file order, each naming the file, where and
+  // what (Next reports them too, at their place): empty when Topics read the drive whole, or
+  // took its listing from an index without reading the chunks. Call after Topics.
+  virtual std::vector<std::string> ListingDamage() { return {}; }
+  // How the drive is read where that is not the plain way, each a sentence naming the file: a
+  // ROS 1 bag without an index (a recorder that died) scanned, a bag folder's files taken in the
+  // order of their numbers. Call after Topics or SelectTopic.
+  virtual std::vector<std::string> Notes() { return {}; }
 };
 
-// True for the extensions OpenDrive accepts: .mcap, .db3, .bag.
+// True for the file names OpenDrive accepts: .mcap, .db3, .bag, .bag.active.
 bool IsDriveFile(const std::string& path);
-// The reader for `path` by its extension. IoError naming the file when it is missing, of an
-// unknown extension, or has no valid header (magic, version, schema). `read_threads`: the
-// threads that decompress chunks ahead of Next (chunk_pool.h; 1: none, Next decompresses each
-// chunk itself; 0: DefaultReadThreads()).
+// True for a drive: a drive file (IsDriveFile) or a ROS 2 bag folder (IsBagFolder).
+bool IsDrive(const std::string& path);
+enum class DriveFormat { kMcap, kDb3, kRos1Bag, kBagFolder };
+// The format of `path`: a ROS 2 bag folder (kBagFolder), else by its file name (.bag and
+// .bag.active: kRos1Bag). IoError naming it for a folder that is no bag, or another extension.
+DriveFormat DriveFormatOf(const std::string& path);
+// The reader for `path` by its format: a bag folder (OpenBagFolder), else a file. IoError naming
+// the file when it is missing, of an unknown extension, or has no valid header (magic, version,
+// schema). `read_threads`: the threads that decompress chunks ahead of Next (chunk_pool.h; 1:
+// none, Next decompresses each chunk itself; 0: DefaultReadThreads()).
 std::unique_ptr<DriveReader> OpenDrive(const std::string& path, unsigned read_threads = 0);
 
 // The sensor_msgs/PointCloud2 in `message` as a Cloud (see pointcloud2.h for the rules).

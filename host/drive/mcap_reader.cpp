@@ -1,7 +1,6 @@
 #include "host/drive/mcap_reader.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <functional>
@@ -12,6 +11,7 @@
 
 #include "host/drive/chunk_pool.h"
 #include "host/drive/decompress.h"
+#include "host/drive/mcap_file.h"
 #include "host/drive/mcap_records.h"
 #include "host/drive/read_only_file.h"
 #include "host/io/io_error.h"
@@ -20,11 +20,14 @@ namespace lpir {
 namespace {
 
 using mcap::In;
+using mcap::kCutContent;
+using mcap::kCutPrefix;
+using mcap::kEndOfFile;
+using mcap::kWhole;
 using mcap::Malformed;
+using mcap::RecordState;
+using mcap::Scan;
 
-// The largest chunk this reader decompresses: a recorder's chunks are a few MiB; a claim past this
-// is damage, not an allocation.
-constexpr uint64_t kMaxChunkBytes = uint64_t(1) << 30;
 // The summary's CRC is computed over the file in blocks of this size.
 constexpr size_t kCrcBlock = size_t(1) << 20;
 
@@ -84,31 +87,9 @@ class McapReader : public DriveReader {
  public:
   McapReader(const std::string& path, unsigned threads)
       : path_(path), file_(path), threads_(threads) {
-    uint8_t magic[mcap::kMagicSize] = {};
-    if (file_.size() < mcap::kMagicSize + mcap::kRecordPrefix) {
-      throw IoError(path_, "not an MCAP file: " + std::to_string(file_.size()) +
-                               " bytes, too short for the magic and a header record");
-    }
-    file_.ReadInto(0, magic, sizeof(magic));
-    if (std::memcmp(magic, mcap::kMagic, sizeof(magic)) != 0) {
-      throw IoError(path_, "not an MCAP file: the first 8 bytes are not the MCAP magic");
-    }
-    uint8_t op = 0;
-    uint64_t length = 0;
-    if (RecordAt(mcap::kMagicSize, &op, &length) != kWhole || op != mcap::kHeader) {
-      throw IoError(path_, "no intact header record after the magic");
-    }
-    // Its two strings; a header past 1 MiB is read no further than that.
-    const std::vector<uint8_t> header = file_.Bytes(mcap::kMagicSize + mcap::kRecordPrefix,
-                                                    std::min<uint64_t>(length, uint64_t(1) << 20));
-    try {
-      In in(header.data(), header.size());
-      profile_ = in.Str("header profile");
-      in.Str("header library");
-    } catch (const Malformed& e) {
-      throw IoError(path_, std::string("header record: ") + e.what());
-    }
-    data_start_ = mcap::kMagicSize + mcap::kRecordPrefix + length;
+    const mcap::Opening opening = mcap::OpenFile(path_, file_);
+    profile_ = opening.profile;
+    data_start_ = opening.data_start;
     ReadSummary();
   }
 
@@ -168,6 +149,8 @@ class McapReader : public DriveReader {
     ResetWalk();
   }
 
+  std::vector<std::string> ListingDamage() override { return listing_damage_; }
+
   uint64_t ChunkCount() override {
     if (indexed_) return chunks_.size();
     ListScan();
@@ -211,22 +194,8 @@ class McapReader : public DriveReader {
   ~McapReader() override { pool_.reset(); }
 
  private:
-  enum RecordState { kWhole, kEndOfFile, kCutPrefix, kCutContent };
-  struct Scan {
-    uint64_t pos = 0;
-    uint64_t chunks = 0;  // chunks met so far
-  };
-
-  // The record prefix at `pos`: whole, at the end of the file, or cut by it.
   RecordState RecordAt(uint64_t pos, uint8_t* op, uint64_t* length) const {
-    if (pos == file_.size()) return kEndOfFile;
-    if (file_.size() - pos < mcap::kRecordPrefix) return kCutPrefix;
-    uint8_t prefix[mcap::kRecordPrefix];
-    file_.ReadInto(pos, prefix, sizeof(prefix));
-    In in(prefix, sizeof(prefix));
-    *op = in.U8("opcode");
-    *length = in.U64("length");
-    return *length > file_.size() - pos - mcap::kRecordPrefix ? kCutContent : kWhole;
+    return mcap::RecordAt(file_, pos, op, length);
   }
 
   // The summary, used when the footer is intact, points at one and its CRC (when set) matches;
@@ -332,17 +301,24 @@ class McapReader : public DriveReader {
     channels->emplace(id, std::move(c));
   }
 
-  // Topics and counts by a scan of the whole file when the summary did not give them.
+  // Topics and counts by a scan of the whole file when the summary did not give them, the
+  // damage it meets in listing_damage_.
   void LoadTopics() {
     if (topics_loaded_) return;
     counts_.clear();
+    listing_damage_.clear();
     Scan scan{data_start_, 0};
-    std::string ignored;
+    std::string damage;
     const Sink count = [this](uint16_t channel, uint64_t, const uint8_t*, size_t) {
       ++counts_[channel];
     };
     const Defs defs{&schemas_, &channels_};
-    while (ScanStep(&scan, count, &ignored, defs)) ignored.clear();
+    bool more = true;
+    while (more) {
+      more = ScanStep(&scan, count, &damage, defs);
+      if (!damage.empty()) listing_damage_.push_back(path_ + ": " + damage);
+      damage.clear();
+    }
     topics_loaded_ = true;
   }
 
@@ -499,14 +475,10 @@ class McapReader : public DriveReader {
     damage_ = std::move(r.damage);
   }
 
-  static std::string Where(uint64_t chunk_number, uint64_t offset) {
-    return "chunk " + std::to_string(chunk_number) + " at byte " + std::to_string(offset);
-  }
-
   // An indexed chunk's messages to `sink`; returns its damage ("" when none).
   std::string ReadIndexedChunk(const ChunkRef& c, uint64_t number, const Sink& sink,
                                const Defs& defs) const {
-    const std::string where = Where(number, c.offset);
+    const std::string where = mcap::ChunkWhere(number, c.offset);
     if (c.offset < data_start_ || c.offset > file_.size() || c.length > file_.size() - c.offset ||
         c.length < mcap::kRecordPrefix) {
       return where + ": the chunk index points past the end of the file (" +
@@ -519,66 +491,13 @@ class McapReader : public DriveReader {
     if (op != mcap::kChunk || length != c.length - mcap::kRecordPrefix)
       return where + ": the chunk index does not point at a chunk record of its length";
     const std::vector<uint8_t> bytes = file_.Bytes(c.offset + mcap::kRecordPrefix, length);
-    return ReadChunk(where, bytes.data(), bytes.size(), false, sink, defs);
+    return mcap::ReadChunk(where, bytes.data(), bytes.size(), false, Visitor(sink, defs));
   }
 
-  // One step of a scan from scan->pos: handles one record and moves past it. Returns false when
-  // the scan ends (data end, footer, end of file or a cut record); *damage is set when the step
-  // met damage.
+  // One step of a scan (mcap::ScanRecord) reading the schema, channel and message records.
   bool ScanStep(Scan* scan, const Sink& sink, std::string* damage, const Defs& defs) const {
-    uint8_t op = 0;
-    uint64_t length = 0;
-    const uint64_t pos = scan->pos;
-    const RecordState state = RecordAt(pos, &op, &length);
-    if (state == kEndOfFile) {
-      *damage = "the file ends at byte " + std::to_string(pos) +
-                " without a data end or footer record (truncated)";
-      return false;
-    }
-    if (state == kCutPrefix) {
-      *damage =
-          "byte " + std::to_string(pos) + ": the file ends inside a record prefix (truncated)";
-      return false;
-    }
-    const uint64_t content = pos + mcap::kRecordPrefix;
-    const uint64_t left = file_.size() - content;
-    if (op == mcap::kChunk) {
-      const uint64_t number = ++scan->chunks;
-      const std::string where = Where(number, pos);
-      if (state == kCutContent) {
-        // The bytes there are, bounded by the chunk limit: an uncompressed chunk's complete
-        // messages before the cut are still read.
-        const std::vector<uint8_t> bytes =
-            file_.Bytes(content, std::min<uint64_t>(left, kMaxChunkBytes + 4096));
-        std::string problem = ReadChunk(where, bytes.data(), bytes.size(), true, sink, defs);
-        *damage = where + ": the file ends inside the chunk (" + std::to_string(length) +
-                  " bytes, " + std::to_string(left) + " left; truncated)" +
-                  (problem.empty() ? "" : "; " + problem.substr(where.size() + 2));
-        return false;
-      }
-      const std::vector<uint8_t> bytes = file_.Bytes(content, length);
-      *damage = ReadChunk(where, bytes.data(), bytes.size(), false, sink, defs);
-      scan->pos = content + length;
-      return true;
-    }
-    if (state == kCutContent) {
-      *damage = "byte " + std::to_string(pos) + ": the file ends inside a record of opcode " +
-                std::to_string(op) + " (" + std::to_string(length) + " bytes, " +
-                std::to_string(left) + " left; truncated)";
-      return false;
-    }
-    scan->pos = content + length;
-    if (op == mcap::kDataEnd || op == mcap::kFooter) return false;
-    if (op != mcap::kSchema && op != mcap::kChannel && op != mcap::kMessage) return true;
-    const std::vector<uint8_t> bytes = file_.Bytes(content, length);
-    try {
-      In r(bytes.data(), bytes.size());
-      Record(op, &r, sink, defs);
-    } catch (const Malformed& e) {
-      *damage = "byte " + std::to_string(pos) + ": malformed record of opcode " +
-                std::to_string(op) + ": " + e.what();
-    }
-    return true;
+    return mcap::ScanRecord(file_, scan, {mcap::kSchema, mcap::kChannel, mcap::kMessage},
+                            Visitor(sink, defs), damage);
   }
 
   // A schema or channel record into `defs`, a message record to `sink` (others are skipped).
@@ -596,94 +515,9 @@ class McapReader : public DriveReader {
       sink(channel, log_time, r->Take(n, "message data"), n);
     }
   }
-
-  // A chunk record's content: checks, decompresses and walks its records, giving each message to
-  // `sink`. `cut`: the content is the part of a chunk before the end of the file. Returns the
-  // damage found ("" when none); the messages before a malformed record have been given.
-  static std::string ReadChunk(const std::string& where, const uint8_t* data, size_t size, bool cut,
-                               const Sink& sink, const Defs& defs) {
-    uint64_t uncompressed_size = 0, stored = 0;
-    uint32_t crc = 0;
-    std::string compression;
-    const uint8_t* records = nullptr;
-    try {
-      In in(data, size);
-      in.U64("message_start_time");
-      in.U64("message_end_time");
-      uncompressed_size = in.U64("uncompressed_size");
-      crc = in.U32("uncompressed_crc");
-      compression = in.Str("compression");
-      stored = in.U64("records length");
-      if (cut && stored > in.left()) {
-        if (!compression.empty()) return where + ": its compressed records are cut";
-        stored = in.left();
-        uncompressed_size = stored;
-        crc = 0;
-      }
-      records = in.Take(stored, "records");
-    } catch (const Malformed& e) {
-      return where + ": malformed chunk: " + e.what();
-    }
-    if (uncompressed_size > kMaxChunkBytes) {
-      return where + ": the " + (compression.empty() ? std::string("uncompressed") : compression) +
-             " chunk claims " + std::to_string(uncompressed_size) +
-             " bytes uncompressed, more than the " + std::to_string(kMaxChunkBytes) +
-             " this reader accepts";
-    }
-    std::vector<uint8_t> unpacked;
-    const uint8_t* plain = records;
-    size_t plain_size = size_t(stored);
-    try {
-      if (compression == "zstd") {
-        unpacked = DecompressZstd(where, records, stored, size_t(uncompressed_size));
-      } else if (compression == "lz4") {
-        unpacked = DecompressLz4Frame(where, records, stored, size_t(uncompressed_size));
-      } else if (!compression.empty()) {
-        return where + ": unknown compression '" + compression + "'";
-      } else if (stored != uncompressed_size) {
-        return where + ": uncompressed records of " + std::to_string(stored) +
-               " bytes, the chunk says " + std::to_string(uncompressed_size);
-      }
-    } catch (const IoError& e) {
-      return std::string(e.what());  // "<where>: <library reason>"
-    }
-    if (!compression.empty()) {
-      plain = unpacked.data();
-      plain_size = unpacked.size();
-    }
-    if (crc != 0) {
-      const uint32_t got = Crc32(plain, plain_size);
-      if (got != crc) {
-        char text[64];
-        std::snprintf(text, sizeof(text), "CRC mismatch (records 0x%08x, the chunk says 0x%08x)",
-                      got, crc);
-        return where + ": " + text;
-      }
-    }
-    size_t pos = 0;
-    while (pos < plain_size) {
-      if (plain_size - pos < mcap::kRecordPrefix) {
-        return cut ? "" : where + ": a record prefix cut at chunk byte " + std::to_string(pos);
-      }
-      In prefix(plain + pos, mcap::kRecordPrefix);
-      const uint8_t op = prefix.U8("opcode");
-      const uint64_t length = prefix.U64("length");
-      const size_t content = pos + mcap::kRecordPrefix;
-      if (length > plain_size - content) {
-        return cut ? ""
-                   : where + ": a record of " + std::to_string(length) + " bytes at chunk byte " +
-                         std::to_string(pos) + " overruns the chunk";
-      }
-      try {
-        In r(plain + content, size_t(length));
-        Record(op, &r, sink, defs);
-      } catch (const Malformed& e) {
-        return where + ": malformed record of opcode " + std::to_string(op) + " at chunk byte " +
-               std::to_string(pos) + ": " + e.what();
-      }
-      pos = content + size_t(length);
-    }
-    return "";
+  // Record for mcap::ReadChunk.
+  static mcap::RecordVisitor Visitor(const Sink& sink, const Defs& defs) {
+    return [&sink, defs](uint8_t op, In* r) { Record(op, r, sink, defs); };
   }
 
   const std::string path_;
@@ -695,7 +529,8 @@ class McapReader : public DriveReader {
   std::map<uint16_t, Channel> channels_;
   std::map<uint16_t, uint64_t> counts_;
   bool topics_loaded_ = false;
-  bool indexed_ = false;  // chunks_ (from the summary) drive Next
+  std::vector<std::string> listing_damage_;  // LoadTopics' scan's
+  bool indexed_ = false;                     // chunks_ (from the summary) drive Next
   std::vector<ChunkRef> chunks_;
 
   const unsigned threads_;

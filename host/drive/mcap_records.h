@@ -52,6 +52,17 @@ struct Out {
     U32(uint32_t(s.size()));
     Raw(s.data(), s.size());
   }
+  // A Map<string, string>: its uint32 byte length, then each key and value.
+  template <typename Pairs>
+  void Map(const Pairs& entries) {
+    Out map;
+    for (const auto& [key, value] : entries) {
+      map.Str(key);
+      map.Str(value);
+    }
+    U32(uint32_t(map.bytes.size()));
+    Raw(map.bytes.data(), map.bytes.size());
+  }
   // A record: opcode, content length, content.
   void Record(uint8_t op, const Out& content) {
     U8(op);

@@ -39,7 +39,7 @@ struct McapWriter::State {
 
   // Summary copies, in the order added.
   std::vector<mcap::Out> schema_records, channel_records;
-  std::vector<mcap::Out> chunk_indexes;
+  std::vector<mcap::Out> chunk_indexes, attachment_indexes, metadata_indexes;
   std::map<uint16_t, uint64_t> channel_counts;
   uint64_t message_count = 0, first_time = 0, last_time = 0;
 
@@ -119,7 +119,8 @@ struct McapWriter::State {
   }
 };
 
-McapWriter::McapWriter(const std::string& path, McapCompression compression)
+McapWriter::McapWriter(const std::string& path, McapCompression compression,
+                       const std::string& profile)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.path = path;
@@ -128,7 +129,7 @@ McapWriter::McapWriter(const std::string& path, McapCompression compression)
   if (!s.out) throw IoError(path, "cannot create the MCAP file");
   s.Put(std::vector<uint8_t>(mcap::kMagic, mcap::kMagic + mcap::kMagicSize));
   mcap::Out header;
-  header.Str("ros2");
+  header.Str(profile);
   header.Str("lpir-gseg");
   s.PutRecord(mcap::kHeader, header);
 }
@@ -145,6 +146,7 @@ McapWriter::~McapWriter() {
 uint16_t McapWriter::AddSchema(const std::string& name, const std::string& encoding,
                                const std::string& data) {
   State& s = *state_;
+  if (s.schema_records.size() >= UINT16_MAX) throw IoError(s.path, "more than 65535 schemas");
   const uint16_t id = uint16_t(s.schema_records.size() + 1);
   mcap::Out r;
   r.U16(id);
@@ -157,15 +159,16 @@ uint16_t McapWriter::AddSchema(const std::string& name, const std::string& encod
 }
 
 uint16_t McapWriter::AddChannel(const std::string& topic, uint16_t schema_id,
-                                const std::string& message_encoding) {
+                                const std::string& message_encoding, const DriveMap& metadata) {
   State& s = *state_;
+  if (s.channel_records.size() > UINT16_MAX) throw IoError(s.path, "more than 65536 channels");
   const uint16_t id = uint16_t(s.channel_records.size());
   mcap::Out r;
   r.U16(id);
   r.U16(schema_id);
   r.Str(topic);
   r.Str(message_encoding);
-  r.U32(0);  // no metadata
+  r.Map(metadata);
   s.PutRecord(mcap::kChannel, r);
   s.channel_records.push_back(std::move(r));
   s.channel_counts[id];  // listed in the statistics even when it gets no message
@@ -195,6 +198,43 @@ void McapWriter::Write(uint16_t channel_id, uint32_t sequence, uint64_t log_time
   if (s.chunk.bytes.size() >= kChunkTarget) s.FlushChunk();
 }
 
+void McapWriter::AddMetadata(const DriveMetadata& metadata) {
+  State& s = *state_;
+  s.FlushChunk();
+  mcap::Out r;
+  r.Str(metadata.name);
+  r.Map(metadata.entries);
+  mcap::Out index;
+  index.U64(s.position);
+  index.U64(mcap::kRecordPrefix + r.bytes.size());
+  index.Str(metadata.name);
+  s.PutRecord(mcap::kMetadata, r);
+  s.metadata_indexes.push_back(std::move(index));
+}
+
+void McapWriter::AddAttachment(const DriveAttachment& a) {
+  State& s = *state_;
+  s.FlushChunk();
+  mcap::Out r;
+  r.U64(a.log_time_ns);
+  r.U64(a.create_time_ns);
+  r.Str(a.name);
+  r.Str(a.media_type);
+  r.U64(a.data.size());
+  r.Raw(a.data.data(), a.data.size());
+  r.U32(Crc32(r.bytes.data(), r.bytes.size()));
+  mcap::Out index;
+  index.U64(s.position);
+  index.U64(mcap::kRecordPrefix + r.bytes.size());
+  index.U64(a.log_time_ns);
+  index.U64(a.create_time_ns);
+  index.U64(a.data.size());
+  index.Str(a.name);
+  index.Str(a.media_type);
+  s.PutRecord(mcap::kAttachment, r);
+  s.attachment_indexes.push_back(std::move(index));
+}
+
 void McapWriter::Close() {
   State& s = *state_;
   if (s.closed) return;
@@ -222,8 +262,8 @@ void McapWriter::Close() {
   stats.U64(s.message_count);
   stats.U16(uint16_t(s.schema_records.size()));
   stats.U32(uint32_t(s.channel_records.size()));
-  stats.U32(0);  // attachments
-  stats.U32(0);  // metadata
+  stats.U32(uint32_t(s.attachment_indexes.size()));
+  stats.U32(uint32_t(s.metadata_indexes.size()));
   stats.U32(uint32_t(s.chunk_indexes.size()));
   stats.U64(s.first_time);
   stats.U64(s.last_time);
@@ -236,6 +276,8 @@ void McapWriter::Close() {
   group(mcap::kChannel, s.channel_records);
   group(mcap::kStatistics, {stats});
   group(mcap::kChunkIndex, s.chunk_indexes);
+  group(mcap::kAttachmentIndex, s.attachment_indexes);
+  group(mcap::kMetadataIndex, s.metadata_indexes);
 
   mcap::Out tail = summary;
   tail.Raw(offsets.bytes.data(), offsets.bytes.size());

@@ -3,6 +3,7 @@
 // records into a Cloud. The ROS 1 serialization is in pointcloud2_ros1.cpp.
 #include "host/drive/pointcloud2.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 
@@ -224,13 +225,9 @@ struct FieldRoles {
 // are checked per point.
 FieldRoles AssignRoles(const std::string& where, const PointCloud2& cloud) {
   FieldRoles roles;
-  const char* const kIntensityNames[] = {"intensity", "reflectivity", "i"};
-  const char* intensity_name = nullptr;
-  for (const char* candidate : kIntensityNames) {
-    for (const PointField& field : cloud.fields) {
-      if (!intensity_name && field.name == candidate) intensity_name = candidate;
-    }
-  }
+  int intensity_rank = -1;
+  for (const PointField& field : cloud.fields)
+    intensity_rank = BetterIntensityRank(intensity_rank, field.name);
   for (const PointField& field : cloud.fields) {
     if (PointFieldSize(field.datatype) == 0) {
       throw IoError(where, "PointCloud2 field " + Quote(field.name) + " has datatype " +
@@ -241,7 +238,7 @@ FieldRoles AssignRoles(const std::string& where, const PointCloud2& cloud) {
     if (field.name == "y") slot = &roles.xyz[1];
     if (field.name == "z") slot = &roles.xyz[2];
     if (field.name == "ring") slot = &roles.ring;
-    if (intensity_name && field.name == intensity_name) slot = &roles.intensity;
+    if (intensity_rank >= 0 && IntensityRank(field.name) == intensity_rank) slot = &roles.intensity;
     if (!slot) continue;
     if (*slot) throw IoError(where, "PointCloud2 field " + Quote(field.name) + " appears twice");
     if (field.count != 1) {
@@ -263,7 +260,7 @@ FieldRoles AssignRoles(const std::string& where, const PointCloud2& cloud) {
   return roles;
 }
 
-// The byte layout checks both CloudFromPointCloud2 and AddLabelField need before reading
+// The byte layout checks both CloudFromPointCloud2 and SplitByLabel need before reading
 // records, for a cloud of `points` > 0 points: IoError naming `where` for point_step 0, a field
 // that overruns point_step, row_step < width x point_step, or data not holding exactly
 // row_step x height bytes. Products are taken in 64 bits (from 32-bit factors: no overflow).
@@ -406,35 +403,95 @@ Cloud CloudFromPointCloud2(const std::string& where, const PointCloud2& cloud) {
   return out;
 }
 
-PointCloud2 AddLabelField(const std::string& where, const PointCloud2& cloud,
-                          const Labels& labels) {
+std::vector<PointField> AlignedFields(const std::vector<PointField>& fields,
+                                      const std::vector<std::string>& extra, uint64_t* point_step) {
+  std::vector<PointField> out;
+  uint64_t at = 0, widest = 4;
+  const auto place = [&](const PointField& field) {
+    const uint64_t size = std::max<uint64_t>(PointFieldSize(field.datatype), 1);
+    at = (at + size - 1) / size * size;
+    out.push_back(PointField{field.name, uint32_t(at), field.datatype, field.count});
+    at += size * field.count;
+    widest = std::max(widest, size);
+  };
+  for (const PointField& field : fields) place(field);
+  for (const std::string& name : extra) place(PointField{name, 0, kPfUint32, 1});
+  *point_step = (at + widest - 1) / widest * widest;
+  return out;
+}
+
+LabelledClouds SplitByLabel(const std::string& where, const PointCloud2& cloud,
+                            const Labels& labels) {
   const uint64_t points = uint64_t(cloud.width) * cloud.height;
   if (labels.size() != points) {
     throw IoError(where, std::to_string(labels.size()) + " labels for a PointCloud2 of " +
                              std::to_string(points) + " points");
   }
+  uint64_t declared = 0;  // the bytes the fields take a point
   for (const PointField& field : cloud.fields) {
     if (field.name == "label") throw IoError(where, "PointCloud2 already has a 'label' field");
+    if (PointFieldSize(field.datatype) == 0) {
+      throw IoError(where, "PointCloud2 field " + Quote(field.name) + " has datatype " +
+                               std::to_string(field.datatype) + ", not a PointField type (1-8)");
+    }
+    declared += uint64_t(PointFieldSize(field.datatype)) * field.count;
   }
-  if (points > 0) CheckRecords(where, cloud);
-  const uint64_t step = uint64_t(cloud.point_step) + 1;
-  const uint64_t row_step = uint64_t(cloud.width) * step;
-  if (row_step > std::numeric_limits<uint32_t>::max()) {
-    throw IoError(where, "PointCloud2 with a label byte per point: row_step " +
-                             std::to_string(row_step) + " does not fit in 32 bits");
+  if (points > 0) {
+    CheckRecords(where, cloud);
+    if (declared > cloud.point_step) {
+      throw IoError(where, "PointCloud2 fields take " + std::to_string(declared) +
+                               " bytes a point, more than point_step " +
+                               std::to_string(cloud.point_step) + ": they overlap");
+    }
   }
-  PointCloud2 out = cloud;
-  out.fields.push_back(PointField{"label", cloud.point_step, kPfUint8, 1});
-  out.point_step = uint32_t(step);
-  out.row_step = uint32_t(row_step);
-  out.data.clear();
-  out.data.reserve(points * step);
+  uint64_t labelled_step = 0, plain_step = 0;
+  const std::vector<PointField> labelled_fields =
+      AlignedFields(cloud.fields, {"label"}, &labelled_step);
+  const std::vector<PointField> plain_fields = AlignedFields(cloud.fields, {}, &plain_step);
+  size_t ground = 0;
+  for (uint8_t label : labels) ground += label == 1;
+  const uint64_t widest_row = std::max(
+      {uint64_t(cloud.width) * labelled_step, ground * plain_step, (points - ground) * plain_step});
+  if (widest_row > std::numeric_limits<uint32_t>::max()) {
+    throw IoError(where, "PointCloud2 with aligned fields and a label: a row of " +
+                             std::to_string(widest_row) + " bytes does not fit in 32 bits");
+  }
+  LabelledClouds out;
+  const auto shell = [&cloud](PointCloud2* c, const std::vector<PointField>& fields, uint64_t step,
+                              uint32_t height, uint64_t width) {
+    c->seq = cloud.seq;
+    c->stamp_sec = cloud.stamp_sec;
+    c->stamp_nanosec = cloud.stamp_nanosec;
+    c->frame_id = cloud.frame_id;
+    c->height = height;
+    c->width = uint32_t(width);
+    c->fields = fields;
+    c->is_bigendian = cloud.is_bigendian;
+    c->point_step = uint32_t(step);
+    c->row_step = uint32_t(width * step);
+    c->data.assign(size_t(width * step) * height, 0);
+    c->is_dense = cloud.is_dense;
+  };
+  shell(&out.labelled, labelled_fields, labelled_step, cloud.height, cloud.width);
+  shell(&out.ground, plain_fields, plain_step, 1, ground);
+  shell(&out.nonground, plain_fields, plain_step, 1, points - ground);
+  const size_t label_at = labelled_fields.back().offset;
+  uint8_t* next[2] = {out.nonground.data.data(), out.ground.data.data()};
   size_t i = 0;
   for (uint32_t row = 0; row < cloud.height && points > 0; ++row) {
     const uint8_t* record = cloud.data.data() + uint64_t(row) * cloud.row_step;
     for (uint32_t col = 0; col < cloud.width; ++col, ++i, record += cloud.point_step) {
-      out.data.insert(out.data.end(), record, record + cloud.point_step);
-      out.data.push_back(labels[i]);
+      uint8_t* labelled = out.labelled.data.data() + i * labelled_step;
+      uint8_t*& split = next[labels[i] == 1];
+      for (size_t k = 0; k < cloud.fields.size(); ++k) {
+        const size_t bytes = PointFieldSize(cloud.fields[k].datatype) * cloud.fields[k].count;
+        std::memcpy(labelled + labelled_fields[k].offset, record + cloud.fields[k].offset, bytes);
+        std::memcpy(split + plain_fields[k].offset, record + cloud.fields[k].offset, bytes);
+      }
+      split += plain_step;
+      const uint32_t label = labels[i] == 1 ? 1 : 0;
+      for (int b = 0; b < 4; ++b)
+        labelled[label_at + b] = uint8_t(label >> (8 * (cloud.is_bigendian ? 3 - b : b)));
     }
   }
   return out;

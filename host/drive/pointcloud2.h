@@ -57,8 +57,9 @@ PointCloud2 ParseRos1PointCloud2(const std::string& where, const uint8_t* bytes,
 std::vector<uint8_t> SerializeRos1PointCloud2(const PointCloud2& cloud);
 
 // The points as a Cloud, row by row (point (r, c) at r x row_step + c x point_step): x, y, z
-// (float32 or float64, count 1, read as float), the first of intensity / reflectivity / i
-// present (any type, count 1, converted to float; 0 when none), and ring when present (count 1,
+// (float32 or float64, count 1, read as float), the intensity under the best of
+// IntensityNames() present (host/io/point_fields.h; any type, count 1, converted to float; 0
+// when none), and ring when present (count 1,
 // any integer type, or a float holding a whole number; every value must be in [0, INT32_MAX]).
 // is_bigendian is honoured. Every point is kept (NaN included: the segmenter marks it invalid).
 // IoError naming `where` when a field's datatype is not 1-8, a used field appears twice or has
@@ -69,12 +70,31 @@ std::vector<uint8_t> SerializeRos1PointCloud2(const PointCloud2& cloud);
 // no points only the fields are checked. Sizes are multiplied in 64 bits from 32-bit factors.
 Cloud CloudFromPointCloud2(const std::string& where, const PointCloud2& cloud);
 
-// `cloud` with a uint8 `label` field (1 ground, 0 non-ground) appended to every point record, at
-// offset point_step: point_step grows by one byte, the records are re-packed densely row by row
-// (row_step = width x point_step, row padding dropped), everything else is kept. IoError naming
-// `where` unless labels has one entry per point, for a cloud that already has a `label` field,
-// for the layout errors CloudFromPointCloud2 reports when there are points, or when the new
-// row_step does not fit in 32 bits.
-PointCloud2 AddLabelField(const std::string& where, const PointCloud2& cloud, const Labels& labels);
+// What segment --format mcap|bag adds for a labelled message (docs/decisions/drives.md), each a
+// PointCloud2 with the message's header (seq, stamp, frame_id), is_bigendian and is_dense:
+//   labelled   every point, in order, with the message's height and width (an organised cloud
+//              stays organised), its fields re-laid (AlignedFields) and a uint32 field `label`
+//              (1 ground, 0 non-ground: the .label files' values) after them;
+//   ground     the points labelled 1, in order, height 1, the re-laid fields without `label`;
+//   nonground  the points labelled 0, likewise.
+// Each field's bytes are copied unchanged (the message's byte order; bytes that no field covers
+// are dropped), rows packed (row_step = width x point_step).
+struct LabelledClouds {
+  PointCloud2 labelled, ground, nonground;
+};
+// IoError naming `where` unless labels has one entry per point, for a message that has a `label`
+// field already, for the layout errors CloudFromPointCloud2 reports when there are points, for
+// fields whose sizes add up past point_step (they overlap), or when a row_step does not fit in 32
+// bits.
+LabelledClouds SplitByLabel(const std::string& where, const PointCloud2& cloud,
+                            const Labels& labels);
+
+// `fields` laid out again in the order listed, each at the next offset that is a multiple of its
+// datatype's size, then `extra` fields of 4 bytes (uint32); *point_step: the end of the last one
+// rounded up to the largest field size (4 at least), so that every field of every point stays
+// aligned. (PointCloud2 fields have no alignment rule, and drivers pack them: a VLP-16's ring is a
+// uint16 at 16 with a float time at 18.)
+std::vector<PointField> AlignedFields(const std::vector<PointField>& fields,
+                                      const std::vector<std::string>& extra, uint64_t* point_step);
 
 }  // namespace lpir

@@ -15,10 +15,11 @@ namespace lpir {
 
 ReadOnlyFile::ReadOnlyFile(const std::string& path) : path_(path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
+  if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file", ENOENT);
+  if (std::filesystem::is_directory(path, ec))
+    throw IoError(path, "is a folder, not a file", EISDIR);
   fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
+  if (fd_ < 0) throw IoError(path, std::string("cannot open: ") + std::strerror(errno), errno);
   struct stat st {};
   if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd_);

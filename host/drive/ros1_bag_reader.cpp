@@ -27,8 +27,12 @@
 // chunk whose position is known: from the chunk infos, or the end of the damaged record when its
 // lengths lie inside the file; a scan that meets a record running past the end of the file stops
 // there. The complete message records of a truncated uncompressed chunk are still yielded; a
-// truncated compressed chunk yields none. The file is never read whole: a record's bytes are read
-// only once its lengths are checked against the bytes left in the file.
+// truncated compressed chunk yields none. A bag without an index (index_pos 0: the recorder died
+// before closing it, leaving NAME.bag.active) may end in the chunk it was writing: a chunk record
+// whose sizes are still the zeros written before its data, followed by that data. Its data is
+// taken to run to the end of the file, as a truncated chunk's: an uncompressed one's complete
+// records are yielded, a compressed one is damage. The file is never read whole: a record's bytes
+// are read only once its lengths are checked against the bytes left in the file.
 #include "host/drive/ros1_bag_reader.h"
 
 #include <algorithm>
@@ -42,122 +46,28 @@
 #include <vector>
 
 #include "host/drive/chunk_pool.h"
-#include "host/drive/decompress.h"
 #include "host/drive/read_only_file.h"
+#include "host/drive/ros1_bag_file.h"
 #include "host/io/io_error.h"
 
 namespace lpir {
 namespace {
 
-constexpr char kMagic[] = "#ROSBAG V2.0\n";
-constexpr size_t kMagicSize = sizeof(kMagic) - 1;
-
-enum Op : uint8_t {
-  kOpMessage = 0x02,
-  kOpBagHeader = 0x03,
-  kOpIndexData = 0x04,
-  kOpChunk = 0x05,
-  kOpChunkInfo = 0x06,
-  kOpConnection = 0x07,
-};
-
-// A damaged or malformed part; what() says where (without the file name) and what.
-class Broken : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-uint32_t LeU32(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-uint64_t LeU64(const uint8_t* p) { return uint64_t(LeU32(p)) | uint64_t(LeU32(p + 4)) << 32; }
-// A ROS time (uint32 sec, uint32 nsec) in nanoseconds.
-uint64_t TimeNs(const uint8_t* p) { return uint64_t(LeU32(p)) * 1000000000u + LeU32(p + 4); }
-
-// The fields of a record header (or of a connection header): name=value, each name once.
-class Fields {
- public:
-  // Throws Broken(`at` + problem) for a field running past `size`, one without '=' or a name
-  // given twice.
-  Fields(const std::string& at, const uint8_t* p, size_t size) : at_(at) {
-    size_t pos = 0;
-    while (pos < size) {
-      if (size - pos < 4) Fail("header ends inside a field length");
-      const uint32_t len = LeU32(p + pos);
-      pos += 4;
-      if (len > size - pos)
-        Fail("header field of " + std::to_string(len) + " bytes runs past the header's end");
-      const std::string field(reinterpret_cast<const char*>(p + pos), len);
-      pos += len;
-      const size_t eq = field.find('=');
-      if (eq == std::string::npos) Fail("header field without '='");
-      std::string name = field.substr(0, eq);
-      for (const auto& f : fields_)
-        if (f.first == name) Fail("header field '" + name + "' given twice");
-      fields_.emplace_back(std::move(name), field.substr(eq + 1));
-    }
-  }
-
-  bool Has(const std::string& name) const { return Find(name) != nullptr; }
-  const std::string& String(const std::string& name) const {
-    const std::string* v = Find(name);
-    if (!v) Fail("header has no '" + name + "' field");
-    return *v;
-  }
-  uint8_t Op() const { return Sized(String("op"), "op", 1)[0]; }
-  uint32_t U32(const std::string& name) const { return LeU32(Sized(String(name), name, 4)); }
-  uint64_t U64(const std::string& name) const { return LeU64(Sized(String(name), name, 8)); }
-  uint64_t Time(const std::string& name) const { return TimeNs(Sized(String(name), name, 8)); }
-
-  [[noreturn]] void Fail(const std::string& what) const { throw Broken(at_ + ": " + what); }
-
- private:
-  const std::string* Find(const std::string& name) const {
-    for (const auto& f : fields_)
-      if (f.first == name) return &f.second;
-    return nullptr;
-  }
-  const uint8_t* Sized(const std::string& value, const std::string& name, size_t size) const {
-    if (value.size() != size)
-      Fail("header field '" + name + "' has " + std::to_string(value.size()) + " bytes, not " +
-           std::to_string(size));
-    return reinterpret_cast<const uint8_t*>(value.data());
-  }
-
-  std::string at_;
-  std::vector<std::pair<std::string, std::string>> fields_;
-};
-
-// A record inside decompressed chunk data: its header's fields and where its data lies.
-struct ChunkRecord {
-  Fields fields;
-  size_t data_pos = 0;
-  uint32_t data_len = 0;
-};
-
-// The record of chunk data `d` at `pos` (at most d.size()), its lengths checked against the
-// chunk, in this order: Broken(`at` + the problem) when the chunk ends inside its lengths or its
-// header, when the header is malformed (Fields), or when the chunk ends inside its data.
-ChunkRecord RecordInChunk(const std::vector<uint8_t>& d, size_t pos, const std::string& at) {
-  if (d.size() - pos < 4) throw Broken(at + ": the chunk ends inside a record");
-  const uint32_t header_len = LeU32(&d[pos]);
-  if (header_len > d.size() - pos - 4 || d.size() - pos - 4 - header_len < 4)
-    throw Broken(at + ": the chunk ends inside a record header");
-  Fields fields(at, &d[pos + 4], header_len);
-  const size_t data_pos = pos + 8 + header_len;
-  const uint32_t data_len = LeU32(&d[data_pos - 4]);
-  if (data_len > d.size() - data_pos) throw Broken(at + ": the chunk ends inside a record's data");
-  return ChunkRecord{std::move(fields), data_pos, data_len};
-}
-
-// A record's place in the file and its header.
-struct Record {
-  uint64_t pos = 0;       // of header_len
-  uint64_t data_pos = 0;  // of the data, after data_len
-  uint32_t data_len = 0;
-  bool data_truncated = false;  // the data runs past the end of the file
-  uint64_t end() const { return data_pos + data_len; }
-};
+using ros1::Broken;
+using ros1::ChunkRecord;
+using ros1::Fields;
+using ros1::kMagicSize;
+using ros1::kOpBagHeader;
+using ros1::kOpChunk;
+using ros1::kOpChunkInfo;
+using ros1::kOpConnection;
+using ros1::kOpIndexData;
+using ros1::kOpMessage;
+using ros1::LeU32;
+using ros1::LoadedChunk;
+using ros1::Record;
+using ros1::RecordInChunk;
+using ros1::TimeNs;
 
 struct Connection {
   std::string topic, type;
@@ -179,15 +89,10 @@ struct Damage {
   std::string problem;
 };
 
-struct LoadedChunk {
-  std::vector<uint8_t> data;  // uncompressed (of a truncated uncompressed chunk: what is there)
-  std::string damage;         // empty when whole
-};
-
 class Ros1Bag : public DriveReader {
  public:
   Ros1Bag(const std::string& path, unsigned threads) : path_(path), file_(path), threads_(threads) {
-    ReadMagic();
+    ros1::CheckMagic(path_, file_);
     try {
       const Record r = ReadRecordAt(kMagicSize);
       const Fields f = ReadFields(r, "byte " + std::to_string(r.pos));
@@ -200,6 +105,27 @@ class Ros1Bag : public DriveReader {
     } catch (const Broken& e) {
       throw IoError(path_, std::string("no valid bag header: ") + e.what());
     }
+  }
+
+  std::vector<std::string> ListingDamage() override {
+    EnsureCatalogue();
+    std::vector<std::string> damage;
+    for (const Damage& d : scan_damages_) damage.push_back(d.problem);
+    return damage;
+  }
+
+  std::vector<std::string> Notes() override {
+    EnsureCatalogue();
+    std::vector<std::string> notes;
+    if (index_pos_ == 0)
+      notes.push_back(path_ + ": no index (the recorder died before closing the bag; `rosbag " +
+                      "reindex` writes one): its " + std::to_string(chunks_.size()) + " chunk" +
+                      (chunks_.size() == 1 ? " was" : "s were") + " scanned");
+    if (unfinished_ != UINT32_MAX)
+      notes.push_back(path_ + ": " + ChunkWhere(unfinished_) +
+                      " is the one the recorder was writing (its sizes never filled in): read "
+                      "up to the end of the file");
+    return notes;
   }
 
   std::vector<DriveTopic> Topics() override {
@@ -369,22 +295,9 @@ class Ros1Bag : public DriveReader {
     return DriveStep::kDamage;
   }
 
-  void ReadMagic() {
-    uint8_t head[kMagicSize] = {};
-    const size_t n = size_t(std::min<uint64_t>(kMagicSize, file_.size()));
-    try {
-      file_.ReadInto(0, head, n);
-    } catch (const Broken& e) {
-      throw IoError(path_, e.what());
-    }
-    const std::string got(reinterpret_cast<const char*>(head), n);
-    if (got == kMagic) return;
-    const std::string prefix = "#ROSBAG V";
-    if (got.compare(0, prefix.size(), prefix) == 0) {
-      const std::string version = got.substr(prefix.size(), got.find('\n') - prefix.size());
-      throw IoError(path_, "ROS bag version '" + version + "' is not supported (only 2.0)");
-    }
-    throw IoError(path_, "not a ROS bag: it does not start with #ROSBAG V2.0");
+  // A chunk the recorder was writing when it died (ros1::UnfinishedChunk).
+  bool Unfinished(const Record& r, const Fields& f) const {
+    return ros1::UnfinishedChunk(file_, r, f, index_pos_ == 0);
   }
 
   std::string ChunkWhere(uint32_t c) const {
@@ -392,39 +305,11 @@ class Ros1Bag : public DriveReader {
            std::to_string(chunks_[c]);  // 1-based, as MCAP's
   }
 
-  // The record at `pos`: its lengths checked against the file. Broken when the file ends inside
-  // header_len, the header or data_len; a data_len past the end sets data_truncated.
-  Record ReadRecordAt(uint64_t pos) const {
-    const uint64_t size = file_.size();
-    const std::string at = "byte " + std::to_string(pos);
-    uint8_t len[4];
-    if (pos > size || size - pos < 4) throw Broken(at + ": the file ends inside a record");
-    file_.ReadInto(pos, len, 4);
-    const uint32_t header_len = LeU32(len);
-    if (header_len > size - pos - 4 || size - pos - 4 - header_len < 4)
-      throw Broken(at + ": the file ends inside a record header (" + std::to_string(header_len) +
-                   " bytes claimed, " + std::to_string(size - pos - 4) + " left)");
-    Record r;
-    r.pos = pos;
-    file_.ReadInto(pos + 4 + header_len, len, 4);
-    r.data_pos = pos + 8 + header_len;
-    r.data_len = LeU32(len);
-    r.data_truncated = r.data_len > size - r.data_pos;
-    return r;
-  }
+  Record ReadRecordAt(uint64_t pos) const { return ros1::ReadRecordAt(file_, pos); }
   Fields ReadFields(const Record& r, const std::string& at) const {
-    const uint32_t header_len = uint32_t(r.data_pos - r.pos - 8);
-    const std::vector<uint8_t> header = file_.Bytes(r.pos + 4, header_len);
-    return Fields(at, header.data(), header.size());
+    return ros1::ReadFields(file_, r, at);
   }
-  std::vector<uint8_t> ReadData(const Record& r) {
-    if (r.data_truncated)
-      throw Broken("byte " + std::to_string(r.pos) + ": the file ends inside the record's data (" +
-                   std::to_string(r.data_len) + " bytes claimed, " +
-                   std::to_string(file_.size() - r.data_pos) + " left)");
-    return file_.Bytes(r.data_pos, r.data_len);
-  }
-
+  std::vector<uint8_t> ReadData(const Record& r) const { return ros1::ReadData(file_, r); }
   // A connection record's header and data (the connection header: topic, type, md5sum, ...).
   std::pair<uint32_t, Connection> ParseConnection(const Fields& f, const std::string& at,
                                                   const uint8_t* data, size_t size) {
@@ -595,6 +480,7 @@ class Ros1Bag : public DriveReader {
         whole = false;
         break;
       }
+      if (unfinished_ != UINT32_MAX) break;  // its data runs to the end of the file
       pos = r.end();
     }
     for (const auto& [id, c] : connections_) message_counts_[id];
@@ -626,6 +512,7 @@ class Ros1Bag : public DriveReader {
     const Fields f = ReadFields(r, at);
     const uint8_t op = f.Op();
     if (op == kOpChunk) {
+      if (Unfinished(r, f)) unfinished_ = uint32_t(chunks_.size());
       chunks_.push_back(r.pos);
       scan_damage_known_.push_back(false);
       ScanChunk(uint32_t(chunks_.size() - 1), &scan_entries_, &scan_damages_, &scan_damage_known_,
@@ -655,46 +542,12 @@ class Ros1Bag : public DriveReader {
 
   // Chunk `c` decompressed (step 4, and the scans of steps 2 and 3).
   LoadedChunk LoadChunk(uint32_t c) const {
-    LoadedChunk out;
-    const std::string where = ChunkWhere(c);
-    try {
-      const Record r = ReadRecordAt(chunks_[c]);
-      const Fields f = ReadFields(r, where);
-      if (f.Op() != kOpChunk)
-        f.Fail("op is " + std::to_string(f.Op()) + ", not chunk 5 (the index points elsewhere)");
-      const std::string& compression = f.String("compression");
-      const uint32_t size = f.U32("size");
-      if (compression != "none" && compression != "bz2" && compression != "lz4")
-        f.Fail("unknown compression '" + compression + "'");
-      if (compression == "none" && r.data_len != size)
-        f.Fail("uncompressed chunk holds " + std::to_string(r.data_len) +
-               " bytes, its size field says " + std::to_string(size));
-      const uint64_t left = file_.size() - r.data_pos;
-      if (r.data_truncated) {
-        if (compression == "none") out.data = file_.Bytes(r.data_pos, left);
-        f.Fail("the file ends inside the chunk's data (" + std::to_string(left) + " of " +
-               std::to_string(r.data_len) + " bytes there: truncated)");
-      }
-      std::vector<uint8_t> data = file_.Bytes(r.data_pos, r.data_len);
-      if (compression == "none") {
-        out.data = std::move(data);
-      } else if (compression == "bz2") {
-        out.data = DecompressBz2(where, data.data(), data.size(), size);
-      } else {
-        out.data = DecompressLz4Frame(where, data.data(), data.size(), size);
-      }
-    } catch (const Broken& e) {
-      out.damage = e.what();
-    } catch (const IoError& e) {  // the decompressors name `where`
-      out.damage = e.what();
-    }
-    return out;
+    return ros1::LoadChunk(file_, chunks_[c], ChunkWhere(c), index_pos_ == 0);
   }
-
   // The records of chunk `c` (step 2's scan, or step 3 when its index data is unusable): its
   // messages to `entries`, its connections registered when `add_connections`, its damage to
-  // `damages` and marked in `known`. The first malformed record ends the chunk; in a chunk whose
-  // data is damaged the records that break off are part of that one damage.
+  // `damages` and marked in `known`. The first malformed record ends the chunk; in a chunk
+  // whose data is damaged the records that break off are part of that one damage.
   void ScanChunk(uint32_t c, std::vector<Entry>* entries, std::vector<Damage>* damages,
                  std::vector<bool>* known, bool add_connections) {
     const LoadedChunk chunk = LoadChunk(c);
@@ -806,6 +659,7 @@ class Ros1Bag : public DriveReader {
   std::vector<Entry> scan_entries_;
   std::vector<Damage> scan_damages_;
   std::vector<bool> scan_damage_known_;
+  uint32_t unfinished_ = UINT32_MAX;  // the chunk (index) a dead recorder was writing, if any
 
   // The selected topic.
   std::string topic_;

@@ -39,14 +39,15 @@ BinLayout BinLayoutFor(const std::string& path, const ReadOptions& options) {
   return nuscenes ? BinLayout::kNuScenes5 : BinLayout::kKitti4;
 }
 
-Cloud ReadCloud(const std::string& path, const ReadOptions& options) {
+Cloud ReadCloud(const std::string& path, const ReadOptions& options, std::string* note) {
+  if (note) note->clear();
   switch (ExtensionOf(path)) {
     case Extension::kBin:
       return ReadKittiBin(path, BinLayoutFor(path, options));
     case Extension::kPcd:
-      return ReadPcd(path);
+      return ReadPcd(path, note);
     case Extension::kPly:
-      return ReadPly(path);
+      return ReadPly(path, note);
     case Extension::kOther:
       break;
   }

@@ -1,5 +1,5 @@
 // Any supported cloud file by its extension: .bin (KITTI, or nuScenes 5-float by option), .pcd
-// (ASCII or binary), .ply (ASCII or binary little-endian).
+// (ASCII, binary or binary_compressed), .ply (ASCII or binary little-endian).
 #pragma once
 #include <optional>
 #include <string>
@@ -18,8 +18,11 @@ struct ReadOptions {
 // The layout ReadCloud uses for a .bin file at `path` under `options`.
 BinLayout BinLayoutFor(const std::string& path, const ReadOptions& options);
 
-// IoError naming the file for an unknown extension or a malformed file.
-Cloud ReadCloud(const std::string& path, const ReadOptions& options = {});
+// IoError naming the file for an unknown extension or a malformed file. `note` (when given): a
+// sentence naming the file when the reader filled in what the file lacks (a .pcd or .ply without
+// an intensity field: NoIntensityNote), else empty.
+Cloud ReadCloud(const std::string& path, const ReadOptions& options = {},
+                std::string* note = nullptr);
 // True for the extensions ReadCloud accepts (used when listing a folder).
 bool IsCloudFile(const std::string& path);
 

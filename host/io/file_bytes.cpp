@@ -11,10 +11,11 @@ namespace lpir {
 
 std::vector<char> ReadFileBytes(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file");
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
+  if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file", ENOENT);
+  if (std::filesystem::is_directory(path, ec))
+    throw IoError(path, "is a folder, not a file", EISDIR);
   std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw IoError(path, std::string("cannot open: ") + std::strerror(errno));
+  if (!in) throw IoError(path, std::string("cannot open: ") + std::strerror(errno), errno);
   const std::streamoff size = in.tellg();
   if (size < 0) throw IoError(path, "cannot tell its size");
   std::vector<char> bytes(static_cast<size_t>(size));
@@ -25,7 +26,7 @@ std::vector<char> ReadFileBytes(const std::string& path) {
 
 void WriteFileBytes(const std::string& path, const void* data, size_t size) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw IoError(path, std::string("cannot create: ") + std::strerror(errno));
+  if (!out) throw IoError(path, std::string("cannot create: ") + std::strerror(errno), errno);
   out.write(static_cast<const char*>(data), std::streamsize(size));
   out.flush();
   if (!out) throw IoError(path, "write failed (disk full?)");

@@ -1,7 +1,8 @@
-// PCD v0.7 reader (DATA ascii or binary) and writer. The header is parsed strictly; the point
-// records are decoded by host/io/point_fields.
+// PCD v0.7 reader (DATA ascii, binary or binary_compressed) and writer. The header is parsed
+// strictly; the point records are decoded by host/io/point_fields.
 #include "host/io/pcd.h"
 
+#include <cstring>
 #include <set>
 #include <string>
 #include <string_view>
@@ -9,6 +10,7 @@
 
 #include "host/io/file_bytes.h"
 #include "host/io/io_error.h"
+#include "host/io/lzf.h"
 #include "host/io/point_fields.h"
 
 namespace lpir {
@@ -132,22 +134,106 @@ std::vector<Column> HeaderColumns(const std::string& path, const PcdHeader& head
   return columns;
 }
 
+// PCL 1.13's writer leaves zero bytes after the data (the file is page-aligned past it): `size`
+// less those when every byte after the `needed` ones is 0, else `size` (an error then names the
+// extra bytes).
+size_t WithoutZeroPadding(const char* data, size_t size, size_t needed) {
+  if (needed == 0 || size <= needed) return size;
+  for (size_t i = needed; i < size; ++i) {
+    if (data[i] != 0) return size;
+  }
+  return needed;
+}
+
+uint32_t LoadU32(const char* p) {
+  uint32_t value;
+  std::memcpy(&value, p, sizeof(value));
+  return value;
+}
+
+// DATA binary_compressed as PCL writes it: uint32 compressed size, uint32 decompressed size,
+// then that many bytes of LZF (host/io/lzf.h) holding the fields one after another (all points'
+// values of the first field, then of the second, ...; fields named "_", padding, are not
+// stored), then zero bytes to the end of the file at most. The sizes are checked against the
+// header's points and the file's length, and the decompressed size against the most LZF can
+// give, before anything is allocated; the fields are then put back point after point and decoded
+// as DATA binary.
+Cloud DecodeCompressed(const std::string& path, const char* data, size_t size, uint64_t points,
+                       const RecordLayout& layout) {
+  if (size < 8) {
+    throw IoError(path, "DATA binary_compressed: " + std::to_string(size) +
+                            " bytes after the header, fewer than its two 4-byte sizes");
+  }
+  const uint32_t compressed = LoadU32(data), decompressed = LoadU32(data + 4);
+  // Bytes a point takes in the stream: its record less the padding fields.
+  size_t stored_bytes = 0;
+  for (const Column& column : layout.columns) {
+    if (column.name != "_") stored_bytes += ScalarSize(column.type) * column.count;
+  }
+  if (stored_bytes != 0 && points > UINT32_MAX / stored_bytes) {
+    throw IoError(path, "DATA binary_compressed: " + std::to_string(points) + " points of " +
+                            std::to_string(stored_bytes) +
+                            " bytes are more than its 32-bit sizes can hold");
+  }
+  const size_t needed = size_t(points) * stored_bytes;
+  if (decompressed != needed) {
+    throw IoError(path, "DATA binary_compressed: the data says it decompresses to " +
+                            std::to_string(decompressed) + " bytes, but the header's " +
+                            std::to_string(points) + " points of " + std::to_string(stored_bytes) +
+                            " bytes take " + std::to_string(needed));
+  }
+  const size_t body = size - 8;
+  if (compressed > body) {
+    throw IoError(path, "DATA binary_compressed: the data says it holds " +
+                            std::to_string(compressed) + " compressed bytes, but the file has " +
+                            std::to_string(body) + " after the sizes (cut short?)");
+  }
+  if (WithoutZeroPadding(data + 8, body, compressed) != compressed) {
+    throw IoError(path, "DATA binary_compressed: " + std::to_string(body - compressed) +
+                            " bytes after the " + std::to_string(compressed) +
+                            " compressed bytes the data says it holds");
+  }
+  if (compressed == 0 && needed != 0) {
+    throw IoError(path, "DATA binary_compressed: no compressed bytes for " +
+                            std::to_string(points) + " points");
+  }
+  if (needed / kLzfMaxExpansion > compressed) {
+    throw IoError(path, "DATA binary_compressed: " + std::to_string(compressed) +
+                            " compressed bytes cannot hold the " + std::to_string(needed) +
+                            " bytes of the header's " + std::to_string(points) + " points");
+  }
+  std::vector<uint8_t> fields(needed);
+  LzfDecompress(path, reinterpret_cast<const uint8_t*>(data) + 8, compressed, fields.data(),
+                needed);
+  // Field after field to point after point; padding fields stay 0.
+  std::vector<char> records(size_t(points) * layout.record_bytes, 0);
+  size_t from = 0, offset = 0;
+  for (const Column& column : layout.columns) {
+    const size_t bytes = ScalarSize(column.type) * column.count;
+    if (column.name != "_") {
+      for (size_t i = 0; i < points; ++i, from += bytes) {
+        std::memcpy(records.data() + i * layout.record_bytes + offset, fields.data() + from, bytes);
+      }
+    }
+    offset += bytes;
+  }
+  return DecodeBinaryRecords(path, records.data(), records.size(), size_t(points), layout, true);
+}
+
 }  // namespace
 
-Cloud ReadPcd(const std::string& path) {
+Cloud ReadPcd(const std::string& path, std::string* note) {
   const std::vector<char> bytes = ReadFileBytes(path);
   if (bytes.empty()) throw IoError(path, "empty file");
   LineCursor cursor(bytes.data(), bytes.size());
   const PcdHeader header = ParseHeader(path, &cursor);
   const bool binary = header.data == "binary";
-  if (header.data == "binary_compressed") {
-    throw IoError(path, "DATA binary_compressed is unsupported (save as binary or ascii)");
-  }
-  if (!binary && header.data != "ascii") {
+  const bool compressed = header.data == "binary_compressed";
+  if (!binary && !compressed && header.data != "ascii") {
     throw IoError(path, "line " + std::to_string(header.data_line) + ": unknown DATA " +
-                            Quote(header.data) + " (expected ascii or binary)");
+                            Quote(header.data) + " (expected ascii, binary or binary_compressed)");
   }
-  RecordLayout layout = MakeRecordLayout(path, HeaderColumns(path, header), {"intensity"}, "field");
+  RecordLayout layout = MakeRecordLayout(path, HeaderColumns(path, header), "field");
   if (!header.has_width) throw IoError(path, "header has no WIDTH line");
   if (header.height != 0 && header.width > SIZE_MAX / header.height) {
     throw IoError(path, "WIDTH " + std::to_string(header.width) + " x HEIGHT " +
@@ -158,9 +244,14 @@ Cloud ReadPcd(const std::string& path) {
     throw IoError(path, "POINTS " + std::to_string(header.points) +
                             " is not WIDTH x HEIGHT = " + std::to_string(points));
   }
+  NoteMissingIntensity(path, layout, note);
+  const char* data = bytes.data() + cursor.offset();
+  const size_t size = cursor.bytes_left();
+  if (compressed) return DecodeCompressed(path, data, size, points, layout);
   if (!binary) return DecodeAsciiRecords(path, &cursor, points, layout, true);
-  return DecodeBinaryRecords(path, bytes.data() + cursor.offset(), cursor.bytes_left(), points,
-                             layout, true);
+  const size_t needed = points <= SIZE_MAX / layout.record_bytes ? points * layout.record_bytes : 0;
+  return DecodeBinaryRecords(path, data, WithoutZeroPadding(data, size, needed), points, layout,
+                             true);
 }
 
 void WritePcd(const std::string& path, const Cloud& cloud, const Labels* labels, bool binary) {

@@ -124,7 +124,7 @@ void AppendHeader(std::string* out, size_t n, bool ring, bool labels, bool binar
 
 }  // namespace
 
-Cloud ReadPly(const std::string& path) {
+Cloud ReadPly(const std::string& path, std::string* note) {
   const std::vector<char> bytes = ReadFileBytes(path);
   if (bytes.empty()) throw IoError(path, "empty file");
   LineCursor cursor(bytes.data(), bytes.size());
@@ -139,8 +139,8 @@ Cloud ReadPly(const std::string& path) {
     throw IoError(path, "no 'vertex' element");
   }
   const PlyElement& vertex = header.elements[0];
-  RecordLayout layout =
-      MakeRecordLayout(path, vertex.properties, {"intensity", "scalar_intensity"}, "property");
+  RecordLayout layout = MakeRecordLayout(path, vertex.properties, "property");
+  NoteMissingIntensity(path, layout, note);
   layout.noun = "vertex";
   layout.noun_plural = "vertices";
   const bool vertex_only = header.elements.size() == 1;

@@ -2,6 +2,7 @@
 #include "host/io/point_fields.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -64,12 +65,13 @@ bool ParseFloat(std::string_view token, ScalarType type, double* value) {
   return true;
 }
 
-ColumnRole RoleOf(const std::string& name, const std::string* intensity_name) {
+// `intensity_rank`: the IntensityRank that marks the intensity column (-1: none).
+ColumnRole RoleOf(const std::string& name, int intensity_rank) {
   if (name == "x") return ColumnRole::kX;
   if (name == "y") return ColumnRole::kY;
   if (name == "z") return ColumnRole::kZ;
   if (name == "ring") return ColumnRole::kRing;
-  if (intensity_name && name == *intensity_name) return ColumnRole::kIntensity;
+  if (intensity_rank >= 0 && IntensityRank(name) == intensity_rank) return ColumnRole::kIntensity;
   return ColumnRole::kSkip;
 }
 
@@ -152,22 +154,50 @@ const char* ScalarTypeName(ScalarType type) {
   return "?";
 }
 
+const std::vector<std::string>& IntensityNames() {
+  static const std::vector<std::string> kNames = {"intensity", "scalar_intensity", "reflectivity",
+                                                  "remission", "i"};
+  return kNames;
+}
+
+int IntensityRank(std::string_view name) {
+  const std::vector<std::string>& names = IntensityNames();
+  for (size_t rank = 0; rank < names.size(); ++rank) {
+    const std::string& candidate = names[rank];
+    if (candidate.size() == name.size() &&
+        std::equal(name.begin(), name.end(), candidate.begin(),
+                   [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; }))
+      return static_cast<int>(rank);
+  }
+  return -1;
+}
+
+int BetterIntensityRank(int best, std::string_view name) {
+  const int rank = IntensityRank(name);
+  return rank >= 0 && (best < 0 || rank < best) ? rank : best;
+}
+
+std::string NoIntensityNote(const std::string& path) {
+  std::string names;
+  for (const std::string& name : IntensityNames()) names += (names.empty() ? "" : ", ") + name;
+  return path + " has no intensity field (" + names + ", in any case): its points read intensity 0";
+}
+
+void NoteMissingIntensity(const std::string& path, const RecordLayout& layout, std::string* note) {
+  if (note) *note = layout.has_intensity ? std::string() : NoIntensityNote(path);
+}
+
 RecordLayout MakeRecordLayout(const std::string& path, std::vector<Column> columns,
-                              const std::vector<std::string>& intensity_names,
                               const char* field_noun) {
   const std::string noun = field_noun;
-  // The intensity column: the first of intensity_names that some column has.
-  const std::string* intensity_name = nullptr;
-  for (const std::string& candidate : intensity_names) {
-    for (const Column& column : columns) {
-      if (!intensity_name && column.name == candidate) intensity_name = &candidate;
-    }
-  }
+  int intensity_rank = -1;
+  for (const Column& column : columns)
+    intensity_rank = BetterIntensityRank(intensity_rank, column.name);
   RecordLayout layout;
   bool seen[static_cast<int>(ColumnRole::kRing) + 1] = {};
   for (Column& column : columns) {
     const std::string& name = column.name;
-    column.role = RoleOf(name, intensity_name);
+    column.role = RoleOf(name, intensity_rank);
     if (column.role != ColumnRole::kSkip) {
       bool& was_seen = seen[static_cast<int>(column.role)];
       if (was_seen) throw IoError(path, noun + " " + Quote(name) + " appears twice");
@@ -193,6 +223,7 @@ RecordLayout MakeRecordLayout(const std::string& path, std::vector<Column> colum
     }
   }
   layout.has_ring = seen[static_cast<int>(ColumnRole::kRing)];
+  layout.has_intensity = seen[static_cast<int>(ColumnRole::kIntensity)];
   layout.columns = std::move(columns);
   return layout;
 }

@@ -35,18 +35,39 @@ struct RecordLayout {
   size_t record_bytes = 0;   // binary: bytes per point
   size_t record_values = 0;  // ASCII: values per point (one line)
   bool has_ring = false;
+  bool has_intensity = false;
   // What the format calls a point, for messages ("point"/"points", "vertex"/"vertices").
   std::string noun = "point";
   std::string noun_plural = "points";
 };
 
-// Assigns roles by name (x, y, z, ring, and the first of `intensity_names` present; others are
-// skipped) and computes the record sizes. IoError naming the file when x, y or z is missing, a used
-// column appears twice or has a count other than 1, or the record size overflows. `field_noun`
-// is what the format calls a column in messages ("field", "property").
+// The names writers give a point's intensity, best first, compared ignoring case; a record with
+// several reads the first (an Ouster cloud holds intensity and reflectivity: intensity).
+//   intensity         PCL, ROS drivers, most converters
+//   scalar_intensity  CloudCompare's scalar field, written scalar_Intensity
+//   reflectivity      Ouster's and Livox's calibrated return strength
+//   remission         KITTI's and SemanticKITTI's word for it
+//   i                 the short name some ROS drivers publish
+const std::vector<std::string>& IntensityNames();
+// The place of `name` in IntensityNames(), ignoring ASCII case; -1 when it is none of them.
+int IntensityRank(std::string_view name);
+// The better of `best` (an IntensityRank, -1: none yet) and IntensityRank(name): fold it over a
+// record's field names to find the intensity's rank.
+int BetterIntensityRank(int best, std::string_view name);
+// The note for a file without an intensity field: "<path> has no intensity field (...): its
+// points read intensity 0".
+std::string NoIntensityNote(const std::string& path);
+
+// Assigns roles by name (x, y, z, ring, and as the intensity the columns of the best
+// IntensityRank present; others are skipped) and computes the record sizes. IoError naming the
+// file when x, y or z is missing, a used column appears twice or has a count other than 1, or the
+// record size overflows. `field_noun` is what the format calls a column in messages ("field",
+// "property").
 RecordLayout MakeRecordLayout(const std::string& path, std::vector<Column> columns,
-                              const std::vector<std::string>& intensity_names,
                               const char* field_noun);
+// *note (when `note` is given): NoIntensityNote(path) when the layout has no intensity column,
+// else empty.
+void NoteMissingIntensity(const std::string& path, const RecordLayout& layout, std::string* note);
 
 // Decodes `points` packed little-endian records from the `size` bytes at `data`. IoError naming
 // the file when fewer bytes are there than the points need (the message gives both counts), when

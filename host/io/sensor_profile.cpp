@@ -2,11 +2,13 @@
 // sensors/README.md), validating every line strictly.
 #include "host/io/sensor_profile.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -14,6 +16,7 @@
 
 #include "host/io/file_bytes.h"
 #include "host/io/io_error.h"
+#include "host/suggest.h"
 #include "reference_cpu/params.h"
 
 namespace lpir {
@@ -60,6 +63,80 @@ bool IsNumberStart(const std::string& t) {
   return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
 }
 
+// Token `t` of `key` as a float, the whole token a finite number; std::invalid_argument with the
+// problem otherwise.
+float ParseFloat(const std::string& key, const std::string& t) {
+  errno = 0;
+  char* end = nullptr;
+  const float v = std::strtof(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v))
+    throw std::invalid_argument(key + ": '" + t + "' is not a finite number");
+  return v;
+}
+
+// Token `t` of `key` as a whole number of at most 9 digits; std::invalid_argument otherwise.
+unsigned ParseUnsigned(const std::string& key, const std::string& t) {
+  if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos)
+    throw std::invalid_argument(key + ": '" + t + "' is not a whole number");
+  return static_cast<unsigned>(std::stoul(t));
+}
+
+// The one-number keys a setting may change (ApplySettings): those that tune the segmentation of
+// a sensor already described, not its geometry (beams, width, elevation_deg).
+const char* const kSettableKeys[] = {"sensor_height", "min_range",        "max_range", "k_xz",
+                                     "k_yz",          "ring_zero_is_top", "max_points"};
+
+// Sets the one-value key `key` of `p` (any key but name, the lists and param) from its token
+// `v`, checking it as the reader does; std::invalid_argument with the problem.
+void SetOneValueKey(SensorProfile& p, const std::string& key, const std::string& v) {
+  auto fail = [](const std::string& problem) { throw std::invalid_argument(problem); };
+  if (key == "beams") {
+    p.beams = ParseUnsigned(key, v);
+    if (p.beams < 1 || p.beams > 4096) fail("beams must be 1..4096");
+  } else if (key == "width") {
+    p.width = ParseUnsigned(key, v);
+    if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
+      fail("width " + v + " must be a positive multiple of 64 (at most 65536)");
+  } else if (key == "max_points") {
+    p.max_points = ParseUnsigned(key, v);
+    if (p.max_points < 1 || p.max_points > 100000000) fail("max_points must be 1..1e8");
+  } else if (key == "ring_zero_is_top") {
+    if (v != "0" && v != "1") fail("ring_zero_is_top must be 0 or 1, got '" + v + "'");
+    p.ring_zero_is_top = v == "1";
+  } else if (key == "sensor_height") {
+    p.sensor_height = ParseFloat(key, v);
+    if (!(p.sensor_height > 0)) fail("sensor_height must be > 0");
+  } else if (key == "min_range") {
+    p.min_range = ParseFloat(key, v);
+    if (p.min_range < 0) fail("min_range must be >= 0");
+  } else if (key == "max_range") {
+    // Bounded so that every valid point's coordinates and corrected height stay inside the
+    // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger
+    // one let a point with z = 1e20 through to an overflowing float -> int64 conversion.
+    p.max_range = ParseFloat(key, v);
+    if (!(p.max_range <= kMaxProfileRange)) fail("max_range must be at most 1000 m");
+  } else if (key == "k_xz" || key == "k_yz") {
+    // A mount tilt of at most 45 degrees: |z_t| <= 3 max_range (eq. 3). k_xz = 1e30 made
+    // z_t overflow the same conversion.
+    const float k = ParseFloat(key, v);
+    if (!(std::fabs(k) <= kMaxProfileTiltSlope))
+      fail(key + " must be within -1..1 (a mount tilt of at most 45 degrees)");
+    (key == "k_xz" ? p.k_xz : p.k_yz) = k;
+  } else if (key == "b_x") {
+    p.b_x = ParseFloat(key, v);
+  } else if (key == "b_y") {
+    p.b_y = ParseFloat(key, v);
+  }
+}
+
+// Parameter `name` = `value` checked against the parameter table (ApplyOverride's rules);
+// std::invalid_argument with the problem.
+void CheckParam(const std::string& name, float value) {
+  Params defaults = DefaultParams();
+  if (!ApplyOverride(defaults, name, value))
+    throw std::invalid_argument("unknown parameter '" + name + "'");
+}
+
 // The reader of one file: throws IoError(path, "line N: ...") on the first problem.
 class Parser {
  public:
@@ -70,18 +147,11 @@ class Parser {
   }
 
   float Float(int line, const std::string& key, const std::string& t) const {
-    errno = 0;
-    char* end = nullptr;
-    float v = std::strtof(t.c_str(), &end);
-    if (t.empty() || end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v))
-      Fail(line, key + ": '" + t + "' is not a finite number");
-    return v;
-  }
-
-  unsigned Unsigned(int line, const std::string& key, const std::string& t) const {
-    if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos)
-      Fail(line, key + ": '" + t + "' is not a whole number");
-    return static_cast<unsigned>(std::stoul(t));
+    try {
+      return ParseFloat(key, t);
+    } catch (const std::invalid_argument& e) {
+      Fail(line, e.what());
+    }
   }
 
   SensorProfile Parse(const std::string& text) {
@@ -132,12 +202,10 @@ class Parser {
         if (values != 2) Fail(line, "param expects a name and a value: param NAME VALUE");
         const std::string& name = tok[1];
         float v = Float(line, "param " + name, tok[2]);
-        Params defaults = DefaultParams();
         try {
-          if (!ApplyOverride(defaults, name, v))
-            Fail(line, "param: unknown parameter '" + name + "'");
+          CheckParam(name, v);
         } catch (const std::invalid_argument& e) {
-          Fail(line, e.what());
+          Fail(line, std::string("param: ") + e.what());
         }
         auto it = params_seen.find(name);
         if (it != params_seen.end())
@@ -152,42 +220,12 @@ class Parser {
       const std::string& v = tok[1];
       if (key == "name") {
         p.name = v;
-      } else if (key == "beams") {
-        p.beams = Unsigned(line, key, v);
-        if (p.beams < 1 || p.beams > 4096) Fail(line, "beams must be 1..4096");
-      } else if (key == "width") {
-        p.width = Unsigned(line, key, v);
-        if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
-          Fail(line, "width " + v + " must be a positive multiple of 64 (at most 65536)");
-      } else if (key == "max_points") {
-        p.max_points = Unsigned(line, key, v);
-        if (p.max_points < 1 || p.max_points > 100000000) Fail(line, "max_points must be 1..1e8");
-      } else if (key == "ring_zero_is_top") {
-        if (v != "0" && v != "1") Fail(line, "ring_zero_is_top must be 0 or 1, got '" + v + "'");
-        p.ring_zero_is_top = v == "1";
-      } else if (key == "sensor_height") {
-        p.sensor_height = Float(line, key, v);
-        if (!(p.sensor_height > 0)) Fail(line, "sensor_height must be > 0");
-      } else if (key == "min_range") {
-        p.min_range = Float(line, key, v);
-        if (p.min_range < 0) Fail(line, "min_range must be >= 0");
-      } else if (key == "max_range") {
-        // Bounded so that every valid point's coordinates and corrected height stay inside the
-        // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger
-        // one let a point with z = 1e20 through to an overflowing float -> int64 conversion.
-        p.max_range = Float(line, key, v);
-        if (!(p.max_range <= kMaxProfileRange)) Fail(line, "max_range must be at most 1000 m");
-      } else if (key == "k_xz" || key == "k_yz") {
-        // A mount tilt of at most 45 degrees: |z_t| <= 3 max_range (eq. 3). k_xz = 1e30 made
-        // z_t overflow the same conversion.
-        const float k = Float(line, key, v);
-        if (!(std::fabs(k) <= kMaxProfileTiltSlope))
-          Fail(line, key + " must be within -1..1 (a mount tilt of at most 45 degrees)");
-        (key == "k_xz" ? p.k_xz : p.k_yz) = k;
-      } else if (key == "b_x") {
-        p.b_x = Float(line, key, v);
-      } else if (key == "b_y") {
-        p.b_y = Float(line, key, v);
+        continue;
+      }
+      try {
+        SetOneValueKey(p, key, v);
+      } catch (const std::invalid_argument& e) {
+        Fail(line, e.what());
       }
     }
     for (const char* k : kRequired) {
@@ -249,11 +287,60 @@ SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::stri
     if (IsFile(candidate)) return LoadFile(candidate);
   }
   if (IsFile(name_or_path)) return LoadFile(name_or_path);
+  const std::vector<std::string> names = KnownSensorProfiles(sensors_dir);
+  // a path (it names a folder) to a file that is not there: a missing file, not a bad name
+  if (name_or_path.find('/') != std::string::npos)
+    throw IoError(name_or_path, "no such sensor profile file", ENOENT);
   std::string known;
-  for (const std::string& k : KnownSensorProfiles(sensors_dir))
-    known += std::string(known.empty() ? "" : ", ") + k;
-  throw std::invalid_argument("unknown sensor profile '" + name_or_path + "'; known: " +
-                              (known.empty() ? "(none in " + sensors_dir + ")" : known));
+  for (const std::string& k : names) known += std::string(known.empty() ? "" : ", ") + k;
+  throw std::invalid_argument(
+      "unknown sensor profile '" + name_or_path + "'" + DidYouMean(name_or_path, names) +
+      "; known: " + (known.empty() ? "(none in " + sensors_dir + ")" : known));
+}
+
+std::vector<std::string> SettingNames() {
+  std::vector<std::string> names(std::begin(kSettableKeys), std::end(kSettableKeys));
+  for (const std::string& name : ParamNames()) names.push_back(name);
+  return names;
+}
+
+void ApplySettings(SensorProfile& profile,
+                   const std::vector<std::pair<std::string, std::string>>& settings) {
+  std::string all;  // "a=1, b=2", for a problem of the profile as a whole
+  for (const auto& [name, value] : settings) {
+    const std::string setting = name + "=" + value;
+    all += (all.empty() ? "" : ", ") + setting;
+    const bool key = std::find(std::begin(kSettableKeys), std::end(kSettableKeys), name) !=
+                     std::end(kSettableKeys);
+    const std::vector<std::string> params = ParamNames();
+    try {
+      if (key) {
+        SetOneValueKey(profile, name, value);
+      } else if (std::find(params.begin(), params.end(), name) != params.end()) {
+        const float v = ParseFloat(name, value);
+        CheckParam(name, v);
+        auto same = [&name = name](const auto& o) { return o.first == name; };
+        profile.overrides.erase(
+            std::remove_if(profile.overrides.begin(), profile.overrides.end(), same),
+            profile.overrides.end());
+        profile.overrides.emplace_back(name, v);
+      } else {
+        std::string known;
+        for (const std::string& k : SettingNames()) known += (known.empty() ? "" : ", ") + k;
+        throw std::invalid_argument("no setting '" + name + "'" + DidYouMean(name, SettingNames()) +
+                                    "; known: " + known);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(setting + ": " + e.what());
+    }
+  }
+  try {
+    if (!(profile.max_range > profile.min_range))
+      throw std::invalid_argument("max_range must be larger than min_range");
+    ParamsForSensor(profile);  // the grid's and the parameters' rules over the whole profile
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(all + ": " + e.what());
+  }
 }
 
 std::vector<std::string> KnownSensorProfiles(const std::string& sensors_dir) {

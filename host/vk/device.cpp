@@ -178,8 +178,12 @@ Result<Device> Device::Create(const Instance& instance, const std::string& selec
     }
     if (!chosen && !cpu_drivers.empty()) {
       std::string names;
-      for (const Candidate* c : cpu_drivers)
-        names += (names.empty() ? "" : ", ") + std::string(c->properties.deviceName);
+      // the driver's name without its details ("llvmpipe", not "llvmpipe (LLVM 15.0.6, 256
+      // bits)"): the note stays one line of a 120-column terminal
+      for (const Candidate* c : cpu_drivers) {
+        const std::string name = c->properties.deviceName;
+        names += (names.empty() ? "" : ", ") + name.substr(0, name.find(" ("));
+      }
       const bool alone = cpu_drivers.size() == candidates.size();
       Error e;
       e.result = VK_ERROR_FEATURE_NOT_PRESENT;

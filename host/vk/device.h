@@ -23,7 +23,7 @@ class Device {
   // has no physical device at all. `gpu_only` (only with an empty selector) leaves out
   // VK_PHYSICAL_DEVICE_TYPE_CPU devices; when one of those is all there is to take, the error is
   // Error::cpu_driver_only, one line: "the only Vulkan device is a CPU driver (<name>); --backend
-  // vulkan uses it".
+  // vulkan uses it", <name> without its parenthesised details ("llvmpipe").
   static Result<Device> Create(const Instance& instance, const std::string& selector = "",
                                bool gpu_only = false);
   // One line per physical device: index, name, type, API version, and "usable" or why not.

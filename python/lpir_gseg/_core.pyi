@@ -1,6 +1,18 @@
 """Type stubs of lpir_gseg._core (python/src/*.cpp); the docstrings there say the rest."""
 import os
-from typing import Any, Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import (
+    Any,
+    Dict,
+    Iterable,
+    List,
+    Literal,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+    Union,
+    overload,
+)
 
 import numpy as np
 import numpy.typing as npt
@@ -26,6 +38,7 @@ class Segmenter:
         frames_in_flight: int = 2,
         batch: int = 1,
         validation: bool = False,
+        params: Optional[Mapping[str, Union[float, int, str]]] = None,
     ) -> None: ...
     @overload
     def segment(
@@ -85,6 +98,8 @@ def evaluate(
     ontology: Literal["semantickitti", "rellis3d"] = "semantickitti",
     *,
     points: Union[npt.ArrayLike, Sequence[npt.ArrayLike], None] = None,
+    by_class: bool = False,
+    by_range: bool = False,
 ) -> Dict[str, Any]: ...
 def simulate(
     sensor: _Path,
@@ -102,13 +117,21 @@ def sensors_dir() -> str: ...
 def devices() -> List[str]: ...
 def is_cloud_file(path: _Path) -> bool: ...
 def is_drive_file(path: _Path) -> bool: ...
+def _list_inputs(
+    paths: Sequence[_Path], recursive: bool = False
+) -> Tuple[List[Tuple[str, str, bool]], List[Tuple[str, str]]]: ...
 def _set_sensors_dir(path: str) -> None: ...
+def _output_paths(
+    inputs: Sequence[Tuple[str, str, bool]], out_dir: _Path, extension: str
+) -> List[str]: ...
 
 class _Drive:
     def __init__(self, path: _Path, read_threads: int = 0) -> None: ...
     @property
     def path(self) -> str: ...
     def topics(self) -> List[Tuple[str, str, str, int]]: ...
+    def listing_damage(self) -> List[str]: ...
+    def notes(self) -> List[str]: ...
     def chunk_count(self) -> int: ...
     def chunks_indexed(self) -> bool: ...
     def select(self, topic: str, first_chunk: int = 0, last_chunk: int = 0) -> None: ...

@@ -1,5 +1,7 @@
-// lpir_gseg._core._Drive: a recorded drive (host/drive/drive.h: .mcap, .db3, .bag) read message
-// by message, for lpir_gseg.read_drive and the fleet. Reading and decoding release the GIL.
+// lpir_gseg._core._Drive: a recorded drive (host/drive/drive.h: .mcap, .db3, a ROS 2 bag folder,
+// .bag, .bag.active) read message by message, for lpir_gseg.read_drive and the fleet; and the
+// inputs rule (host/drive/inputs.h) the fleet shares with the command line. Reading and
+// decoding release the GIL.
 #include "host/drive/drive.h"
 
 #include <pybind11/pybind11.h>
@@ -11,6 +13,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "host/drive/inputs.h"
 #include "host/drive/pointcloud2.h"
 #include "host/io/io_error.h"
 
@@ -37,6 +40,16 @@ class PyDrive {
     for (const DriveTopic& t : topics)
       out.push_back(py::make_tuple(t.name, t.type, t.encoding, t.messages));
     return out;
+  }
+
+  // DriveReader::ListingDamage and Notes: lists of sentences naming the file.
+  std::vector<std::string> ListingDamage() {
+    py::gil_scoped_release nogil;
+    return reader_->ListingDamage();
+  }
+  std::vector<std::string> Notes() {
+    py::gil_scoped_release nogil;
+    return reader_->Notes();
   }
 
   uint64_t ChunkCount() {
@@ -109,6 +122,12 @@ void BindDrive(py::module_& m) {
       .def_property_readonly("path", &PyDrive::path)
       .def("topics", &PyDrive::Topics,
            "topics()\n--\n\n(name, type, encoding, messages) for every topic of the drive.")
+      .def("listing_damage", &PyDrive::ListingDamage,
+           "listing_damage()\n--\n\nThe damaged parts topics() met, each naming the file (empty "
+           "when it read the drive whole or from its index).")
+      .def("notes", &PyDrive::Notes,
+           "notes()\n--\n\nHow the drive is read where that is not the plain way (an unindexed "
+           "ROS 1 bag scanned, a bag folder's files taken by their numbers).")
       .def("chunk_count", &PyDrive::ChunkCount,
            "chunk_count()\n--\n\nThe drive's chunks, numbered from 1 (0 for a .db3).")
       .def("chunks_indexed", &PyDrive::ChunksIndexed,
@@ -125,7 +144,31 @@ void BindDrive(py::module_& m) {
            "or ('end',).");
   m.def(
       "is_drive_file", [](py::handle path) { return IsDriveFile(PathArg(path)); }, py::arg("path"),
-      "is_drive_file(path)\n--\n\nTrue for the recorded drives' extensions: .mcap, .db3, .bag.");
+      "is_drive_file(path)\n--\n\nTrue for the recorded drives' file names: .mcap, .db3, .bag, "
+      ".bag.active.");
+  m.def(
+      "_list_inputs",
+      [](const std::vector<py::handle>& given, bool recursive) {
+        std::vector<std::string> paths;
+        for (py::handle p : given) paths.push_back(PathArg(p));
+        std::vector<SkippedInput> skipped;
+        std::vector<RunInput> inputs;
+        {
+          py::gil_scoped_release nogil;
+          inputs = ListInputs(paths, recursive, &skipped);
+        }
+        std::vector<py::tuple> listed, passed;
+        for (const RunInput& in : inputs)
+          listed.push_back(py::make_tuple(in.path, in.folder, in.drive));
+        for (const SkippedInput& s : skipped) passed.push_back(py::make_tuple(s.path, s.why));
+        return py::make_tuple(listed, passed);
+      },
+      py::arg("paths"), py::arg("recursive") = false,
+      "_list_inputs(paths, recursive=False)\n--\n\n([(path, folder, is_drive)], [(skipped path, "
+      "why)]): the inputs the paths name, as `lpir-gseg segment` lists them (host/drive/inputs.h:"
+      " a bag folder one drive, another folder its clouds and drives in path order, with "
+      "recursive its subfolders' too; folder: the folder given it was found in, \"\" for one "
+      "given itself; ValueError for a folder without any), ready for _output_paths.");
 }
 
 }  // namespace lpir::python

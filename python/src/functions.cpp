@@ -8,16 +8,21 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "apps/sim/scene.h"
 #include "arrays.h"
 #include "bindings.h"
+#include "host/eval/by_class.h"
+#include "host/eval/by_range.h"
 #include "host/eval/metrics.h"
 #include "host/eval/ontology.h"
 #include "host/io/cloud_file.h"
 #include "host/io/label_file.h"
+#include "host/io/output_paths.h"
 #include "host/io/sensor_profile.h"
 #include "host/vk/device.h"
 #include "host/vk/instance.h"
@@ -31,10 +36,14 @@ py::object ReadCloudPy(py::handle path_arg, py::handle nuscenes, bool with_ring)
   if (!nuscenes.is_none())
     options.bin_layout = nuscenes.cast<bool>() ? BinLayout::kNuScenes5 : BinLayout::kKitti4;
   Cloud cloud;
+  std::string note;
   {
     py::gil_scoped_release nogil;
-    cloud = ReadCloud(path, options);
+    cloud = ReadCloud(path, options, &note);
   }
+  // stacklevel 1: the warning names the caller's line (this function has no Python frame).
+  if (!note.empty() && PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0)
+    throw py::error_already_set();  // warnings turned into errors
   py::object ring = py::none();
   if (with_ring && !cloud.ring.empty()) ring = VectorArray(std::vector<int32_t>(cloud.ring));
   py::array points = CloudArray(std::move(cloud));
@@ -67,18 +76,60 @@ Labels ToPrediction(py::handle pred, const std::string& name, size_t expected) {
   return labels;
 }
 
-// Column 2 (z) of (N, >= 3) points.
-std::vector<float> ZOf(py::handle points, const std::string& name, size_t expected) {
+// x, y, z of (N, >= 3) points (intensity 0): protocol pw reads each point's z, by_range its x
+// and y.
+Cloud PointsOf(py::handle points, const std::string& name, size_t expected) {
   py::array a = py::array::ensure(points);
   if (!a || a.ndim() != 2 || a.shape(1) < 3 || size_t(a.shape(0)) != expected ||
       (a.dtype().kind() != 'f' && a.dtype().kind() != 'i' && a.dtype().kind() != 'u'))
     throw py::value_error(name + " must be an (" + std::to_string(expected) +
-                          ", 3 or 4) array of numbers: protocol pw reads each point's z");
+                          ", 3 or 4) array of numbers: protocol pw reads each point's z, "
+                          "by_range its x and y");
   auto f = py::array_t<float, py::array::forcecast>::ensure(a);
   auto view = f.unchecked<2>();
-  std::vector<float> z(expected);
-  for (size_t i = 0; i < expected; ++i) z[i] = view(py::ssize_t(i), 2);
-  return z;
+  Cloud cloud;
+  cloud.xyzi.reserve(4 * expected);
+  for (py::ssize_t i = 0; i < py::ssize_t(expected); ++i)
+    cloud.Push(view(i, 0), view(i, 1), view(i, 2), 0.0f);
+  return cloud;
+}
+
+// The counts as the CLI's JSON gives them: tp, fp, fn, tn, ignored.
+void AddCounts(const Counts& c, py::dict& d) {
+  d["tp"] = c.tp, d["fp"] = c.fp, d["fn"] = c.fn, d["tn"] = c.tn, d["ignored"] = c.ignored;
+}
+
+// evaluate's by_class: a dict per ground-truth class, ascending, as `evaluate --by-class --json`
+// gives it for the one protocol.
+py::list ByClassList(const ClassBreakdown& b, Ontology ontology) {
+  py::list out;
+  for (const auto& [cls, t] : b.classes()) {
+    py::dict d;
+    d["class"] = cls, d["name"] = ClassName(ontology, cls), d["points"] = t.points;
+    d["predicted_ground"] = t.predicted_ground;
+    d["share"] = double(t.predicted_ground) / double(t.points);
+    AddCounts(t.counts[0], d);
+    out.append(d);
+  }
+  return out;
+}
+
+// evaluate's by_range: a dict per band of horizontal range, as `evaluate --by-range --json` gives
+// it for the one protocol ("to" None for the last band).
+py::list ByRangeList(const RangeBreakdown& b) {
+  py::list out;
+  for (size_t band = 0; band < kRangeBands; ++band) {
+    const RangeTally& t = b.bands()[band];
+    py::dict d;
+    d["band"] = RangeBandName(band);
+    d["from"] = band ? double(kRangeBandEdges[band - 1]) : 0.0;
+    d["to"] = band < kRangeBandEdges.size() ? py::object(py::float_(kRangeBandEdges[band]))
+                                            : py::object(py::none());
+    d["points"] = t.points;
+    AddCounts(t.counts[0], d);
+    out.append(d);
+  }
+  return out;
 }
 
 py::dict ScoresDict(const Scores& s) {
@@ -96,7 +147,8 @@ bool IsSequence(py::handle pred) {
 }
 
 py::dict EvaluatePy(py::handle pred, py::handle gt, py::handle protocol_arg,
-                    const std::string& ontology_name, py::handle points) {
+                    const std::string& ontology_name, py::handle points, bool by_class,
+                    bool by_range) {
   const Ontology ontology = ParseOntology(ontology_name);
   const Protocol protocol = protocol_arg.is_none()
                                 ? ProtocolsOf(ontology).front()
@@ -121,26 +173,37 @@ py::dict EvaluatePy(py::handle pred, py::handle gt, py::handle protocol_arg,
   }
   if (protocol == Protocol::kPW && clouds.empty())
     throw py::value_error("protocol pw needs each point's z: give points=");
+  if (by_range && clouds.empty())
+    throw py::value_error("by_range needs each point's x and y: give points=");
 
   SequenceScores totals(protocol);
+  std::optional<ClassBreakdown> classes;
+  std::optional<RangeBreakdown> ranges;
+  if (by_class) classes.emplace(std::vector<Protocol>{protocol});
+  if (by_range) ranges.emplace(std::vector<Protocol>{protocol});
   py::list per_frame;
   for (size_t f = 0; f < preds.size(); ++f) {
     const std::string at = sequence ? "[" + std::to_string(f) + "]" : "";
     const std::vector<uint32_t> truth = ToUint32(gts[f], "gt_labels" + at, 0, false);
     const Labels predicted = ToPrediction(preds[f], "pred" + at, truth.size());
+    Cloud cloud;
     std::vector<float> z;
-    if (!clouds.empty()) z = ZOf(clouds[f], "points" + at, truth.size());
-    const Scores s = totals.Add(CountFrame(protocol, predicted, truth, z.empty() ? nullptr : &z));
+    if (!clouds.empty()) cloud = PointsOf(clouds[f], "points" + at, truth.size());
+    for (size_t i = 0; i < cloud.size(); ++i) z.push_back(cloud.z(i));
+    const std::vector<float>* zp = clouds.empty() ? nullptr : &z;
+    const Scores s = totals.Add(CountFrame(protocol, predicted, truth, zp));
     per_frame.append(ScoresDict(s));
+    if (classes) classes->Add(predicted, truth, zp);
+    if (ranges) ranges->Add(cloud, predicted, truth);
   }
   py::dict result = ScoresDict(totals.Total());
-  const Counts& c = totals.summed();
-  result["tp"] = c.tp, result["fp"] = c.fp, result["fn"] = c.fn, result["tn"] = c.tn;
-  result["ignored"] = c.ignored;
+  AddCounts(totals.summed(), result);
   result["frames"] = totals.frames();
   result["protocol"] = ProtocolName(protocol);
   result["ontology"] = OntologyName(ontology);
   if (sequence) result["per_frame"] = per_frame;
+  if (classes) result["by_class"] = ByClassList(*classes, ontology);
+  if (ranges) result["by_range"] = ByRangeList(*ranges);
   return result;
 }
 
@@ -198,7 +261,9 @@ void BindFunctions(py::module_& m) {
 Reads a scan in any format the command line reads.
 
 Formats by extension: .bin (KITTI's 4 float32 a point; files named *.pcd.bin as nuScenes' 5),
-.pcd (ASCII or binary), .ply (ASCII or binary little-endian).
+.pcd (ASCII, binary or binary_compressed), .ply (ASCII or binary little-endian). A .pcd or .ply
+field named intensity, scalar_intensity, reflectivity, remission or i (in any case; the first of
+these when several) is the intensity; a file with none reads intensity 0 and warns (UserWarning).
 
 Args:
     path: the file (str or os.PathLike).
@@ -237,10 +302,11 @@ Writes labels as a .label file, one little-endian uint32 a point: the bytes
 Args:
     path: the file to write.
     labels: (N,) integers or bools in [0, 2**32).)doc");
-  m.def("evaluate", &EvaluatePy, py::arg("pred"), py::arg("gt_labels"),
-        py::arg("protocol") = py::none(), py::arg("ontology") = "semantickitti", py::kw_only(),
-        py::arg("points") = py::none(),
-        R"doc(evaluate(pred, gt_labels, protocol=None, ontology="semantickitti", *, points=None)
+  m.def(
+      "evaluate", &EvaluatePy, py::arg("pred"), py::arg("gt_labels"),
+      py::arg("protocol") = py::none(), py::arg("ontology") = "semantickitti", py::kw_only(),
+      py::arg("points") = py::none(), py::arg("by_class") = false, py::arg("by_range") = false,
+      R"doc(evaluate(pred, gt_labels, protocol=None, ontology="semantickitti", *, points=None, by_class=False, by_range=False)
 --
 
 Scores predictions against ground-truth labels, as `lpir-gseg evaluate` does.
@@ -251,16 +317,24 @@ Args:
     protocol: "dg" (DipG-Seg's evaluator, the default for semantickitti), "pp", "pw", "gg", or
         "rellis" (the only one, and the default, for rellis3d). See host/eval/metrics.h.
     ontology: "semantickitti" or "rellis3d".
-    points: (N, 3 or 4) points (or a list), needed by "pw", which reads each point's z.
+    points: (N, 3 or 4) points (or a list), needed by "pw", which reads each point's z, and by
+        by_range, which reads x and y.
+    by_class: also the outcome per ground-truth class.
+    by_range: also the outcome per band of horizontal range sqrt(x^2 + y^2).
 
 Returns:
     A dict: precision, recall, f1, iou (fractions in [0, 1]; a ratio over 0 is 0), the summed
     counts tp, fp, fn, tn, ignored, frames, protocol and ontology; for a list also per_frame, the
     scores of each frame. dg, gg and rellis score the summed counts, pp and pw average the
-    per-frame scores.
+    per-frame scores. With by_class, "by_class": a dict per class present, ascending (class,
+    name, points, predicted_ground, share, tp, fp, fn, tn, ignored); with by_range, "by_range":
+    a dict per band 0-5, 5-10, 10-20, 20-30, 30-40, 40-60, 60+ m (band, from, to (None for the
+    last), points, tp, fp, fn, tn, ignored): the figures of `lpir-gseg evaluate --by-class
+    --by-range --json`, point counts summed over the frames.
 
 Raises:
-    ValueError: an unknown protocol or ontology, or lengths that do not match.)doc");
+    ValueError: an unknown protocol or ontology, lengths that do not match, or "pw" or by_range
+        without points.)doc");
   m.def(
       "simulate", &SimulatePy, py::arg("sensor"), py::arg("seed"), py::kw_only(),
       py::arg("pitch") = 0.0, py::arg("roll") = 0.0, py::arg("scene") = "urban",
@@ -296,6 +370,29 @@ Returns:
 The Vulkan devices of this machine, one line each as `lpir-gseg devices` prints
 them: index, name, type, API version, and "usable" or why not. Empty when there is no Vulkan
 driver at all.)doc");
+  m.def(
+      "_output_paths",
+      [](const std::vector<std::tuple<std::string, std::string, bool>>& inputs, py::handle out_dir,
+         const std::string& extension) {
+        std::vector<RunInput> runs;
+        for (const auto& [path, folder, drive] : inputs) runs.push_back({path, folder, drive});
+        return OutputPaths(runs, PathArg(out_dir), extension);
+      },
+      py::arg("inputs"), py::arg("out_dir"), py::arg("extension"),
+      R"doc(_output_paths(inputs, out_dir, extension)
+--
+
+Where each input of a run writes (host/io/output_paths.h), the rule `lpir-gseg segment` follows:
+out_dir joined with the input's path below the folder it was listed from (its file name when
+given itself), the extension replaced by `extension` (a drive's: its own folder).
+
+Args:
+    inputs: (path, folder, drive) per input: folder "" when the input was given itself; drive
+        True for a recorded drive.
+
+Raises:
+    ValueError: two inputs would write one output (both named), an input listed twice, or an
+        output that is an input.)doc");
   m.def(
       "is_cloud_file", [](py::handle path) { return IsCloudFile(PathArg(path)); }, py::arg("path"),
       "is_cloud_file(path)\n--\n\nTrue for the extensions read_cloud reads (.bin, .pcd, .ply): how "

@@ -1,8 +1,11 @@
 // lpir_gseg._core: the library for Python. IoError (host/io/io_error.h, whose message names the
-// file) and filesystem errors become OSError; std::invalid_argument and std::length_error become
-// ValueError (pybind11's own mapping), other library errors RuntimeError.
+// file) and filesystem errors become OSError, or the subclass Python gives their errno
+// (FileNotFoundError for a missing file, IsADirectoryError, PermissionError); std::invalid_argument
+// and std::length_error become ValueError (pybind11's own mapping), other library errors
+// RuntimeError.
 #include <pybind11/pybind11.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -13,6 +16,24 @@
 
 namespace lpir::python {
 namespace {
+
+// The OSError subclass Python raises for `error_number` (an errno), OSError itself for 0 and
+// the rest.
+PyObject* OsErrorFor(int error_number) {
+  switch (error_number) {
+    case ENOENT:
+      return PyExc_FileNotFoundError;
+    case EISDIR:
+      return PyExc_IsADirectoryError;
+    case ENOTDIR:
+      return PyExc_NotADirectoryError;
+    case EACCES:
+    case EPERM:
+      return PyExc_PermissionError;
+    default:
+      return PyExc_OSError;
+  }
+}
 
 std::mutex sensors_dir_mutex;
 std::string sensors_dir;  // guarded by sensors_dir_mutex
@@ -43,9 +64,9 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (error) std::rethrow_exception(error);
     } catch (const lpir::IoError& e) {
-      PyErr_SetString(PyExc_OSError, e.what());
+      PyErr_SetString(OsErrorFor(e.error_number()), e.what());
     } catch (const std::filesystem::filesystem_error& e) {
-      PyErr_SetString(PyExc_OSError, e.what());
+      PyErr_SetString(OsErrorFor(e.code().value()), e.what());
     }
   });
   m.def("_set_sensors_dir", &SetSensorsDir, py::arg("path"),

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "arrays.h"
@@ -44,10 +45,42 @@ struct Output {
   }
 };
 
+// params= as ApplySettings takes them: (name, value as text), in the mapping's order. A whole
+// number (int, numpy integer) is its digits, any other real number Python's repr of it as a
+// float, a str as it is; bools and other types are a TypeError naming the key.
+std::vector<std::pair<std::string, std::string>> SettingsArg(py::handle params) {
+  std::vector<std::pair<std::string, std::string>> settings;
+  if (params.is_none()) return settings;
+  if (!py::isinstance<py::dict>(params) && !py::hasattr(params, "items"))
+    throw py::type_error("params must be a dict of setting names and values, or None");
+  for (py::handle item : params.attr("items")()) {
+    const py::tuple pair = py::reinterpret_borrow<py::tuple>(item);
+    if (!py::isinstance<py::str>(pair[0]))
+      throw py::type_error("params: the names must be str, not " +
+                           py::repr(pair[0]).cast<std::string>());
+    const std::string name = pair[0].cast<std::string>();
+    const py::handle value = pair[1];
+    std::string text;
+    if (py::isinstance<py::str>(value)) {
+      text = value.cast<std::string>();
+    } else if (!py::isinstance<py::bool_>(value) && PyIndex_Check(value.ptr())) {
+      text = py::str(py::int_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
+    } else if (!py::isinstance<py::bool_>(value) && PyNumber_Check(value.ptr())) {
+      text = py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
+    } else {
+      throw py::type_error("params['" + name + "'] must be a number, not " +
+                           py::repr(value).cast<std::string>());
+    }
+    settings.emplace_back(name, text);
+  }
+  return settings;
+}
+
 class PySegmenter {
  public:
   PySegmenter(py::handle sensor, const std::string& backend, py::handle device,
-              py::handle max_points, uint32_t frames_in_flight, uint32_t batch, bool validation) {
+              py::handle max_points, uint32_t frames_in_flight, uint32_t batch, bool validation,
+              py::handle params) {
     SegmenterOptions options;
     options.backend = ParseBackend(backend);
     if (!device.is_none()) {
@@ -73,8 +106,15 @@ class PySegmenter {
     options.validation = validation;
     const std::string name_or_path = PathArg(sensor);
     const std::string sensors_dir = SensorsDir();
+    const std::vector<std::pair<std::string, std::string>> settings = SettingsArg(params);
     py::gil_scoped_release nogil;  // a Vulkan set-up compiles pipelines: seconds on lavapipe
-    segmenter_ = std::make_unique<Segmenter>(LoadSensorProfile(name_or_path, sensors_dir), options);
+    SensorProfile profile = LoadSensorProfile(name_or_path, sensors_dir);
+    try {
+      ApplySettings(profile, settings);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("params: ") + e.what());
+    }
+    segmenter_ = std::make_unique<Segmenter>(profile, options);
   }
 
   py::object Segment(py::handle points, py::handle intensity, py::handle ring, bool why) {
@@ -189,7 +229,7 @@ class PySegmenter {
 };
 
 const char kSegmenterDoc[] =
-    R"doc(Segmenter(sensor="hdl64e", backend="auto", device=None, max_points=None, frames_in_flight=2, batch=1, validation=False)
+    R"doc(Segmenter(sensor="hdl64e", backend="auto", device=None, max_points=None, frames_in_flight=2, batch=1, validation=False, params=None)
 
 Labels LiDAR scans ground or non-ground, one sensor's scans.
 
@@ -207,9 +247,17 @@ Args:
     frames_in_flight: frames segment_batch keeps on the device at once.
     batch: Vulkan: frames recorded in one command buffer by segment_batch (offline relabelling).
     validation: the Vulkan validation layer (messages on stderr).
+    params: settings changed for this segmenter, as `lpir-gseg segment --set NAME=VALUE` changes
+        them: {"sensor_height": 1.9, "h_athr": 0.15}. A name is one of the profile's keys
+        sensor_height, min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, or a
+        parameter of reference_cpu/params.cpp; each value is checked as the profile line
+        `NAME VALUE` or `param NAME VALUE` would be.
 
 Raises:
-    ValueError: an unknown sensor name, backend or bad option.
+    ValueError: an unknown sensor name, backend or bad option; in params an unknown name (the
+        message names the nearest known one) or a value it does not take.
+    TypeError: params not a dict, or a value that is not a number.
+    FileNotFoundError: a profile path (holding a '/') to a file that does not exist.
     OSError: a malformed profile file (the message names the file and line).
     RuntimeError: backend="vulkan" (or a device named) and no device could be set up.
 
@@ -265,12 +313,14 @@ Raises:
 void BindSegmenter(py::module_& m) {
   py::class_<PySegmenter>(m, "Segmenter", kSegmenterDoc)
       .def(py::init<py::handle, const std::string&, py::handle, py::handle, uint32_t, uint32_t,
-                    bool>(),
+                    bool, py::handle>(),
            "__init__(self, sensor=\"hdl64e\", backend=\"auto\", device=None, max_points=None, "
-           "frames_in_flight=2, batch=1, validation=False)\n--\n\nSee the class's docstring.",
+           "frames_in_flight=2, batch=1, validation=False, params=None)\n--\n\nSee the class's "
+           "docstring.",
            py::arg("sensor") = "hdl64e", py::arg("backend") = "auto",
            py::arg("device") = py::none(), py::arg("max_points") = py::none(),
-           py::arg("frames_in_flight") = 2, py::arg("batch") = 1, py::arg("validation") = false)
+           py::arg("frames_in_flight") = 2, py::arg("batch") = 1, py::arg("validation") = false,
+           py::arg("params") = py::none())
       .def("segment", &PySegmenter::Segment, kSegmentDoc, py::arg("points"), py::kw_only(),
            py::arg("intensity") = py::none(), py::arg("ring") = py::none(), py::arg("why") = false)
       .def("segment_batch", &PySegmenter::SegmentBatch, kSegmentBatchDoc, py::arg("clouds"),

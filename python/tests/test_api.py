@@ -2,11 +2,13 @@
 name the argument or the file, the simulator, the scores, the shipped profiles, the stubs."""
 import ast
 import inspect
+import json
 import os
 import subprocess
 import sys
 import threading
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -176,6 +178,8 @@ def test_bad_segmenter_arguments(tmp_path):
         lpir_gseg.Segmenter("hdl64e", max_points=0)
     with pytest.raises(TypeError):
         lpir_gseg.Segmenter("hdl64e", max_points=1.5)
+    with pytest.raises(FileNotFoundError, match="absent.txt: no such sensor profile file"):
+        lpir_gseg.Segmenter(tmp_path / "absent.txt")
     profile = tmp_path / "broken.txt"
     profile.write_text("name broken\nbeams sixty-four\n")
     with pytest.raises(OSError, match="broken.txt"):
@@ -184,10 +188,58 @@ def test_bad_segmenter_arguments(tmp_path):
         lpir_gseg.Segmenter("hdl64e", backend="vulkan", device="no such device")
 
 
+def test_params_change_the_profile_as_the_clis_set_does(cli, scan, tmp_path):
+    points, _ = scan
+    plain = lpir_gseg.Segmenter("hdl64e", backend="cpu").segment(points)
+    changed = lpir_gseg.Segmenter("hdl64e", backend="cpu",
+                                  params={"sensor_height": 1.9, "max_range": 40,
+                                          "min_component": np.int64(200), "h_athr": "0.15"})
+    labels = changed.segment(points)
+    assert (labels != plain).any()
+    assert not labels[np.hypot(points[:, 0], points[:, 1]) > 40].any()  # out of range: non-ground
+    # the labels `segment --set` writes for the same settings
+    path = tmp_path / "s.bin"
+    np.asarray(points, "<f4").tofile(path)
+    result = run_cli(cli, "segment", path, "-s", "hdl64e", "-b", "cpu", "-q", "-o", tmp_path,
+                     "--set", "sensor_height=1.9", "--set", "max_range=40", "--set",
+                     "min_component=200", "--set", "h_athr=0.15")
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "s.label").read_bytes() == labels.astype("<u4").tobytes()
+    assert lpir_gseg.Segmenter("hdl64e", backend="cpu", params={}).segment(points).tobytes() == \
+        plain.tobytes()
+
+
+def test_bad_params_name_the_setting():
+    with pytest.raises(ValueError, match=r"params: sensr_height=1.9: no setting 'sensr_height' "
+                                         r"\(did you mean sensor_height\?\)"):
+        lpir_gseg.Segmenter("hdl64e", params={"sensr_height": 1.9})
+    with pytest.raises(ValueError, match="params: sensor_height=-1.0: sensor_height must be > 0"):
+        lpir_gseg.Segmenter("hdl64e", params={"sensor_height": -1.0})
+    with pytest.raises(ValueError, match="min_component=2.5: parameter min_component expects a "
+                                         "whole number"):
+        lpir_gseg.Segmenter("hdl64e", params={"min_component": 2.5})
+    with pytest.raises(ValueError, match="max_range must be larger than min_range"):
+        lpir_gseg.Segmenter("hdl64e", params={"max_range": 1})
+    with pytest.raises(ValueError, match="h_athr=nan: h_athr: 'nan' is not a finite number"):
+        lpir_gseg.Segmenter("hdl64e", params={"h_athr": float("nan")})
+    with pytest.raises(TypeError, match=r"params\['h_athr'\] must be a number"):
+        lpir_gseg.Segmenter("hdl64e", params={"h_athr": True})
+    with pytest.raises(TypeError, match="params must be a dict"):
+        lpir_gseg.Segmenter("hdl64e", params=[("h_athr", 0.1)])
+    with pytest.raises(ValueError, match="unknown sensor profile 'hdl-64e' "
+                                         r"\(did you mean hdl64e\?\)"):
+        lpir_gseg.Segmenter("hdl-64e")
+
+
 def test_read_cloud_errors_name_the_file(tmp_path):
-    missing = tmp_path / "missing.bin"
-    with pytest.raises(OSError, match=str(missing)):
-        lpir_gseg.read_cloud(missing)
+    for name in ("missing.bin", "missing.pcd", "missing.ply", "missing.pcd.bin"):
+        with pytest.raises(FileNotFoundError, match=str(tmp_path / name)):
+            lpir_gseg.read_cloud(tmp_path / name)
+    with pytest.raises(FileNotFoundError, match="missing.label"):
+        lpir_gseg.read_labels(tmp_path / "missing.label")
+    (tmp_path / "folder.bin").mkdir()
+    with pytest.raises(IsADirectoryError, match="folder.bin: is a folder"):
+        lpir_gseg.read_cloud(tmp_path / "folder.bin")
     truncated = tmp_path / "truncated.bin"
     truncated.write_bytes(b"\0" * 18)
     with pytest.raises(OSError, match="truncated.bin: .*size"):
@@ -221,6 +273,41 @@ def test_read_cloud_formats_round_trip(scan, tmp_path):
     np.testing.assert_array_equal(read, points)
     assert ring.dtype == np.int32 and (ring == 3).all()
     assert lpir_gseg.read_cloud(path, ring=True)[1] is None
+
+
+def test_read_cloud_finds_the_intensity_by_other_writers_names_and_warns_without(tmp_path):
+    header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+    header += "property float z\n"
+    cloudcompare = tmp_path / "cc.ply"  # CloudCompare's name for it
+    cloudcompare.write_text(header + "property float scalar_Intensity\nend_header\n"
+                            "1 2 3 40\n4 5 6 50\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no warning when the file has an intensity
+        np.testing.assert_array_equal(lpir_gseg.read_cloud(cloudcompare)[:, 3], [40, 50])
+    bare = tmp_path / "bare.ply"
+    bare.write_text(header + "end_header\n1 2 3\n4 5 6\n")
+    with pytest.warns(UserWarning, match=f"{bare} has no intensity field .*remission") as caught:
+        points = lpir_gseg.read_cloud(bare)
+    assert caught[0].filename == __file__  # names the caller's line
+    np.testing.assert_array_equal(points[:, 3], [0, 0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match="bare.ply"):
+            lpir_gseg.read_cloud(bare)
+
+
+def test_read_cloud_reads_pcl_and_cloudcompare_files():
+    fixtures = REPO / "tests" / "data" / "clouds"  # written by PCL (tools/cloud_fixtures/)
+    compressed, ring = lpir_gseg.read_cloud(fixtures / "pcl_binary_compressed.pcd", ring=True)
+    binary, binary_ring = lpir_gseg.read_cloud(fixtures / "pcl_binary.pcd", ring=True)
+    assert compressed.shape == (640, 4)
+    assert compressed.tobytes() == binary.tobytes()  # NaN points included, bit for bit
+    np.testing.assert_array_equal(ring, binary_ring)
+    np.testing.assert_array_equal(ring, np.arange(640) // 40)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # CloudCompare's scalar_Intensity is an intensity
+        cloudcompare = lpir_gseg.read_cloud(fixtures / "cloudcompare.ply")
+    np.testing.assert_array_equal(cloudcompare, binary[~np.isnan(binary[:, 0])])
 
 
 def test_labels_round_trip_and_errors(tmp_path):
@@ -299,6 +386,58 @@ def test_evaluate_on_simulated_truth(scan, cpu):
     sequence = lpir_gseg.evaluate([pred, pred], [truth, truth], "pp")
     assert sequence["frames"] == 2 and len(sequence["per_frame"]) == 2
     assert lpir_gseg.evaluate(pred, truth, "gg")["ignored"] > 0
+
+
+def test_evaluate_by_class_and_by_range_sum_to_the_totals(scan, cpu):
+    points, truth = scan
+    pred = cpu.segment(points)
+    for protocol in ("dg", "pp", "pw", "gg"):
+        scores = lpir_gseg.evaluate([pred, pred], [truth, truth], protocol, points=[points, points],
+                                    by_class=True, by_range=True)
+        counts = ("tp", "fp", "fn", "tn", "ignored")
+        classes, bands = scores["by_class"], scores["by_range"]
+        assert [c["class"] for c in classes] == sorted(set(int(c) for c in truth & 0xFFFF))
+        for key in counts:  # both split the summed counts, over two frames
+            assert sum(c[key] for c in classes) == scores[key], (protocol, key)
+            assert sum(b[key] for b in bands) == scores[key], (protocol, key)
+        road = next(c for c in classes if c["class"] == 40)
+        assert road["name"] == "road" and road["points"] == 2 * int(((truth & 0xFFFF) == 40).sum())
+        assert road["predicted_ground"] == 2 * int(pred[(truth & 0xFFFF) == 40].sum())
+        assert road["share"] == road["predicted_ground"] / road["points"]
+        assert [b["band"] for b in bands] == ["0-5", "5-10", "10-20", "20-30", "30-40", "40-60",
+                                              "60+"]
+        assert bands[0]["from"] == 0 and bands[0]["to"] == 5 and bands[-1]["to"] is None
+        r = np.hypot(points[:, 0], points[:, 1])
+        assert bands[2]["points"] == 2 * int(((r >= 10) & (r < 20)).sum())
+    plain = lpir_gseg.evaluate(pred, truth)
+    assert "by_class" not in plain and "by_range" not in plain
+    with pytest.raises(ValueError, match="by_range needs each point's x and y: give points="):
+        lpir_gseg.evaluate(pred, truth, by_range=True)
+
+
+def test_evaluate_by_class_and_by_range_give_the_clis_numbers(cli, tmp_path, scan, cpu):
+    points, truth = scan
+    pred = cpu.segment(points)
+    (tmp_path / "velodyne").mkdir()
+    (tmp_path / "labels").mkdir()
+    (tmp_path / "pred").mkdir()
+    np.asarray(points, "<f4").tofile(tmp_path / "velodyne" / "s.bin")
+    lpir_gseg.write_labels(tmp_path / "labels" / "s.label", truth)
+    lpir_gseg.write_labels(tmp_path / "pred" / "s.label", pred)
+    result = run_cli(cli, "evaluate", "--pred", tmp_path / "pred", "--gt", tmp_path / "labels",
+                     "--protocol", "pp", "--by-class", "--by-range", "--json")
+    assert result.returncode == 0, result.stderr
+    expected = json.loads(result.stdout)
+    scores = lpir_gseg.evaluate(pred, truth, "pp", points=points, by_class=True, by_range=True)
+    for ours, theirs in zip(scores["by_class"], expected["by_class"]):
+        assert {k: ours[k] for k in ("class", "name", "points", "predicted_ground", "share")} == \
+            {k: theirs[k] for k in ("class", "name", "points", "predicted_ground", "share")}
+        assert {k: ours[k] for k in ("tp", "fp", "fn", "tn", "ignored")} == theirs["pp"]
+    assert len(scores["by_class"]) == len(expected["by_class"])
+    for ours, theirs in zip(scores["by_range"], expected["by_range"]):
+        assert ours["band"] == theirs["band"] and ours["points"] == theirs["points"]
+        assert ours["from"] == theirs["from"] and ours["to"] == theirs.get("to")
+        assert {k: ours[k] for k in ("tp", "fp", "fn", "tn", "ignored")} == theirs["pp"]
 
 
 def test_evaluate_errors(scan):

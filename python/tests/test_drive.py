@@ -3,7 +3,10 @@
 python3-rosbag; scripts/make_drive_fixtures.sh): every drive reads back as the frames' .bin
 files, damage is an OSError naming the file after every readable message, and the fleet labels
 every message of two drives as the Segmenter labels the frames."""
+import shutil
+import sqlite3
 import subprocess
+import sys
 import warnings
 from pathlib import Path
 
@@ -106,10 +109,14 @@ def test_on_damage_warn_ends_the_iteration_with_a_warning(tmp_path):
 
 
 def test_bad_calls_raise_at_once_naming_the_file(tmp_path):
-    missing = tmp_path / "absent.mcap"
-    with pytest.raises(OSError, match="absent.mcap"):
-        lpir_gseg.read_drive(missing, TOPIC)
-    with pytest.raises(OSError, match="/no_such_topic"):
+    for name in ("absent.mcap", "absent.db3", "absent.bag"):
+        with pytest.raises(FileNotFoundError, match=name):
+            lpir_gseg.read_drive(tmp_path / name, TOPIC)
+    with pytest.raises(FileNotFoundError, match="absent.mcap"):
+        lpir_gseg.drive_topics(tmp_path / "absent.mcap")
+    # a topic the drive does not have is the call's mistake: ValueError listing those it has
+    with pytest.raises(ValueError, match="no topic /no_such_topic; the drive has "
+                                         "/velodyne_points"):
         lpir_gseg.read_drive(DRIVES / "vlp16_zstd.mcap", "/no_such_topic")
     with pytest.raises(OSError, match="extension"):
         lpir_gseg.read_drive(DRIVES / "frames" / "000000.bin", TOPIC)
@@ -117,6 +124,35 @@ def test_bad_calls_raise_at_once_naming_the_file(tmp_path):
         lpir_gseg.read_drive(DRIVES / "vlp16_zstd.mcap", TOPIC, on_damage="ignore")
     assert lpir_gseg.is_drive_file("a.mcap") and lpir_gseg.is_drive_file("b.db3")
     assert lpir_gseg.is_drive_file("c.bag") and not lpir_gseg.is_drive_file("d.bin")
+
+
+def test_several_cloud_topics_need_one_chosen_and_none_is_the_files_fault(tmp_path):
+    # vlp16.db3 with its messages logged again on a second PointCloud2 topic, and on a topic of
+    # another type (Python's sqlite3 writes them)
+    two = tmp_path / "two.db3"
+    shutil.copyfile(DRIVES / "vlp16.db3", two)
+    with sqlite3.connect(two) as db:
+        qos = db.execute("SELECT offered_qos_profiles FROM topics WHERE id = 1").fetchone()[0]
+        db.execute("INSERT INTO topics VALUES (2, '/front_points', 'sensor_msgs/msg/PointCloud2', "
+                   "'cdr', ?)", (qos,))
+        db.execute("INSERT INTO topics VALUES (3, '/imu', 'sensor_msgs/msg/Imu', 'cdr', ?)", (qos,))
+        db.execute("INSERT INTO messages (topic_id, timestamp, data) "
+                   "SELECT 2, timestamp, data FROM messages WHERE topic_id = 1")
+    db.close()
+    with pytest.raises(ValueError, match=r"two.db3: 2 PointCloud2 topics \(/velodyne_points "
+                                         r".*/front_points .*\): choose one with topic="):
+        lpir_gseg.read_drive(two)
+    with pytest.raises(ValueError, match="topic /imu holds sensor_msgs/msg/Imu, not"):
+        lpir_gseg.read_drive(two, "/imu")
+    assert len(list(lpir_gseg.read_drive(two, "/front_points"))) == 3
+    # no PointCloud2 topic at all: the file's fault, an OSError
+    none = tmp_path / "none.db3"
+    shutil.copyfile(DRIVES / "vlp16.db3", none)
+    with sqlite3.connect(none) as db:
+        db.execute("UPDATE topics SET type = 'sensor_msgs/msg/Imu'")
+    db.close()
+    with pytest.raises(OSError, match="none.db3: no sensor_msgs PointCloud2 topic"):
+        lpir_gseg.read_drive(none)
 
 
 def fleet_labels(folder):
@@ -132,7 +168,8 @@ def test_the_fleet_labels_every_message_of_two_drives(tmp_path):
     stats = fleet.run([str(DRIVES / "vlp16_zstd.mcap"), str(DRIVES / "vlp16_bz2.bag"),
                        str(damaged)], "vlp16", str(out), workers=2, backend="cpu",
                       progress=False, topic=TOPIC)
-    assert stats.files == 3 and stats.written == 2
+    assert (stats.files, stats.drives, stats.written) == (0, 3, 2)
+    assert stats.frames == 3 + 3 + 2  # the messages segmented, not the drives
     assert [path for path, _ in stats.failures] == [str(damaged)]
     assert str(damaged) in stats.failures[0][1]
     seg = lpir_gseg.Segmenter("vlp16", backend="cpu")
@@ -170,11 +207,12 @@ def test_the_fleet_writes_what_segment_writes_for_a_drive(cli, tmp_path):
             (tmp_path / "cli" / name).read_bytes(), name
 
 
-@pytest.mark.parametrize("name", DRIVE_FILES)
+@pytest.mark.parametrize("name", DRIVE_FILES + ["vlp16_split_mcap"])
 def test_chunk_ranges_and_the_fleet_split_give_the_whole_drives_files(tmp_path, name):
     """Each fixture chunk on its own (select with a range, then the fleet with one chunk a task)
     yields the whole run's messages with their sequences; the fleet's split run writes the same
-    .label files and index rows (but the ms column) as its whole-drive task."""
+    .label files and index rows (but the ms column) as its whole-drive task. A bag folder's
+    chunks are numbered on across its files."""
     pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
     from lpir_gseg import fleet
 
@@ -207,7 +245,7 @@ def test_chunk_ranges_and_the_fleet_split_give_the_whole_drives_files(tmp_path, 
         out = tmp_path / f"split{split}"
         stats = fleet.run([str(DRIVES / name)], "vlp16", str(out), workers=2, backend="cpu",
                           progress=False, topic=TOPIC, drive_chunks=split)
-        assert stats.files == 1 and stats.written == 1 and not stats.failures
+        assert stats.drives == 1 and stats.written == 1 and not stats.failures
         folder = out / Path(name).stem
         assert not [p for p in folder.iterdir() if ".part" in p.name]
         index = (folder / "index.csv").read_text().splitlines()
@@ -217,3 +255,79 @@ def test_chunk_ranges_and_the_fleet_split_give_the_whole_drives_files(tmp_path, 
     assert len(outputs[1][0]) == 3 and len(outputs[1][1]) == 4
     assert outputs[1] == outputs[64]
     assert [row.split(",")[0] for row in outputs[1][1][1:]] == ["0", "1", "2"]
+
+
+def narrow(i):
+    """Frame i cut to the 11.25 degrees ahead, as the bag folders and the killed bag hold it."""
+    base = DRIVES / "narrow" / f"{i:06}"
+    points = np.fromfile(base.with_suffix(".bin"), dtype="<f4").reshape(-1, 4)
+    ring = np.fromfile(base.with_suffix(".ring"), dtype="<u2").astype(np.int32)
+    return points, ring
+
+
+@pytest.mark.parametrize("folder", ["vlp16_split_mcap", "vlp16_split_db3"])
+def test_a_ros2_bag_folder_reads_as_one_drive(folder):
+    path = DRIVES / folder
+    assert [(t.name, t.messages) for t in lpir_gseg.drive_topics(path)] == [(TOPIC, 3)]
+    messages = list(lpir_gseg.read_drive(path, ring=True))
+    assert [stamp for stamp, _, _ in messages] == [FIRST_STAMP_NS + i * 10**8 for i in range(3)]
+    for i, (_, points, ring) in enumerate(messages):
+        expected, expected_ring = narrow(i)
+        assert same_bits(points, expected) and np.array_equal(ring, expected_ring), (folder, i)
+
+
+def test_a_killed_ros1_recorders_bag_yields_its_finished_messages_then_raises(tmp_path):
+    path = DRIVES / "vlp16_killed.bag.active"
+    assert lpir_gseg.is_drive_file(path)
+    read = []
+    with pytest.raises(OSError, match="chunk 2") as error:
+        for _, points in lpir_gseg.read_drive(path):
+            read.append(points)
+    assert str(path) in str(error.value)
+    assert len(read) == 2 and all(same_bits(p, narrow(i)[0]) for i, p in enumerate(read))
+    with pytest.raises(OSError, match="1 damaged part met while listing"):
+        lpir_gseg.drive_topics(path)
+
+
+def test_drive_topics_names_the_damage_a_cut_drive_shows(tmp_path):
+    path = truncated(tmp_path, "vlp16_zstd.mcap")
+    with pytest.raises(OSError, match="chunk 3") as error:
+        lpir_gseg.drive_topics(path)
+    assert str(path) in str(error.value)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        topics = lpir_gseg.drive_topics(path, on_damage="warn")
+    assert [(t.name, t.messages) for t in topics] == [(TOPIC, 2)]
+    assert [w.category for w in caught] == [RuntimeWarning]
+    stub = tmp_path / "stub.mcap"
+    stub.write_bytes((DRIVES / "vlp16_zstd.mcap").read_bytes()[:3000])
+    for topic in (None, TOPIC):  # the same answer with and without the topic
+        with pytest.raises(OSError, match="in what could be read: the drive is damaged"):
+            lpir_gseg.read_drive(stub, topic)
+
+
+def two_cloud_topics(tmp_path):
+    """vlp16.db3 with its messages on a second PointCloud2 topic too (Python's sqlite3)."""
+    import sqlite3
+
+    path = tmp_path / "two.db3"
+    path.write_bytes((DRIVES / "vlp16.db3").read_bytes())
+    with sqlite3.connect(path) as db:
+        db.execute("INSERT INTO topics VALUES (2, '/other', 'sensor_msgs/msg/PointCloud2', 'cdr', "
+                   "'')")
+        db.execute("INSERT INTO messages (topic_id, timestamp, data) "
+                   "SELECT 2, timestamp, data FROM messages WHERE topic_id = 1")
+    return path
+
+
+def test_two_cloud_topics_ask_for_one_in_the_callers_words(tmp_path):
+    pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
+    path = two_cloud_topics(tmp_path)
+    with pytest.raises(ValueError, match="2 PointCloud2 topics .*: choose one with topic="):
+        lpir_gseg.read_drive(path)
+    result = subprocess.run([sys.executable, "-m", "lpir_gseg.fleet", str(path), "--sensor",
+                             "vlp16", "--out", str(tmp_path / "out"), "--workers", "1",
+                             "--backend", "cpu", "--quiet"], capture_output=True, text=True,
+                            timeout=300)
+    assert result.returncode == 1, result.stderr
+    assert "choose one with --topic" in result.stderr and "topic=" not in result.stderr

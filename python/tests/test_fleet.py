@@ -1,6 +1,7 @@
 """python3 -m lpir_gseg.fleet on a 2-worker LocalCluster on 127.0.0.1: 12 scans and a truncated
 one give the command line's 12 .label files byte for byte, the bad file named, exit code 1; the
 same through --scheduler; one segmenter per worker process for the whole run."""
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 
 import lpir_gseg
-from conftest import run_cli, vulkan  # noqa: F401 (a fixture)
+from conftest import REPO, run_cli, vulkan  # noqa: F401 (a fixture)
 
 pytest.importorskip("distributed", reason="the fleet needs python3-distributed")
 
@@ -124,6 +125,34 @@ def test_a_profile_file_travels_to_the_workers(scans, cli_out, tmp_path):
         assert (out / name).read_bytes() == (cli_out / name).read_bytes()
 
 
+def test_settings_reach_the_workers_as_segment_set_takes_them(cli, scans, tmp_path):
+    files = [scans / f"{seed:06}.bin" for seed in range(3)]
+    settings = ["--set", "sensor_height=1.9", "--set", "max_range=40", "--set", "h_athr=0.15"]
+    expected = tmp_path / "cli"
+    result = run_cli(cli, "segment", *files, "-s", "hdl64e", "-b", "cpu", "-q", "-o", expected,
+                     *settings)
+    assert result.returncode == 0, result.stderr
+    out = tmp_path / "out"
+    result = fleet(*files, "--sensor", "hdl64e", "--out", out, "--workers", 1, "--backend", "cpu",
+                   *settings)
+    assert result.returncode == 0, result.stderr
+    for f in files:
+        name = f.stem + ".label"
+        assert (out / name).read_bytes() == (expected / name).read_bytes(), name
+    plain = tmp_path / "plain"
+    assert run_cli(cli, "segment", files[0], "-s", "hdl64e", "-b", "cpu", "-q", "-o",
+                   plain).returncode == 0
+    assert (plain / "000000.label").read_bytes() != (out / "000000.label").read_bytes()
+    # a misspelt setting: the library's message, before any cluster
+    result = fleet(*files, "--sensor", "hdl64e", "--out", tmp_path / "bad", "--set",
+                   "sensr_height=1.9")
+    assert result.returncode == 2
+    assert "no setting 'sensr_height' (did you mean sensor_height?)" in result.stderr
+    assert not (tmp_path / "bad").exists()
+    result = fleet(*files, "--sensor", "hdl64e", "--out", tmp_path / "bad", "--set", "x")
+    assert result.returncode == 2 and "--set expects NAME=VALUE" in result.stderr
+
+
 def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
     result = fleet(scans, "--sensor", "nope", "--out", tmp_path / "o", "--workers", 1)
     assert result.returncode == 2 and "unknown sensor profile 'nope'" in result.stderr
@@ -135,8 +164,22 @@ def test_bad_arguments_exit_2_before_any_cluster(tmp_path, scans):
     (tmp_path / "b").mkdir()
     for folder in "ab":
         np.zeros((1, 4), np.float32).tofile(tmp_path / folder / "x.bin")
+    # two inputs of one output: both named, nothing written (the command line's rule)
     result = fleet(tmp_path / "a", tmp_path / "b", "--sensor", "hdl64e", "--out", tmp_path / "o")
-    assert result.returncode == 2 and "would both write" in result.stderr
+    assert result.returncode == 2
+    assert (f"{tmp_path / 'a' / 'x.bin'} and {tmp_path / 'b' / 'x.bin'} would both write "
+            f"{tmp_path / 'o' / 'x.label'}") in result.stderr
+    assert not (tmp_path / "o").exists()
+    # two drives of one name would share their folder and its index.csv
+    for folder in "ab":
+        shutil.copyfile(REPO / "tests" / "data" / "drives" / "vlp16_zstd.mcap",
+                        tmp_path / folder / "drive.mcap")
+    result = fleet(tmp_path / "a" / "drive.mcap", tmp_path / "b" / "drive.mcap", "--sensor",
+                   "vlp16", "--out", tmp_path / "o")
+    assert result.returncode == 2
+    assert (f"{tmp_path / 'a' / 'drive.mcap'} and {tmp_path / 'b' / 'drive.mcap'} would both "
+            f"write {tmp_path / 'o' / 'drive'}") in result.stderr
+    assert not (tmp_path / "o").exists()
     result = fleet(scans, "--sensor", "hdl64e", "--out", tmp_path / "o", "--workers", 1,
                    "--scheduler", "tcp://127.0.0.1:1")
     assert result.returncode == 2 and "not allowed with" in result.stderr
@@ -172,3 +215,68 @@ def test_progress_bar_shows_frames_per_second():
     for i in range(20):
         bar.step(1, 0)
     assert log.text.count("progress:") == 10 and "\r" not in log.text
+
+
+def test_a_folder_of_clouds_and_drives_is_written_as_segment_writes_it(cli, tmp_path):
+    """Two scans, an MCAP, a ROS 2 bag folder and a file that is neither: the fleet names the
+    file it skips, counts the drives' messages as frames and writes what `segment` writes."""
+    drives = Path(__file__).resolve().parents[2] / "tests" / "data" / "drives"
+    folder = tmp_path / "mixed"
+    folder.mkdir()
+    for i in range(2):
+        (folder / f"{i:06}.bin").write_bytes((drives / "narrow" / f"{i:06}.bin").read_bytes())
+    (folder / "vlp16_zstd.mcap").write_bytes((drives / "vlp16_zstd.mcap").read_bytes())
+    (folder / "bag").mkdir()
+    for f in (drives / "vlp16_split_mcap").iterdir():
+        name = f.name.replace("vlp16_split_mcap", "bag")  # a renamed folder: metadata.yaml rules
+        (folder / "bag" / name).write_bytes(f.read_bytes())
+    metadata = folder / "bag" / "metadata.yaml"
+    metadata.write_text(metadata.read_text().replace("vlp16_split_mcap", "bag"))
+    (folder / "README.txt").write_text("not a cloud")
+    result = fleet(folder, "--sensor", "vlp16", "--out", tmp_path / "fleet", "--workers", 2,
+                   "--backend", "cpu")
+    assert result.returncode == 0, result.stderr
+    assert f"lpir_gseg.fleet: skipped {folder / 'README.txt'}: neither a cloud file" \
+        in result.stderr
+    assert "wrote 8 label files" in result.stdout  # 2 scans + 3 + 3 messages
+    assert "(2 files and 2 drives, 8 frames in" in result.stdout
+    segment = run_cli(cli, "segment", folder, "--sensor", "vlp16", "--backend", "cpu", "--out",
+                      tmp_path / "cli", "--quiet")
+    assert segment.returncode == 0, segment.stderr
+    cli_files = sorted(p.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("*.label"))
+    assert len(cli_files) == 8
+    fleet_files = sorted(p.relative_to(tmp_path / "fleet")
+                         for p in (tmp_path / "fleet").rglob("*.label"))
+    assert fleet_files == cli_files
+    for name in cli_files:
+        assert (tmp_path / "fleet" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
+
+
+def test_recursive_keeps_each_input_at_its_path_below_the_folder_as_segment_does(cli, tmp_path):
+    """Scans and drives of one name in two subfolders: refused without --recursive (the folder
+    holds none itself), kept apart by their paths with it, the files those of `segment -r`."""
+    drives = Path(__file__).resolve().parents[2] / "tests" / "data" / "drives"
+    root = tmp_path / "runs"
+    for sub in ("a", "b/c"):
+        (root / sub).mkdir(parents=True)
+        (root / sub / "000000.bin").write_bytes((drives / "narrow" / "000000.bin").read_bytes())
+        (root / sub / "drive.mcap").write_bytes((drives / "vlp16_zstd.mcap").read_bytes())
+    result = fleet(root, "--sensor", "vlp16", "--out", tmp_path / "fleet", "--workers", 1,
+                   "--backend", "cpu")
+    assert result.returncode == 2 and "--recursive (-r)" in result.stderr, result.stderr
+    assert not (tmp_path / "fleet").exists()
+    result = fleet(root, "-r", "--sensor", "vlp16", "--out", tmp_path / "fleet", "--workers", 2,
+                   "--backend", "cpu")
+    assert result.returncode == 0, result.stderr
+    assert "(2 files and 2 drives, 8 frames in" in result.stdout
+    segment = run_cli(cli, "segment", root, "-r", "--sensor", "vlp16", "--backend", "cpu",
+                      "--out", tmp_path / "cli", "--quiet")
+    assert segment.returncode == 0, segment.stderr
+    cli_files = sorted(p.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("*.label"))
+    assert Path("a/000000.label") in cli_files and Path("b/c/000000.label") in cli_files
+    assert len([p for p in cli_files if p.parent.name == "drive"]) == 6
+    fleet_files = sorted(p.relative_to(tmp_path / "fleet")
+                         for p in (tmp_path / "fleet").rglob("*.label"))
+    assert fleet_files == cli_files
+    for name in cli_files:
+        assert (tmp_path / "fleet" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes()
