@@ -420,7 +420,7 @@ TEST(SensorProfile, SettingsActAsProfileLines) {
   const Params p = ParamsForSensor(s);
   EXPECT_EQ(p.sensor_height, 1.9f);
   EXPECT_EQ(p.h_athr, 0.2f);
-  EXPECT_EQ(p.h_noise, -1.9f - 1.0f);  // the noise floor follows the mount height
+  EXPECT_EQ(p.h_noise, -1.9f - 2.0f);  // the noise floor follows the mount height
   ApplySettings(s, {{"max_points", "5000"},
                     {"ring_zero_is_top", "0"},
                     {"k_xz", "-0.05"},
