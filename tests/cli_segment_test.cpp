@@ -10,8 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "apps/sim/scene.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
+#include "host/io/sensor_profile.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -38,6 +40,64 @@ Cloud SmallScan() {
     c.Push(6.0f * std::cos(a), 6.0f * std::sin(a), -1.73f, 0.3f);
   }
   return c;
+}
+
+// A simulated street of `sensor` (seed 5), as a nuScenes-layout .pcd.bin (x, y, z, intensity,
+// ring) when `rings`, else a KITTI .bin; returns the file's path.
+std::string StreetFile(const std::string& dir, const std::string& sensor, bool rings) {
+  SimOptions o;
+  o.seed = 5;
+  o.emit_rings = rings;
+  const Cloud c = Simulate(LoadSensorProfile(sensor, test::SensorsDir()), o).cloud;
+  const std::string path = dir + "/" + sensor + (rings ? ".pcd.bin" : ".bin");
+  if (!rings) {
+    WriteKittiBin(path, c);
+    return path;
+  }
+  std::vector<float> values;
+  for (size_t i = 0; i < c.size(); ++i)
+    values.insert(values.end(), {c.x(i), c.y(i), c.z(i), c.intensity(i), float(c.ring[i])});
+  WriteBytes(path, std::string(reinterpret_cast<const char*>(values.data()), 4 * values.size()));
+  return path;
+}
+
+TEST(CliSegment, RingsOfAnotherSensorAreRefusedNamingTheProfile) {
+  const std::string dir = test::TempDir();
+  const std::string file = StreetFile(dir, "hdl64e", true);
+  std::string log;
+  EXPECT_EQ(Segment(file + " --sensor vlp32c --max-points 400000 --out " + dir + "/out", &log), 1)
+      << log;
+  EXPECT_NE(log.find("ring values up to 63"), std::string::npos) << log;
+  EXPECT_NE(log.find("profile 'vlp32c' has 32 beams: wrong --sensor?"), std::string::npos) << log;
+  // The same file with its own profile: segmented, no warning.
+  EXPECT_EQ(Segment(file + " --sensor hdl64e --out " + dir + "/own", &log), 0) << log;
+  EXPECT_EQ(log.find("warning"), std::string::npos) << log;
+}
+
+TEST(CliSegment, ElevationsOutsideTheProfileAreAWarning) {
+  const std::string dir = test::TempDir();
+  const std::string file = StreetFile(dir, "hdl64e", false);
+  std::string log;
+  EXPECT_EQ(Segment(file + " --sensor vlp16 --max-points 400000 --out " + dir + "/out", &log), 0)
+      << log;
+  EXPECT_NE(log.find("warning: " + file + ": "), std::string::npos) << log;
+  EXPECT_NE(log.find("below the bottom beam (-15.0 deg) of profile 'vlp16': wrong --sensor"),
+            std::string::npos)
+      << log;
+}
+
+TEST(CliSegment, TheSummaryNamesWhyPointsAreInvalid) {
+  const std::string dir = test::TempDir();
+  Cloud c = SmallScan();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  c.Push(nan, 1.0f, 1.0f, 0.0f);
+  c.Push(0.0f, 0.0f, 0.0f, 0.0f);
+  WriteKittiBin(dir + "/scan.bin", c);
+  std::string log;
+  EXPECT_EQ(Segment(dir + "/scan.bin --sensor hdl64e --out " + dir + "/out", &log), 0) << log;
+  EXPECT_NE(log.find("2 invalid points (non-ground: 1 NaN/Inf, 1 at the origin)"),
+            std::string::npos)
+      << log;
 }
 
 TEST(CliSegment, LabelsARealKittiScan) {
@@ -179,7 +239,7 @@ TEST(CliSegment, CloudLargerThanConfiguredIsAnError) {
   std::string log;
   EXPECT_EQ(Segment(dir + "/scan.bin --sensor hdl64e --max-points 100 --out " + dir, &log), 1);
   EXPECT_NE(log.find("800 points"), std::string::npos) << log;
-  EXPECT_NE(log.find("maximum of 100"), std::string::npos) << log;
+  EXPECT_NE(log.find("more than the 100 this segmenter takes"), std::string::npos) << log;
 }
 
 TEST(CliSegment, TruthWhoseCountDiffersIsAnError) {

@@ -48,6 +48,7 @@
 #include "host/io/label_file.h"
 #include "host/io/output_paths.h"
 #include "host/segmenter.h"
+#include "host/sensor_fit.h"
 
 namespace fs = std::filesystem;
 
@@ -349,6 +350,7 @@ class SegmentRun {
         Fail(in, error);
         continue;
       }
+      FitWarnings(in);
       try {
         while (!segmenter_.CanSubmit()) Finish();
         segmenter_.Submit(in.cloud);
@@ -383,6 +385,7 @@ class SegmentRun {
 
   size_t frames() const { return frames_; }
   size_t invalid() const { return invalid_; }
+  const InvalidReasons& reasons() const { return reasons_; }
 
  private:
   // The frame as messages name it: the file, or "<drive>: <topic> message <sequence>".
@@ -408,6 +411,21 @@ class SegmentRun {
     noted_ = true;
     const char* once = source_count_ == 1 ? "" : " (said for the first such file only)";
     Print(stderr, "lpir-gseg segment: note: " + note + once + "\n");
+  }
+
+  // The first frame that does not look like the profile's sensor (host/sensor_fit.h: rings past
+  // the beams, elevations outside its table), named with what is wrong, once a run (a wrong
+  // --sensor would repeat it for every frame); none with --quiet.
+  void FitWarnings(const FrameInput& in) {
+    if (fit_warned_ || a_.quiet) return;
+    const SensorProfile& sensor = segmenter_.sensor();
+    const std::vector<std::string> warnings =
+        SensorFitWarnings(MeasureSensorFit(in.cloud, sensor), sensor);
+    if (warnings.empty()) return;
+    fit_warned_ = true;
+    const char* once = source_count_ == 1 && a_.units.size() == 1 ? "" : " (said once a run)";
+    for (const std::string& w : warnings)
+      Print(stderr, "lpir-gseg segment: warning: " + Where(in) + ": " + w + once + "\n");
   }
 
   // `error` (naming the frame) above the progress and in the report.
@@ -453,10 +471,13 @@ class SegmentRun {
         r.invalid += frame.why[i] == kWhyInvalid;
       }
       r.ms = times.total_ms;
-      if (r.invalid && (report_ || a_.verbose))
-        r.reasons = CountInvalidReasons(job.cloud, segmenter_.params());
+      if (r.invalid) r.reasons = CountInvalidReasons(job.cloud, segmenter_.params());
       ++frames_;
       invalid_ += r.invalid;
+      reasons_.not_finite += r.reasons.not_finite;
+      reasons_.at_origin += r.reasons.at_origin;
+      reasons_.out_of_range += r.reasons.out_of_range;
+      reasons_.bad_ring += r.reasons.bad_ring;
       if (index_) index_->Add(job, r.ground, r.ms, file);
       if (report_) report_->Add(r);
       std::string lines;
@@ -505,22 +526,16 @@ class SegmentRun {
   }
 
   // "<stem>: N points, G % ground, T ms", and the invalid points by reason when there are any:
-  // " (K invalid: a NaN/Inf, b at the origin, c out of range, d bad ring)", naming those > 0.
+  // " (K invalid: a NaN/Inf, b at the origin, c out of range, d ring outside the beams)", naming
+  // those > 0.
   static std::string FrameLine(const std::string& stem, const FrameRecord& r) {
     char buf[160];
     std::snprintf(buf, sizeof(buf), "%s: %zu points, %.1f %% ground, %.2f ms", stem.c_str(),
                   r.points, r.points ? 100.0 * double(r.ground) / double(r.points) : 0.0, r.ms);
     std::string line = buf;
-    if (r.invalid) {
-      std::string why;
-      const std::pair<size_t, const char*> reasons[] = {{r.reasons.not_finite, "NaN/Inf"},
-                                                        {r.reasons.at_origin, "at the origin"},
-                                                        {r.reasons.out_of_range, "out of range"},
-                                                        {r.reasons.bad_ring, "bad ring"}};
-      for (const auto& [count, name] : reasons)
-        if (count) why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + name;
-      line += " (" + std::to_string(r.invalid) + " invalid: " + why + ")";
-    }
+    if (r.invalid)
+      line +=
+          " (" + std::to_string(r.invalid) + " invalid: " + DescribeInvalidReasons(r.reasons) + ")";
     return line + "\n";
   }
 
@@ -538,9 +553,11 @@ class SegmentRun {
   std::deque<FrameInput> jobs_;
   std::set<std::string> made_;  // output folders made so far
   size_t failures_ = 0;
-  size_t frames_ = 0;   // segmented and written
-  size_t invalid_ = 0;  // points of those frames labelled invalid
-  bool noted_ = false;  // a reader's note was printed
+  size_t frames_ = 0;        // segmented and written
+  size_t invalid_ = 0;       // points of those frames labelled invalid
+  InvalidReasons reasons_;   // the same points by reason
+  bool noted_ = false;       // a reader's note was printed
+  bool fit_warned_ = false;  // a sensor-fit warning was printed
 };
 
 // A unit's frames read one ahead (ReadAhead): its cloud files, or its drive's topic (chosen by
@@ -688,9 +705,10 @@ int RunSegment(int argc, char** argv) {
   if (report) report->Close(run.frames(), failures, seconds);
   if (!a.quiet) {
     // "segmented 30 of 30 files on X in 1.20 s, 25.0 frames/s, 2 failed, 12 invalid points
-    // (non-ground); labels in OUT": short, so that beside the note above it fits 120 columns
-    // with a folder of some 35 characters; the failures only when there are some (the last
-    // line counts them too); the sensor, and the invalid points by reason, with --verbose
+    // (non-ground: 12 ring outside the beams); labels in OUT": short, so that beside the note
+    // above it fits 120 columns with a folder of some 35 characters; the failures and the invalid
+    // points only when there are some (the last line counts the failures too); the sensor with
+    // --verbose
     char buf[128];
     std::snprintf(buf, sizeof(buf), " in %.2f s, %.1f frames/s", seconds,
                   seconds > 0 ? double(run.frames()) / seconds : 0.0);
@@ -714,7 +732,8 @@ int RunSegment(int argc, char** argv) {
     }
     std::string line = "segmented " + done + " on " + on + buf;
     if (run.invalid())
-      line += ", " + std::to_string(run.invalid()) + " invalid points (non-ground)";
+      line += ", " + std::to_string(run.invalid()) +
+              " invalid points (non-ground: " + DescribeInvalidReasons(run.reasons()) + ")";
     const std::string outputs = a.format == "label"  ? "labels"
                                 : a.format == "mcap" ? "labelled MCAP"
                                 : a.format == "bag"  ? "labelled bag"

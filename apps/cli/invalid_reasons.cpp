@@ -4,6 +4,7 @@
 #include "apps/cli/invalid_reasons.h"
 
 #include <cmath>
+#include <utility>
 
 #include "reference_cpu/exact.h"
 
@@ -32,6 +33,17 @@ InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p) {
     if (has_ring && !(cloud.ring[i] >= 0 && cloud.ring[i] < int32_t(p.beams))) ++r.bad_ring;
   }
   return r;
+}
+
+std::string DescribeInvalidReasons(const InvalidReasons& r) {
+  const std::pair<size_t, const char*> reasons[] = {{r.not_finite, "NaN/Inf"},
+                                                    {r.at_origin, "at the origin"},
+                                                    {r.out_of_range, "out of range"},
+                                                    {r.bad_ring, "ring outside the beams"}};
+  std::string text;
+  for (const auto& [count, name] : reasons)
+    if (count) text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + name;
+  return text;
 }
 
 }  // namespace lpir

@@ -3,6 +3,7 @@
 // kWhyInvalid. Each invalid point counts once, under the first reason it meets in this order.
 #pragma once
 #include <cstddef>
+#include <string>
 
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/params.h"
@@ -19,5 +20,9 @@ struct InvalidReasons {
 
 // The invalid points of `cloud` under `p`, by reason.
 InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p);
+
+// "3 NaN/Inf, 2 at the origin, 1 out of range, 4 ring outside the beams", naming the reasons with
+// a count (in that order; "" when there are none).
+std::string DescribeInvalidReasons(const InvalidReasons& r);
 
 }  // namespace lpir

@@ -18,12 +18,12 @@ import numpy as np
 import numpy.typing as npt
 
 _Path = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
-_Points = npt.ArrayLike  # (N, 4) x, y, z, intensity, or (N, 3) with intensity=
+_Points = npt.ArrayLike  # (N, 4) x, y, z, intensity, or (N, 3) x, y, z (intensity= optional)
 _Labels = npt.NDArray[np.uint8]
 
 WHY_NON_GROUND: int  # 0: measured, found non-ground
 WHY_GROUND: int  # 1: ground
-WHY_INVALID: int  # 2: NaN/Inf, at the origin or out of range (non-ground)
+WHY_INVALID: int  # 2: NaN/Inf coordinates, at the origin, out of range or a ring outside the beams
 WHY_NOISE: int  # 3: reflection noise below the ground (non-ground)
 
 class Segmenter:

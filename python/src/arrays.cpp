@@ -118,13 +118,10 @@ CloudView ToCloud(py::handle points, py::handle intensity, py::handle ring, cons
   const py::array& a = view.keep;
   RequireNumbers(a, name);
   if (a.ndim() != 2 || (a.shape(1) != 3 && a.shape(1) != 4))
-    throw py::value_error(name + " must have shape (N, 4) (x, y, z, intensity) or (N, 3) with " +
-                          "intensity=, not " + ShapeText(a));
+    throw py::value_error(name + " must have shape (N, 4) (x, y, z, intensity) or (N, 3), not " +
+                          ShapeText(a));
   const size_t n = size_t(a.shape(0)), columns = size_t(a.shape(1));
   const bool has_intensity = !intensity.is_none();
-  if (columns == 3 && !has_intensity)
-    throw py::value_error(name + " has 3 columns (x, y, z): give intensity= as well, (" +
-                          std::to_string(n) + ",)");
   if (columns == 4 && has_intensity)
     throw py::value_error(name + " has 4 columns, intensity among them: intensity= is for " +
                           "(N, 3) points");
@@ -142,8 +139,10 @@ CloudView ToCloud(py::handle points, py::handle intensity, py::handle ring, cons
     auto f = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
     if (!f) throw py::error_already_set();
     const float* p = f.data();
-    for (size_t i = 0; i < n; ++i)
+    for (size_t i = 0; i < n; ++i) {
       for (size_t c = 0; c < columns; ++c) xyzi[4 * i + c] = p[columns * i + c];
+      if (columns == 3) xyzi[4 * i + 3] = 0.0f;  // (N, 3) without intensity=: 0, never read
+    }
   }
   if (has_intensity) {
     const auto column = FloatColumn(intensity, "intensity", n);

@@ -19,6 +19,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "host/io/sensor_profile.h"
+#include "host/sensor_fit.h"
 
 namespace lpir::python {
 namespace {
@@ -76,6 +77,14 @@ std::vector<std::pair<std::string, std::string>> SettingsArg(py::handle params) 
   return settings;
 }
 
+// Each of `warnings` (host/sensor_fit.h: the cloud does not look like the profile's sensor) as a
+// Python UserWarning naming `what`; a warning turned into an error by the warnings filter raises.
+void Warn(const std::vector<std::string>& warnings, const std::string& what) {
+  for (const std::string& w : warnings)
+    if (PyErr_WarnEx(PyExc_UserWarning, (what + ": " + w).c_str(), 1) < 0)
+      throw py::error_already_set();
+}
+
 class PySegmenter {
  public:
   PySegmenter(py::handle sensor, const std::string& backend, py::handle device,
@@ -120,6 +129,7 @@ class PySegmenter {
   py::object Segment(py::handle points, py::handle intensity, py::handle ring, bool why) {
     CloudView view;  // destroyed after the GIL is back, as every Python object here
     std::unique_ptr<Output> out;
+    std::vector<std::string> misfit;
     {
       py::gil_scoped_release nogil;
       std::lock_guard<std::mutex> lock(mutex_);
@@ -130,7 +140,10 @@ class PySegmenter {
         out = std::make_unique<Output>(view.cloud->size(), why);
       }
       out->Fill(segmenter_->Segment(*view.cloud));
+      misfit = SensorFitWarnings(MeasureSensorFit(*view.cloud, segmenter_->sensor()),
+                                 segmenter_->sensor());
     }
+    Warn(misfit, "points");
     return out->Result();
   }
 
@@ -160,6 +173,9 @@ class PySegmenter {
             CheckSize(*view.cloud, name);
             cloud = view.cloud;  // scratch_, or the cloud items[i] owns
             outputs[i] = std::make_unique<Output>(cloud->size(), why);
+            Warn(SensorFitWarnings(MeasureSensorFit(*cloud, segmenter_->sensor()),
+                                   segmenter_->sensor()),
+                 name);
           }
           while (!segmenter_->CanSubmit()) collect();
           at = i;
@@ -270,11 +286,11 @@ const char kSegmentDoc[] = R"doc(segment(self, points, *, intensity=None, ring=N
 Labels one scan.
 
 Args:
-    points: (N, 4) x, y, z (metres, sensor frame) and raw intensity; or (N, 3) x, y, z with
-        intensity=. Any float or int dtype. A C-contiguous float32 (N, 4) array is read as it
+    points: (N, 4) x, y, z (metres, sensor frame) and intensity, in any unit (the labels do not
+        read it); or (N, 3) x, y, z, with or without intensity=. Any float or int dtype. A C-contiguous float32 (N, 4) array is read as it
         is (one copy into the segmenter's reused buffer, no NumPy conversion); an array that
         read_cloud or simulate returned, unsliced, is read in place, ring field and all.
-    intensity: (N,) raw intensities, with (N, 3) points only.
+    intensity: (N,) intensities, with (N, 3) points only (not read by the method).
     ring: (N,) laser index of each point as the file numbers it (the profile's ring_zero_is_top
         says which end 0 is), or None: the row is found from the elevation. An array from
         read_cloud brings the file's own ring field without this argument.
@@ -282,11 +298,16 @@ Args:
 
 Returns:
     (N,) uint8 labels, 1 ground and 0 non-ground; with why=True the tuple (labels, why), why
-    (N,) uint8: WHY_NON_GROUND, WHY_GROUND, WHY_INVALID (NaN/Inf, at the origin, out of range)
-    or WHY_NOISE (reflection noise below the ground).
+    (N,) uint8: WHY_NON_GROUND, WHY_GROUND, WHY_INVALID (NaN/Inf coordinates, at the origin,
+    out of range, a ring outside the beams) or WHY_NOISE (reflection noise below the ground).
+
+Warns:
+    UserWarning: the cloud does not look like the profile's sensor: a few rings outside the
+        beams, or points more than 2 degrees outside the beam table (wrong sensor, or a tilt).
 
 Raises:
-    ValueError: a wrong shape, dtype or length, or more points than max_points.
+    ValueError: a wrong shape, dtype or length, more points than max_points, or rings outside
+        the profile's beams on more than 1 % of the points (wrong sensor).
     RuntimeError: the device failed.)doc";
 
 const char kSegmentBatchDoc[] = R"doc(segment_batch(self, clouds, *, why=False)

@@ -53,7 +53,10 @@ def test_why_codes(scan, cpu):
     assert why.dtype == np.uint8 and why.shape == labels.shape
     assert list(why[:3]) == [lpir_gseg.WHY_INVALID] * 3 and not labels[:3].any()
     np.testing.assert_array_equal(labels == 1, why == lpir_gseg.WHY_GROUND)
-    assert (why == lpir_gseg.WHY_NOISE).any()  # the simulator's reflection noise
+    deep = np.array(points)
+    deep[:5, 2] = -1.73 - 3.0  # 3 m under the road: reflection noise (h_noise: 2 m under it)
+    labels, why = cpu.segment(deep, why=True)
+    assert list(why[:5]) == [lpir_gseg.WHY_NOISE] * 5
     assert not labels[why == lpir_gseg.WHY_NOISE].any()
 
 
@@ -135,7 +138,6 @@ def test_the_gil_is_released_while_segmenting(cpu):
 @pytest.mark.parametrize("points,message", [
     (np.zeros((5,), np.float32), r"points must have shape \(N, 4\).*not \(5,\)"),
     (np.zeros((5, 5), np.float32), r"not \(5, 5\)"),
-    (np.zeros((5, 3), np.float32), r"give intensity="),
     (np.zeros((5, 4), np.complex64), r"real numbers.*complex64"),
     (np.zeros((5, 4), bool), r"real numbers.*bool"),
     (np.array([["a", "b", "c", "d"]]), r"real numbers"),
@@ -167,6 +169,40 @@ def test_too_many_points(scan):
     with pytest.raises(ValueError, match=r"clouds\[1\] has \d+ points"):
         small.segment_batch([scan[0][:10], scan[0]])
     assert small.segment(scan[0][:1000]).shape == (1000,)  # still usable
+
+
+def test_labels_do_not_depend_on_the_unit_of_intensity(scan, cpu):
+    points, _ = scan
+    expected = cpu.segment(points)
+    for scale in (0.01, 255.0, 65535.0, 0.0):
+        scaled = np.array(points)
+        scaled[:, 3] *= scale
+        np.testing.assert_array_equal(cpu.segment(scaled), expected, err_msg=f"x{scale}")
+    np.testing.assert_array_equal(cpu.segment(points[:, :3]), expected)  # no intensity at all
+
+
+def test_rings_of_another_sensor_raise_value_error_naming_the_profile():
+    points, _ = lpir_gseg.simulate("hdl64e", 4, rings=True)  # the array carries rings 0..63
+    seg = lpir_gseg.Segmenter("vlp32c", backend="cpu", max_points=400000)
+    with pytest.raises(ValueError, match=r"ring values up to 63 .*profile 'vlp32c' has 32 "
+                                         r"beams: wrong --sensor\?"):
+        seg.segment(points)
+    with pytest.raises(ValueError, match="wrong --sensor"):
+        seg.segment(np.array(points)[:, :3], ring=np.arange(len(points)) % 64)
+
+
+def test_a_cloud_that_does_not_look_like_the_profiles_sensor_warns():
+    points, _ = lpir_gseg.simulate("hdl64e", 4)
+    seg = lpir_gseg.Segmenter("vlp16", backend="cpu", max_points=400000)
+    with pytest.warns(UserWarning, match=r"below the bottom beam \(-15.0 deg\) of profile 'vlp16'"):
+        labels = seg.segment(points)
+    assert len(labels) == len(points)
+    with pytest.warns(UserWarning, match=r"clouds\[1\]: .*profile 'vlp16'"):
+        seg.segment_batch([lpir_gseg.simulate("vlp16", 1)[0], points])
+    own = lpir_gseg.Segmenter("hdl64e", backend="cpu")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        own.segment(points)  # its own profile: no warning
 
 
 def test_bad_segmenter_arguments(tmp_path):
