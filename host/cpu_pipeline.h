@@ -33,7 +33,7 @@ class CpuPipeline final : public FrameBackend {
   CpuPipeline(const Params& params, const Tables& tables, uint32_t slots, uint32_t threads);
   ~CpuPipeline() override;  // waits for the frames running
 
-  void Stage(uint32_t slot, const Cloud& cloud) override;
+  void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) override;
   void SubmitStaged(uint32_t first, uint32_t count) override;
   void Collect(uint32_t slot, Frame& out, bool all_buffers, FrameTimes* times) override;
 
@@ -46,7 +46,8 @@ class CpuPipeline final : public FrameBackend {
  private:
   // A slot's frame from Stage to Collect.
   struct Slot {
-    Cloud cloud;  // the cloud staged
+    Cloud cloud;    // the cloud staged
+    Params params;  // the backend's Params seen from the cloud's mount (WithMount)
     // Set while the frame runs or has run on the slot's thread (under mutex_), and what it gave.
     bool started = false, done = false;
     Frame frame;

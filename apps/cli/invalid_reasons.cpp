@@ -14,7 +14,7 @@ namespace lpir {
 namespace {
 
 // Adds point i's reason, if it has one, to r.
-void CountPoint(const Cloud& cloud, const Params& p, size_t i, InvalidReasons& r) {
+void CountPoint(const Cloud& cloud, const Params& p, bool has_ring, size_t i, InvalidReasons& r) {
   const float x = exact::Ftz0(cloud.x(i)), y = exact::Ftz0(cloud.y(i));
   const float z = exact::Ftz0(cloud.z(i));
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
@@ -31,23 +31,24 @@ void CountPoint(const Cloud& cloud, const Params& p, size_t i, InvalidReasons& r
     ++r.out_of_range;
     return;
   }
-  if (!cloud.ring.empty() && !(cloud.ring[i] >= 0 && cloud.ring[i] < int32_t(p.beams)))
-    ++r.bad_ring;
+  if (has_ring && !(cloud.ring[i] >= 0 && cloud.ring[i] < int32_t(p.beams))) ++r.bad_ring;
 }
 
 }  // namespace
 
-InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p) {
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read) {
   InvalidReasons r;
-  for (size_t i = 0; i < cloud.size(); ++i) CountPoint(cloud, p, i, r);
+  const bool has_ring = rings_read && !cloud.ring.empty();
+  for (size_t i = 0; i < cloud.size(); ++i) CountPoint(cloud, p, has_ring, i, r);
   return r;
 }
 
-InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p,
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read,
                                    const std::vector<uint8_t>& why) {
   InvalidReasons r;
+  const bool has_ring = rings_read && !cloud.ring.empty();
   for (size_t i = 0; i < cloud.size() && i < why.size(); ++i)
-    if (why[i] == kWhyInvalid) CountPoint(cloud, p, i, r);
+    if (why[i] == kWhyInvalid) CountPoint(cloud, p, has_ring, i, r);
   return r;
 }
 

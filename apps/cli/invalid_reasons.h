@@ -20,11 +20,12 @@ struct InvalidReasons {
   size_t total() const { return not_finite + at_origin + out_of_range + bad_ring; }
 };
 
-// The invalid points of `cloud` under `p`, by reason.
-InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p);
+// The invalid points of `cloud` under `p`, by reason; `rings_read`: the profile reads the ring
+// field (pattern spinning), else a ring is never a reason.
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read);
 // The same from a segmented frame's `why` (one a point): only the points it labels kWhyInvalid
 // are looked at, so a frame of a few invalid points costs a few tests, not one a point.
-InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p,
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read,
                                    const std::vector<uint8_t>& why);
 
 // "3 NaN/Inf, 2 at the origin, 1 out of range, 4 ring outside the beams", naming the reasons with
