@@ -1,0 +1,18 @@
+#include "host/api/cpu_pipeline.h"
+
+namespace lpir {
+
+CpuPipeline::CpuPipeline(const Params& params, const Tables& tables, uint32_t slots)
+    : params_(params), tables_(tables), clouds_(slots) {}
+
+void CpuPipeline::Stage(uint32_t slot, const Cloud& cloud) {
+  clouds_[slot] = cloud;  // into the slot's vectors: no allocation once they have grown
+}
+
+void CpuPipeline::SubmitStaged(uint32_t, uint32_t) {}  // nothing to start: Collect runs the frame
+
+void CpuPipeline::Collect(uint32_t slot, Frame& out, bool, FrameTimes* times) {
+  RunReference(clouds_[slot], params_, tables_, out, times);
+}
+
+}  // namespace lpir
