@@ -23,6 +23,26 @@ bool ApplyOverride(Params& params, const std::string& name, float value);
 // Names of every parameter (for help texts and profile checking).
 std::vector<std::string> ParamNames();
 
+// The sensor's mount (eq. 2-3): flat ground in the sensor frame is
+// z = k_xz * x + k_yz * y - sensor_height.
+struct Mount {
+  float k_xz = 0.0f, k_yz = 0.0f;
+  float sensor_height = 1.73f;  // m
+};
+
+inline Mount MountOf(const Params& p) { return Mount{p.k_xz, p.k_yz, p.sensor_height}; }
+
+// Params for a frame seen from `mount`: k_xz, k_yz and sensor_height replaced, and the noise
+// floor h_noise moved with the ground (by the change of height, so that it keeps its depth under
+// the ground, a profile's override included). MountOf(p) leaves p's bytes as they are.
+inline Params WithMount(Params p, const Mount& mount) {
+  p.h_noise = p.h_noise - (mount.sensor_height - p.sensor_height);
+  p.k_xz = mount.k_xz;
+  p.k_yz = mount.k_yz;
+  p.sensor_height = mount.sensor_height;
+  return p;
+}
+
 struct Tables {
   // Row boundaries: beams - 1 entries, descending. Boundary b lies between row b and row b + 1 at
   // elevation e_b; stored as t*|t| with t = tan(e_b), compared with z*|z| / r^2 without dividing.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -89,6 +90,40 @@ TEST_F(SegmenterVk, AllBuffersEqualTheReferencesOnBothBackends) {
               0u);
     EXPECT_GT(times.total_ms, 0.0);
     for (double stage_ms : times.stage_ms) EXPECT_GE(times.total_ms, stage_ms);
+  }
+}
+
+// `mount per_frame`: each slot's frame runs with its own cloud's estimate (four tilts, three
+// frames in flight), and a non-repetitive profile (mid70: no rings, 1 degree elevation bins):
+// every buffer as the reference's.
+TEST_F(SegmenterVk, PerFrameMountsAndNonRepetitiveProfilesEqualTheReferences) {
+  SensorProfile vlp16 = Vlp16();
+  vlp16.mount = MountSource::kPerFrame;
+  const SensorProfile mid70 = LoadSensorProfile("mid70", test::SensorsDir());
+  for (const SensorProfile* sensor : {const_cast<const SensorProfile*>(&vlp16), &mid70}) {
+    SCOPED_TRACE(sensor->name);
+    Segmenter gpu(*sensor, Options(Backend::kVulkan, 3, true));
+    Segmenter cpu(*sensor, Options(Backend::kCpu));
+    std::vector<Cloud> clouds;
+    for (float pitch : {-3.0f, 0.0f, 2.0f, 4.0f}) {
+      SimOptions o;
+      o.seed = uint32_t(clouds.size() + 1);
+      o.pitch_deg = pitch;
+      o.emit_rings = true;
+      clouds.push_back(Simulate(vlp16, o).cloud);
+    }
+    size_t submitted = 0, collected = 0;
+    while (collected < clouds.size()) {
+      while (submitted < clouds.size() && gpu.CanSubmit()) gpu.Submit(clouds[submitted++]);
+      const Frame& g = gpu.Collect();
+      const Frame& c = cpu.Segment(clouds[collected]);
+      EXPECT_EQ(std::memcmp(&gpu.mount().mount, &cpu.mount().mount, sizeof(Mount)), 0);
+      EXPECT_TRUE(gpu.mount().estimated);
+      EXPECT_GT(test::ExpectSameFrame(WithMount(gpu.params(), gpu.mount().mount), c, g,
+                                      &clouds[collected], "frame " + std::to_string(collected)),
+                0u);
+      ++collected;
+    }
   }
 }
 

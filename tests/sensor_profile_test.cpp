@@ -21,8 +21,8 @@
 namespace lpir {
 namespace {
 
-const char* const kShipped[] = {"hdl32e",   "hdl64e",    "os1-128", "os1-64", "ot128",
-                                "pandar64", "rs-ruby80", "vlp16",   "vlp32c"};
+const char* const kShipped[] = {"hdl32e", "hdl64e",   "mid360",    "mid70", "os1-128", "os1-64",
+                                "ot128",  "pandar64", "rs-ruby80", "vlp16", "vlp32c"};
 
 std::string WriteText(const std::string& dir, const std::string& name, const std::string& text) {
   std::string path = dir + "/" + name;
@@ -94,6 +94,29 @@ TEST(SensorProfile, ShippedGeometryMatchesTheDatasheets) {
 
   EXPECT_EQ(LoadSensorProfile("os1-128", dir).beams, 128u);
   EXPECT_EQ(LoadSensorProfile("vlp16", dir).beams, 16u);
+  for (const char* name : kShipped) {
+    SensorProfile p = LoadSensorProfile(name, dir);
+    const bool livox = std::string(name).rfind("mid", 0) == 0;
+    EXPECT_EQ(p.pattern == ScanPattern::kSpinning, !livox) << name;
+    EXPECT_EQ(p.mount == MountSource::kPerFrame, livox) << name;
+  }
+}
+
+// Non-repetitive profiles: rows are 1 degree elevation bins over the datasheet's field of view,
+// Mid-70 a 70.4 degree circle (+-35.2), Mid-360 -7 to +52 degrees.
+TEST(SensorProfile, LivoxBinsCoverTheDatasheetsFieldOfView) {
+  const std::string dir = test::SensorsDir();
+  const SensorProfile mid70 = LoadSensorProfile("mid70", dir);
+  EXPECT_EQ(mid70.pattern, ScanPattern::kRosette);
+  EXPECT_FLOAT_EQ(mid70.elevation_deg.front() + 0.5f, 35.0f);
+  EXPECT_FLOAT_EQ(mid70.elevation_deg.back() - 0.5f, -35.0f);
+  const SensorProfile mid360 = LoadSensorProfile("mid360", dir);
+  EXPECT_EQ(mid360.pattern, ScanPattern::kBand);
+  EXPECT_FLOAT_EQ(mid360.elevation_deg.front() + 0.5f, 52.0f);
+  EXPECT_FLOAT_EQ(mid360.elevation_deg.back() - 0.5f, -7.0f);
+  for (const SensorProfile* p : {&mid70, &mid360})
+    for (size_t i = 1; i < p->elevation_deg.size(); ++i)
+      EXPECT_FLOAT_EQ(p->elevation_deg[i - 1] - p->elevation_deg[i], 1.0f) << p->name << " " << i;
 }
 
 // The profiles taken from vendors' beam tables (their files say where from): beam count, the top
@@ -189,6 +212,8 @@ TEST(SensorProfile, RoundTripsExactly) {
     WriteSensorProfile(path, a);
     SensorProfile b = LoadSensorProfile(path, dir + "/nowhere");
     EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.pattern, a.pattern);
+    EXPECT_EQ(b.mount, a.mount);
     EXPECT_EQ(b.beams, a.beams);
     EXPECT_EQ(b.width, a.width);
     EXPECT_EQ(b.max_points, a.max_points);
@@ -213,7 +238,8 @@ TEST(SensorProfile, UnknownNameListsTheKnownProfiles) {
     std::string m = e.what();
     EXPECT_NE(m.find("unknown sensor profile 'hdl128x'"), std::string::npos) << m;
     EXPECT_NE(
-        m.find("known: hdl32e, hdl64e, os1-128, os1-64, ot128, pandar64, rs-ruby80, vlp16, vlp32c"),
+        m.find("known: hdl32e, hdl64e, mid360, mid70, os1-128, os1-64, ot128, pandar64, "
+               "rs-ruby80, vlp16, vlp32c"),
         std::string::npos)
         << m;
   }
@@ -274,6 +300,9 @@ TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
       {"two values", Edit(9, "sensor_height 1.8 1.9"), 9, "expects exactly one value, got 2"},
       {"no value", Edit(2, "name"), 2, "expects exactly one value, got 0"},
       {"ring flag", Edit(7, "ring_zero_is_top yes"), 7, "ring_zero_is_top must be 0 or 1"},
+      {"pattern", Edit(7, "pattern spiral"), 7,
+       "pattern must be one of spinning, rosette, band, got 'spiral'"},
+      {"mount", Edit(7, "mount auto"), 7, "mount must be one of fixed, per_frame, got 'auto'"},
       {"stray numbers", Edit(8, "1.0 2.0"), 8, "numbers without a key"},
       {"range order", Edit(11, "max_range 1.5"), 11, "max_range must be larger than min_range"},
       {"negative height", Edit(9, "sensor_height -1.73"), 9, "sensor_height must be > 0"},
@@ -425,7 +454,9 @@ TEST(SensorProfile, SettingsActAsProfileLines) {
                     {"ring_zero_is_top", "0"},
                     {"k_xz", "-0.05"},
                     {"min_range", "3"},
-                    {"max_range", "80"}});
+                    {"max_range", "80"},
+                    {"mount", "per_frame"}});
+  EXPECT_EQ(s.mount, MountSource::kPerFrame);
   EXPECT_EQ(s.max_points, 5000u);
   EXPECT_FALSE(s.ring_zero_is_top);
   EXPECT_EQ(s.k_xz, -0.05f);

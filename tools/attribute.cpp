@@ -18,6 +18,7 @@
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
 #include "host/io/sensor_profile.h"
+#include "host/mount_estimate.h"
 #include "reference_cpu/pipeline.h"
 
 namespace lpir {
@@ -94,12 +95,19 @@ struct Tally {
 constexpr uint32_t kCar = 10;
 
 // Scores one scan into `t` and returns its scored counts.
-Counts AddScan(const Args& a, const Params& p, const Tables& tables, const std::string& cloud_path,
-               const std::string& label_path, Tally& t) {
+// The scan runs with the profile's mount, or with its own estimate (mount per_frame), as a
+// Segmenter runs it.
+Counts AddScan(const Args& a, const SensorProfile& sensor, const Params& p, const Tables& tables,
+               const std::string& cloud_path, const std::string& label_path, Tally& t) {
   const Cloud cloud = ReadKittiBin(cloud_path);
   const std::vector<uint32_t> gt = ReadLabelFile(label_path, cloud.size());
   Frame f;
-  RunReference(cloud, p, tables, f);
+  const MountEstimate mount = FrameMount(cloud, sensor, p);
+  if (sensor.mount == MountSource::kPerFrame)
+    std::printf("%s: mount %s, k_xz %.4f k_yz %.4f height %.3f m\n", cloud_path.c_str(),
+                mount.estimated ? "estimated" : "not estimated (the profile's)", mount.mount.k_xz,
+                mount.mount.k_yz, mount.mount.sensor_height);
+  RunReference(cloud, WithMount(p, mount.mount), tables, f);
   const Protocol protocol = a.ontology == Ontology::kRellis3d ? Protocol::kRellis : Protocol::kDG;
   Counts c;
   for (uint32_t i = 0; i < f.n; ++i) {
@@ -144,7 +152,7 @@ int Main(int argc, char** argv) {
 
   Tally t;
   for (const auto& [cloud_path, label_path] : a.scans) {
-    const Counts c = AddScan(a, p, tables, cloud_path, label_path, t);
+    const Counts c = AddScan(a, sensor, p, tables, cloud_path, label_path, t);
     const Scores s = ScoreCounts(c);
     std::printf("%s: P %.2f R %.2f F1 %.2f, FN %llu FP %llu\n", cloud_path.c_str(),
                 100 * s.precision, 100 * s.recall, 100 * s.f1,

@@ -13,8 +13,9 @@ namespace lpir {
 #define LPIR_SET_HELP                                                                            \
   "  --set NAME=VALUE change one setting of the profile for this run, as a line `NAME VALUE`\n"  \
   "                   or `param NAME VALUE` in the profile would (repeatable): sensor_height,\n" \
-  "                   min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, or a\n"    \
-  "                   parameter of reference_cpu/params.cpp (--set h_athr=0.15)\n"
+  "                   min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, mount\n"   \
+  "                   (fixed or per_frame), or a parameter of reference_cpu/params.cpp\n"        \
+  "                   (--set h_athr=0.15)\n"
 
 // Profile `name` (LoadSensorProfile in SensorsDir()) with args' --set values applied.
 // std::invalid_argument for an unknown profile, a --set without '=', an unknown setting (naming

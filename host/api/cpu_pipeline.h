@@ -15,7 +15,7 @@ class CpuPipeline final : public FrameBackend {
  public:
   CpuPipeline(const Params& params, const Tables& tables, uint32_t slots);
 
-  void Stage(uint32_t slot, const Cloud& cloud) override;
+  void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) override;
   void SubmitStaged(uint32_t first, uint32_t count) override;
   void Collect(uint32_t slot, Frame& out, bool all_buffers, FrameTimes* times) override;
 
@@ -27,6 +27,7 @@ class CpuPipeline final : public FrameBackend {
   Params params_;
   Tables tables_;
   std::vector<Cloud> clouds_;  // per slot: the cloud staged
+  std::vector<Mount> mounts_;  // and its mount
 };
 
 }  // namespace lpir

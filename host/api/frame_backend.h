@@ -8,6 +8,7 @@
 
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
+#include "reference_cpu/params.h"
 #include "reference_cpu/pipeline.h"
 
 namespace lpir {
@@ -16,17 +17,13 @@ class FrameBackend {
  public:
   virtual ~FrameBackend() = default;
 
-  // Copies `cloud` into the free slot `slot`. The cloud is checked: at most the backend's
-  // max_points points, a ring field empty or one entry a point.
-  virtual void Stage(uint32_t slot, const Cloud& cloud) = 0;
+  // Copies `cloud` into the free slot `slot`; its frame runs with the backend's Params seen from
+  // `mount` (WithMount). The cloud is checked: at most the backend's max_points points, a ring
+  // field empty or one entry a point.
+  virtual void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) = 0;
   // Starts the frames staged in slots first .. first + count - 1 as one batch
   // (1 <= count <= batch()).
   virtual void SubmitStaged(uint32_t first, uint32_t count) = 0;
-  // Stage, then SubmitStaged of that one frame.
-  void Submit(uint32_t slot, const Cloud& cloud) {
-    Stage(slot, cloud);
-    SubmitStaged(slot, 1);
-  }
   // Waits for slot `slot`'s frame and frees the slot. Fills out.n, out.label, out.why and
   // out.label_why, and every other buffer of the frame with `all_buffers` (the CPU fills them
   // always); `times` (optional) gets the frame's times.

@@ -61,6 +61,8 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
   }
   if (!pipeline_) pipeline_ = std::make_unique<CpuPipeline>(params_, tables_, slots_);
   batch_ = pipeline_->batch();
+  mount_.mount = MountOf(params_);
+  slot_mounts_.assign(slots_, mount_);
 }
 
 Segmenter::~Segmenter() = default;
@@ -104,10 +106,17 @@ void Segmenter::Submit(const Cloud& cloud) {
   if (!CanSubmit())
     throw std::logic_error("Submit called with " + std::to_string(pending_.size()) +
                            " frames pending, the most in flight: Collect first");
-  CheckCloud(cloud);
+  const Cloud* staged = &cloud;
+  if (sensor_.pattern != ScanPattern::kSpinning && !cloud.ring.empty()) {
+    unringed_.xyzi = cloud.xyzi;  // into the scratch's vector: no allocation once it has grown
+    unringed_.ring.clear();
+    staged = &unringed_;
+  }
+  CheckCloud(*staged);
   if (staged_ == 0) next_slot_ = next_block_ * batch_;
   const uint32_t slot = next_slot_;
-  pipeline_->Stage(slot, cloud);
+  slot_mounts_[slot] = FrameMount(*staged, sensor_, params_);
+  pipeline_->Stage(slot, *staged, slot_mounts_[slot].mount);
   ++staged_;
   pending_.push_back(slot);
   next_slot_ = slot + 1;
@@ -128,6 +137,7 @@ const Frame& Segmenter::Collect(FrameTimes* times) {
   const uint32_t slot = pending_.front();
   pending_.pop_front();
   pipeline_->Collect(slot, frame_, options_.all_buffers, times);
+  mount_ = slot_mounts_[slot];
   return frame_;
 }
 

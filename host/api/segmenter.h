@@ -9,7 +9,9 @@
 #include <deque>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "host/mount_estimate.h"
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
 #include "reference_cpu/params.h"
@@ -68,7 +70,9 @@ class Segmenter {
   Segmenter(Segmenter&&) noexcept;
   Segmenter& operator=(Segmenter&&) noexcept;
 
-  // Labels one cloud: Submit then Collect. The frame stays valid until the next Segment or
+  // Labels one cloud: Submit then Collect. A non-spinning profile (pattern rosette or band) sets
+  // every point's row by its elevation: a ring field is ignored. With `mount per_frame` each
+  // cloud's mount is estimated (EstimateMount) before it is staged. The frame stays valid until the next Segment or
   // Collect. Throws std::length_error when the cloud holds more than max_points points,
   // std::invalid_argument when its ring field does not match its size or does not fit the profile
   // (SensorFitError: rings past the beams on more than 1 % of the points), std::runtime_error
@@ -101,6 +105,10 @@ class Segmenter {
   // (everything is allocated at construction); 0 on the CPU.
   uint64_t device_bytes() const;
 
+  // The mount the last collected frame was segmented with: the profile's (mount fixed), or
+  // EstimateMount's for that cloud, with whether the estimate held (mount per_frame).
+  const MountEstimate& mount() const { return mount_; }
+
   const Params& params() const { return params_; }
   const Tables& tables() const { return tables_; }
   const SensorProfile& sensor() const { return sensor_; }
@@ -124,6 +132,9 @@ class Segmenter {
   std::deque<uint32_t> pending_;  // slots submitted, oldest first
   uint32_t next_slot_ = 0;
   Frame frame_;  // what Segment and Collect return
+  std::vector<MountEstimate> slot_mounts_;  // per slot: its frame's mount
+  MountEstimate mount_;                     // the last collected frame's
+  Cloud unringed_;  // scratch: a cloud without its ring field, for non-spinning profiles
 };
 
 }  // namespace lpir

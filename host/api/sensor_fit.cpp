@@ -36,7 +36,7 @@ std::string Degrees(double d) {
 SensorFit MeasureRings(const Cloud& cloud, const SensorProfile& sensor) {
   SensorFit fit;
   fit.points = cloud.size();
-  if (cloud.ring.empty()) return fit;
+  if (cloud.ring.empty() || sensor.pattern != ScanPattern::kSpinning) return fit;  // not read
   fit.ring_min = fit.ring_max = cloud.ring[0];
   const int32_t beams = int32_t(sensor.beams);
   for (int32_t r : cloud.ring) {

@@ -33,7 +33,8 @@ constexpr double kRingErrorShare = 0.01;
 // Elevations outside the table on more than this share of the sampled points are warned about.
 constexpr double kElevationWarnShare = 0.05;
 
-// The rings only (cheap: one pass over the ring field; nothing when the cloud has none).
+// The rings only (cheap: one pass over the ring field; nothing when the cloud has none or the
+// profile's pattern is not spinning, which ignores them).
 SensorFit MeasureRings(const Cloud& cloud, const SensorProfile& sensor);
 // Rings and elevations.
 SensorFit MeasureSensorFit(const Cloud& cloud, const SensorProfile& sensor);

@@ -30,8 +30,8 @@ vk::Result<std::unique_ptr<VulkanPipeline>> VulkanPipeline::Create(
 VulkanPipeline::VulkanPipeline(uint32_t batch) : batch_(batch) {}
 VulkanPipeline::~VulkanPipeline() = default;
 
-void VulkanPipeline::Stage(uint32_t slot, const Cloud& cloud) {
-  ThrowIfError(pipeline_->Stage(slot, cloud));
+void VulkanPipeline::Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) {
+  ThrowIfError(pipeline_->Stage(slot, cloud, mount));
 }
 
 void VulkanPipeline::SubmitStaged(uint32_t first, uint32_t count) {

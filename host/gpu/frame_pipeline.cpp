@@ -295,6 +295,7 @@ Status FramePipeline::AddSlot() {
   LPIR_VK_ASSIGN_OR_RETURN(CommandBuffer cmd, CommandBuffer::Create(device));
   LPIR_VK_ASSIGN_OR_RETURN(Fence fence, Fence::Create(device));
   Slot slot{std::move(cmd), std::move(fence), {}, {}, {}, {}, {}};
+  slot.mount = MountOf(params_);
   LPIR_VK_RETURN_IF_ERROR(
       Allocate(slot.upload, UploadBytes(max_points_), MemoryKind::kHostVisible));
   LPIR_VK_RETURN_IF_ERROR(
@@ -321,6 +322,7 @@ Status FramePipeline::RecordLargestFrame() {
   Slot& first = slots_.front();
   first.n = max_points_;
   first.has_ring = true;
+  first.mount = MountOf(params_);
   Status status = first.cmd.Begin();
   if (status.ok()) status = RecordFrame(first, first.cmd);
   if (status.ok()) status = first.cmd.End();
@@ -336,7 +338,7 @@ Status FramePipeline::Submit(uint32_t slot, const Cloud& cloud) {
   return SubmitStaged(slot, 1);
 }
 
-Status FramePipeline::Stage(uint32_t index, const Cloud& cloud) {
+Status FramePipeline::Stage(uint32_t index, const Cloud& cloud, const Mount& mount) {
   if (index >= slots_.size() || slots_[index].busy || slots_[index].staged || slots_[index].frames)
     return PipelineError("slot " + std::to_string(index) + " is not free");
   const uint64_t n = cloud.size();
@@ -348,6 +350,7 @@ Status FramePipeline::Stage(uint32_t index, const Cloud& cloud) {
   if (has_ring && n) std::memcpy(upload + 16 * VkDeviceSize(max_points_), cloud.ring.data(), 4 * n);
   slot.n = uint32_t(n);
   slot.has_ring = has_ring;
+  slot.mount = mount;
   slot.staged = true;
   return Status();
 }
@@ -400,7 +403,7 @@ Status FramePipeline::RecordFrame(Slot& slot, CommandBuffer& cmd) {
   time();
   // The slot's previous frame has finished with its buffers (the queue's earlier work is done).
   cmd.ComputeToTransfer();
-  Params params = params_;
+  Params params = WithMount(params_, slot.mount);
   params.has_ring = has_ring ? 1u : 0u;
   cmd.UpdateBuffer(b.params, &params, sizeof(Params));
   if (n) cmd.CopyBuffer(slot.upload, b.points, 16 * VkDeviceSize(n));

@@ -61,8 +61,10 @@ class FramePipeline {
   // Copies `cloud` into slot `slot`'s staging buffer. The slot must be free: never used, or
   // collected since, and not the first of a batch with frames still to collect (an error,
   // nothing staged, otherwise). The cloud must fit, as the caller checks (Segmenter::Submit
-  // does): at most max_points points, a ring field empty or one entry a point.
-  Status Stage(uint32_t slot, const Cloud& cloud);
+  // does): at most max_points points, a ring field empty or one entry a point. The frame runs
+  // with Create's Params seen from `mount` (WithMount), or as they are without one.
+  Status Stage(uint32_t slot, const Cloud& cloud, const Mount& mount);
+  Status Stage(uint32_t slot, const Cloud& cloud) { return Stage(slot, cloud, MountOf(params_)); }
   // Records the frames staged in slots first .. first + count - 1 into one command buffer
   // (slot first's; interleaved pass by pass when count > 1) and submits it. Each frame is
   // collected from its own slot.
@@ -98,6 +100,7 @@ class FramePipeline {
     std::unique_ptr<Stages> stages;         // after buffers: destroyed first
     bool busy = false, staged = false, has_ring = false;
     uint32_t n = 0;
+    Mount mount{};  // the staged frame's
     uint32_t lead = 0;  // the slot whose command buffer and fence carry this frame
     // As a lead: its fence signals a submission not yet waited for; frames of that submission
     // not yet collected (the slot takes no new frame before they are).
@@ -118,7 +121,8 @@ class FramePipeline {
   static Result<std::unique_ptr<Stages>> MakeStages(const Device& device, const FrameBuffers& b);
   template <typename Fn>
   static Status ForEachStage(const Stages& s, Fn&& fn);
-  // Records slot's frame (slot.n points, slot.has_ring) into cmd, begun by the caller.
+  // Records slot's frame (slot.n points, slot.has_ring, slot.mount) into cmd, begun by the
+  // caller.
   Status RecordFrame(Slot& slot, CommandBuffer& cmd);
   // Collect's parts: the slot's GPU times, and every buffer of its frame.
   Status ReadTimes(const Slot& slot, FrameTimes& times) const;

@@ -26,6 +26,8 @@ namespace fs = std::filesystem;
 
 // Every key a profile may hold; `param` may repeat (once per parameter name), the others not.
 const char* const kKeys[] = {"name",
+                             "pattern",
+                             "mount",
                              "beams",
                              "width",
                              "max_points",
@@ -83,14 +85,33 @@ unsigned ParseUnsigned(const std::string& key, const std::string& t) {
 
 // The one-number keys a setting may change (ApplySettings): those that tune the segmentation of
 // a sensor already described, not its geometry (beams, width, elevation_deg).
-const char* const kSettableKeys[] = {"sensor_height", "min_range",        "max_range", "k_xz",
-                                     "k_yz",          "ring_zero_is_top", "max_points"};
+const char* const kSettableKeys[] = {"sensor_height", "min_range",        "max_range",  "k_xz",
+                                     "k_yz",          "ring_zero_is_top", "max_points", "mount"};
+
+// The words of the enumerated keys, in enum order.
+const char* const kPatternNames[] = {"spinning", "rosette", "band"};
+const char* const kMountNames[] = {"fixed", "per_frame"};
+
+// The index of `v` among `names`; std::invalid_argument listing them otherwise.
+template <size_t N>
+size_t ParseWord(const std::string& key, const std::string& v, const char* const (&names)[N]) {
+  std::string all;
+  for (size_t i = 0; i < N; ++i) {
+    if (v == names[i]) return i;
+    all += std::string(i ? ", " : "") + names[i];
+  }
+  throw std::invalid_argument(key + " must be one of " + all + ", got '" + v + "'");
+}
 
 // Sets the one-value key `key` of `p` (any key but name, the lists and param) from its token
 // `v`, checking it as the reader does; std::invalid_argument with the problem.
 void SetOneValueKey(SensorProfile& p, const std::string& key, const std::string& v) {
   auto fail = [](const std::string& problem) { throw std::invalid_argument(problem); };
-  if (key == "beams") {
+  if (key == "pattern") {
+    p.pattern = static_cast<ScanPattern>(ParseWord(key, v, kPatternNames));
+  } else if (key == "mount") {
+    p.mount = static_cast<MountSource>(ParseWord(key, v, kMountNames));
+  } else if (key == "beams") {
     p.beams = ParseUnsigned(key, v);
     if (p.beams < 1 || p.beams > 4096) fail("beams must be 1..4096");
   } else if (key == "width") {
@@ -279,6 +300,9 @@ bool IsFile(const std::string& path) {
 
 }  // namespace
 
+const char* PatternName(ScanPattern pattern) { return kPatternNames[static_cast<int>(pattern)]; }
+const char* MountName(MountSource mount) { return kMountNames[static_cast<int>(mount)]; }
+
 SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::string& sensors_dir) {
   // A bare name is looked up in sensors_dir first, so that a stray file of the same name in the
   // working folder cannot shadow a shipped profile.
@@ -358,6 +382,8 @@ void WriteSensorProfile(const std::string& path, const SensorProfile& p) {
     throw IoError(path, "cannot write a profile whose name '" + p.name + "' is not one word");
   std::string s = "# Sensor profile (format: sensors/README.md).\n";
   s += "name " + p.name + "\n";
+  s += std::string("pattern ") + PatternName(p.pattern) + "\n";
+  s += std::string("mount ") + MountName(p.mount) + "\n";
   s += "beams " + std::to_string(p.beams) + "\n";
   s += "width " + std::to_string(p.width) + "\n";
   if (p.max_points) s += "max_points " + std::to_string(p.max_points) + "\n";

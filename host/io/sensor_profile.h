@@ -23,8 +23,8 @@ SensorProfile LoadSensorProfile(const std::string& name_or_path,
 // Names of the profiles in sensors_dir (file stems), sorted.
 std::vector<std::string> KnownSensorProfiles(const std::string& sensors_dir = DefaultSensorsDir());
 // The names ApplySettings takes: the profile keys that tune the segmentation of a sensor
-// (sensor_height, min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points), then every
-// parameter (ParamNames()).
+// (sensor_height, min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, mount), then
+// every parameter (ParamNames()).
 std::vector<std::string> SettingNames();
 // Applies each NAME=VALUE in order, as the profile line `NAME VALUE` (a key) or `param NAME VALUE`
 // (a parameter) would, with the reader's checks of the value; a later one replaces an earlier one
@@ -34,6 +34,10 @@ std::vector<std::string> SettingNames();
 // that does not hold. `profile` may be half-changed when it throws.
 void ApplySettings(SensorProfile& profile,
                    const std::vector<std::pair<std::string, std::string>>& settings);
+// The profile file's words for the enumerated keys: "spinning", "rosette", "band"; "fixed",
+// "per_frame".
+const char* PatternName(ScanPattern pattern);
+const char* MountName(MountSource mount);
 // Writes a profile that LoadSensorProfile reads back identically.
 void WriteSensorProfile(const std::string& path, const SensorProfile& profile);
 

@@ -69,7 +69,7 @@ std::vector<std::pair<std::string, std::string>> SettingsArg(py::handle params) 
     } else if (!py::isinstance<py::bool_>(value) && PyNumber_Check(value.ptr())) {
       text = py::repr(py::float_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
     } else {
-      throw py::type_error("params['" + name + "'] must be a number, not " +
+      throw py::type_error("params['" + name + "'] must be a number or a str, not " +
                            py::repr(value).cast<std::string>());
     }
     settings.emplace_back(name, text);
@@ -219,6 +219,16 @@ class PySegmenter {
   size_t max_points() const { return segmenter_->max_points(); }
   size_t frames_in_flight() const { return segmenter_->frames_in_flight(); }
   bool on_cpu_driver() const { return segmenter_->on_cpu_driver(); }
+  py::dict mount() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const MountEstimate& m = segmenter_->mount();
+    py::dict d;
+    d["sensor_height"] = double(m.mount.sensor_height);
+    d["k_xz"] = double(m.mount.k_xz);
+    d["k_yz"] = double(m.mount.k_yz);
+    d["estimated"] = m.estimated;
+    return d;
+  }
 
  private:
   void CheckSize(const Cloud& cloud, const std::string& name) const {
@@ -265,14 +275,14 @@ Args:
     validation: the Vulkan validation layer (messages on stderr).
     params: settings changed for this segmenter, as `lpir-gseg segment --set NAME=VALUE` changes
         them: {"sensor_height": 1.9, "h_athr": 0.15}. A name is one of the profile's keys
-        sensor_height, min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, or a
-        parameter of reference_cpu/params.cpp; each value is checked as the profile line
-        `NAME VALUE` or `param NAME VALUE` would be.
+        sensor_height, min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, mount
+        ("fixed" or "per_frame"), or a parameter of reference_cpu/params.cpp; each value is
+        checked as the profile line `NAME VALUE` or `param NAME VALUE` would be.
 
 Raises:
     ValueError: an unknown sensor name, backend or bad option; in params an unknown name (the
         message names the nearest known one) or a value it does not take.
-    TypeError: params not a dict, or a value that is not a number.
+    TypeError: params not a dict, or a value that is neither a number nor a str.
     FileNotFoundError: a profile path (holding a '/') to a file that does not exist.
     OSError: a malformed profile file (the message names the file and line).
     RuntimeError: backend="vulkan" (or a device named) and no device could be set up.
@@ -361,6 +371,12 @@ void BindSegmenter(py::module_& m) {
                              "batch as constructed).")
       .def_property_readonly("on_cpu_driver", &PySegmenter::on_cpu_driver,
                              "True when the Vulkan device is a CPU driver (lavapipe).")
+      .def_property_readonly(
+          "mount", &PySegmenter::mount,
+          "The mount the last cloud was segmented with (for segment_batch, the last of the "
+          "batch): {\"sensor_height\": m, \"k_xz\": ..., \"k_yz\": ..., \"estimated\": bool}, "
+          "estimated True when it is that cloud's own estimate (profile key mount per_frame), "
+          "False when it is the profile's (mount fixed, or a cloud showing too little ground).")
       .def("__repr__", [](const PySegmenter& s) {
         return "<lpir_gseg.Segmenter sensor='" + s.sensor() + "' backend='" + s.backend() +
                "': " + s.backend_note() + ">";
