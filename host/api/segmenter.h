@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "host/mount_estimate.h"
+#include "host/api/mount_estimate.h"
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
 #include "reference_cpu/params.h"
@@ -72,11 +72,11 @@ class Segmenter {
 
   // Labels one cloud: Submit then Collect. A non-spinning profile (pattern rosette or band) sets
   // every point's row by its elevation: a ring field is ignored. With `mount per_frame` each
-  // cloud's mount is estimated (EstimateMount) before it is staged. The frame stays valid until the next Segment or
-  // Collect. Throws std::length_error when the cloud holds more than max_points points,
-  // std::invalid_argument when its ring field does not match its size or does not fit the profile
-  // (SensorFitError: rings past the beams on more than 1 % of the points), std::runtime_error
-  // when the device fails.
+  // cloud's mount is estimated (EstimateMount) before it is staged. The frame stays valid until the
+  // next Segment or Collect. Throws std::length_error when the cloud holds more than max_points
+  // points, std::invalid_argument when its ring field does not match its size or does not fit the
+  // profile (SensorFitError: rings past the beams on more than 1 % of the points),
+  // std::runtime_error when the device fails.
   const Frame& Segment(const Cloud& cloud, FrameTimes* times = nullptr);
 
   // Frames in flight: Submit queues a cloud (copied; it need not outlive the call) while
@@ -131,7 +131,7 @@ class Segmenter {
   uint32_t next_block_ = 0;       // where the next batch starts
   std::deque<uint32_t> pending_;  // slots submitted, oldest first
   uint32_t next_slot_ = 0;
-  Frame frame_;  // what Segment and Collect return
+  Frame frame_;                             // what Segment and Collect return
   std::vector<MountEstimate> slot_mounts_;  // per slot: its frame's mount
   MountEstimate mount_;                     // the last collected frame's
   Cloud unringed_;  // scratch: a cloud without its ring field, for non-spinning profiles

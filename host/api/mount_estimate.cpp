@@ -1,4 +1,4 @@
-#include "host/mount_estimate.h"
+#include "host/api/mount_estimate.h"
 
 #include <algorithm>
 #include <cfloat>
