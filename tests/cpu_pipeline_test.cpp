@@ -1,8 +1,8 @@
-// The CPU backend (host/cpu_pipeline.h) through lpir::Segmenter: frames collected alone and frames
-// in flight, at one thread and at several, every buffer byte for byte equal to the reference on
-// one thread (RunReference); the threads option resolved and checked; a segmenter destroyed with
+// The CPU backend (host/api/cpu_pipeline.h) through lpir::Segmenter: frames collected alone and
+// frames in flight, at one thread and at several, every buffer byte for byte equal to the reference
+// on one thread (RunReference); the threads option resolved and checked; a segmenter destroyed with
 // frames still running; AvailableCores under a narrowed affinity.
-#include "host/cpu_pipeline.h"
+#include "host/api/cpu_pipeline.h"
 
 #include <gtest/gtest.h>
 #include <sched.h>
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "reference_cpu/pipeline.h"
 #include "tests/frame_compare.h"
 #include "tests/test_util.h"
