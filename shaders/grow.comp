@@ -49,6 +49,7 @@
 #extension GL_KHR_memory_scope_semantics : require  // atomicLoad (core SPIR-V)
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -69,12 +70,6 @@ layout(push_constant) uniform Push {
   uint count;  // pixels: width * beams
 } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
-const uint kPixNonGround = 0u;
-const uint kPixGround = 1u;
-const uint kPixUnknown = 2u;
-const uint kPixVetoed = 4u;
-const uint kPixUnknownOff = 6u;
 const uint kSeed = 0u;  // grow_reach's virtual node: the root of every component holding a seed
 
 const uint kInit = 0u, kReach = 1u, kJoin = 2u, kCount = 3u, kFinish = 4u;
