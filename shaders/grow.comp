@@ -1,6 +1,6 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
 // In: pixel_fused, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
-// Growing is connected-component labelling (SPEC 2): with the symmetric step tests below, the
+// Growing is connected-component labelling (docs/spec.md, Readings of the paper): with the symmetric step tests below, the
 // unknown pixels that grow are those whose component of the allowed-step graph (nodes: ground
 // and unknown pixels; edges: 8-neighbours, columns wrapping, whose step is allowed) holds a
 // ground pixel. Two union-finds with lowest-index roots (parents only decrease: links and path
