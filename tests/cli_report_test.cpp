@@ -69,7 +69,7 @@ TEST(InvalidReasons, SumToThePointsStageOneMarksInvalid) {
   Segmenter seg(LoadSensorProfile("hdl64e", test::SensorsDir()),
                 SegmenterOptions::For(Backend::kCpu));
   const Cloud c = WithInvalidPoints(Scan(1));
-  const InvalidReasons r = CountInvalidReasons(c, seg.params());
+  const InvalidReasons r = CountInvalidReasons(c, seg.params(), true);
   EXPECT_EQ(r.not_finite, 3u);
   EXPECT_EQ(r.at_origin, 2u);
   EXPECT_EQ(r.out_of_range, 4u);
@@ -85,7 +85,7 @@ TEST(InvalidReasons, RingOutsideTheBeamsIsItsOwnReason) {
   c.ring[0] = -1;
   c.ring[1] = 64;             // hdl64e: rings 0..63
   c.ring[c.size() - 9] = 64;  // the NaN point: counted as not finite only
-  const InvalidReasons r = CountInvalidReasons(c, seg.params());
+  const InvalidReasons r = CountInvalidReasons(c, seg.params(), true);
   EXPECT_EQ(r.bad_ring, 2u);
   EXPECT_EQ(r.not_finite, 3u);
   EXPECT_EQ(r.total(), CountWhy(seg.Segment(c), kWhyInvalid));
@@ -156,12 +156,12 @@ TEST(CliReport, CsvHasAHeaderAndARowPerFileAgreeingWithTheLabels) {
   EXPECT_EQ(lines[0],
             "input,sequence,stamp_ns,topic,points,ground,ground_fraction,invalid,"
             "invalid_not_finite,invalid_at_origin,invalid_out_of_range,invalid_bad_ring,ms,"
-            "backend,device,error");
+            "sensor_height,k_xz,k_yz,mount_estimated,backend,device,error");
   const std::vector<std::string> road = CsvFields(lines[1]), plain = CsvFields(lines[2]),
                                  broken = CsvFields(lines[3]);
-  ASSERT_EQ(road.size(), 16u);
-  ASSERT_EQ(plain.size(), 16u);
-  ASSERT_EQ(broken.size(), 16u);
+  ASSERT_EQ(road.size(), 20u);
+  ASSERT_EQ(plain.size(), 20u);
+  ASSERT_EQ(broken.size(), 20u);
   EXPECT_EQ(road[0], dir.path + "/road.bin");
   EXPECT_EQ(road[1] + road[2] + road[3], "");  // a file: no sequence, stamp or topic
   const size_t n = RoadWithInvalidPoints().size();
@@ -176,17 +176,41 @@ TEST(CliReport, CsvHasAHeaderAndARowPerFileAgreeingWithTheLabels) {
   EXPECT_EQ(road[10], "4");
   EXPECT_EQ(road[11], "0");
   EXPECT_GT(std::stod(road[12]), 0.0);
-  EXPECT_EQ(road[13], "cpu");
-  EXPECT_EQ(road[14], "CPU reference");
-  EXPECT_EQ(road[15], "");
+  EXPECT_EQ(road[13], "1.7300");  // hdl64e's mount, fixed
+  EXPECT_EQ(road[14], "0.000000");
+  EXPECT_EQ(road[15], "0.000000");
+  EXPECT_EQ(road[16], "0");
+  EXPECT_EQ(road[17], "cpu");
+  EXPECT_EQ(road[18], "CPU reference");
+  EXPECT_EQ(road[19], "");
   const size_t plain_n = Scan(2).size();
   EXPECT_EQ(plain[4], std::to_string(plain_n));
   EXPECT_EQ(plain[5], std::to_string(Ground(dir.path + "/out/plain.label", plain_n)));
   EXPECT_EQ(plain[7], "0");
   EXPECT_EQ(broken[0], dir.path + "/broken.bin");
   EXPECT_EQ(broken[4], "0");
-  EXPECT_NE(broken[15].find(dir.path + "/broken.bin"), std::string::npos) << broken[15];
-  EXPECT_NE(broken[15].find("16-byte"), std::string::npos) << broken[15];
+  EXPECT_NE(broken[19].find(dir.path + "/broken.bin"), std::string::npos) << broken[19];
+  EXPECT_NE(broken[19].find("16-byte"), std::string::npos) << broken[19];
+}
+
+// `--set mount=per_frame`: each frame's own mount in the report (the plain scan is simulated from
+// hdl64e's 1.73 m), and its median in the summary line.
+TEST(CliReport, PerFrameMountsAreReportedAndSummed) {
+  test::ScopedDir dir;
+  WriteInputs(dir.path);
+  std::string log;
+  ASSERT_EQ(test::RunCommand(SegmentCommand(dir.path, "--set mount=per_frame --report " +
+                                                          dir.path + "/r.csv"),
+                             &log),
+            1)
+      << log;
+  const std::vector<std::string> lines = Lines(test::ReadFileBytes(dir.path + "/r.csv"));
+  ASSERT_EQ(lines.size(), 4u);
+  const std::vector<std::string> plain = CsvFields(lines[2]);
+  ASSERT_EQ(plain.size(), 20u);
+  EXPECT_NEAR(std::stod(plain[13]), 1.73, 0.12);
+  EXPECT_EQ(plain[16], "1");
+  EXPECT_NE(log.find("sensor height estimated on "), std::string::npos) << log;
 }
 
 TEST(CliReport, JsonParsesAndHoldsTheSameFigures) {
@@ -294,7 +318,7 @@ TEST(CliReport, NamesWithCommasAndQuotesSurviveBothFormats) {
   const std::vector<std::string> lines = Lines(test::ReadFileBytes(dir.path + "/r.csv"));
   ASSERT_EQ(lines.size(), 2u);
   const std::vector<std::string> row = CsvFields(lines[1]);
-  ASSERT_EQ(row.size(), 16u) << lines[1];
+  ASSERT_EQ(row.size(), 20u) << lines[1];
   EXPECT_EQ(row[0], name);
   if (test::RunCommand("python3 -c 'import json'") != 0) return;
   std::ofstream(dir.path + "/check.py")

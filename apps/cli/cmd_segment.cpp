@@ -35,6 +35,7 @@
 #include "apps/cli/frame_report.h"
 #include "apps/cli/frame_source.h"
 #include "apps/cli/invalid_reasons.h"
+#include "apps/cli/mount_tally.h"
 #include "apps/cli/progress.h"
 #include "apps/cli/sensor_args.h"
 #include "apps/cli/timing.h"
@@ -386,6 +387,7 @@ class SegmentRun {
   size_t frames() const { return frames_; }
   size_t invalid() const { return invalid_; }
   const InvalidReasons& reasons() const { return reasons_; }
+  const MountTally& mounts() const { return mounts_; }
 
  private:
   // The frame as messages name it: the file, or "<drive>: <topic> message <sequence>".
@@ -471,7 +473,12 @@ class SegmentRun {
         r.invalid += frame.why[i] == kWhyInvalid;
       }
       r.ms = times.total_ms;
-      if (r.invalid) r.reasons = CountInvalidReasons(job.cloud, segmenter_.params());
+      r.mount = segmenter_.mount().mount;
+      r.mount_estimated = segmenter_.mount().estimated;
+      mounts_.Add(segmenter_.mount());
+      if (r.invalid)
+        r.reasons = CountInvalidReasons(job.cloud, segmenter_.params(),
+                                        segmenter_.sensor().pattern == ScanPattern::kSpinning);
       ++frames_;
       invalid_ += r.invalid;
       reasons_.not_finite += r.reasons.not_finite;
@@ -481,7 +488,7 @@ class SegmentRun {
       if (index_) index_->Add(job, r.ground, r.ms, file);
       if (report_) report_->Add(r);
       std::string lines;
-      if (a_.verbose) lines += FrameLine(job.stem, r);
+      if (a_.verbose) lines += FrameLine(job.stem, r, per_frame_ ? &segmenter_.mount() : nullptr);
       if (a_.timings) lines += timings_.Add(job.stem, times);
       if (!lines.empty()) progress_->Print(stdout, lines);
       progress_->Step(job.cloud.size(), r.ground);
@@ -525,14 +532,17 @@ class SegmentRun {
     return drive_out_ || !job.from_drive ? "" : path.filename().string();
   }
 
-  // "<stem>: N points, G % ground, T ms", and the invalid points by reason when there are any:
+  // "<stem>: N points, G % ground, T ms", the frame's own mount when `mount` is given
+  // (MountTally::FrameClause), and the invalid points by reason when there are any:
   // " (K invalid: a NaN/Inf, b at the origin, c out of range, d ring outside the beams)", naming
   // those > 0.
-  static std::string FrameLine(const std::string& stem, const FrameRecord& r) {
+  static std::string FrameLine(const std::string& stem, const FrameRecord& r,
+                               const MountEstimate* mount) {
     char buf[160];
     std::snprintf(buf, sizeof(buf), "%s: %zu points, %.1f %% ground, %.2f ms", stem.c_str(),
                   r.points, r.points ? 100.0 * double(r.ground) / double(r.points) : 0.0, r.ms);
     std::string line = buf;
+    if (mount) line += MountTally::FrameClause(*mount);
     if (r.invalid)
       line +=
           " (" + std::to_string(r.invalid) + " invalid: " + DescribeInvalidReasons(r.reasons) + ")";
@@ -553,9 +563,11 @@ class SegmentRun {
   std::deque<FrameInput> jobs_;
   std::set<std::string> made_;  // output folders made so far
   size_t failures_ = 0;
-  size_t frames_ = 0;        // segmented and written
-  size_t invalid_ = 0;       // points of those frames labelled invalid
-  InvalidReasons reasons_;   // the same points by reason
+  size_t frames_ = 0;       // segmented and written
+  size_t invalid_ = 0;      // points of those frames labelled invalid
+  InvalidReasons reasons_;  // the same points by reason
+  MountTally mounts_;       // the frames' mounts
+  const bool per_frame_ = segmenter_.sensor().mount == MountSource::kPerFrame;
   bool noted_ = false;       // a reader's note was printed
   bool fit_warned_ = false;  // a sensor-fit warning was printed
 };
@@ -734,6 +746,8 @@ int RunSegment(int argc, char** argv) {
     if (run.invalid())
       line += ", " + std::to_string(run.invalid()) +
               " invalid points (non-ground: " + DescribeInvalidReasons(run.reasons()) + ")";
+    if (sensor.mount == MountSource::kPerFrame && run.frames())
+      line += "; " + run.mounts().Summary(segmenter.params().sensor_height);
     const std::string outputs = a.format == "label"  ? "labels"
                                 : a.format == "mcap" ? "labelled MCAP"
                                 : a.format == "bag"  ? "labelled bag"

@@ -88,7 +88,7 @@ FrameReport::FrameReport(const std::string& path, std::string backend, std::stri
   std::fputs(json_ ? "{\"frames\": [\n"
                    : "input,sequence,stamp_ns,topic,points,ground,ground_fraction,invalid,"
                      "invalid_not_finite,invalid_at_origin,invalid_out_of_range,invalid_bad_ring,"
-                     "ms,backend,device,error\n",
+                     "ms,sensor_height,k_xz,k_yz,mount_estimated,backend,device,error\n",
              file_);
 }
 
@@ -106,7 +106,11 @@ void FrameReport::Add(const FrameRecord& r) {
                            std::to_string(r.reasons.at_origin),
                            std::to_string(r.reasons.out_of_range),
                            std::to_string(r.reasons.bad_ring),
-                           Number("%.3f", r.ms)};
+                           Number("%.3f", r.ms),
+                           Number("%.4f", r.mount.sensor_height),
+                           Number("%.6f", r.mount.k_xz),
+                           Number("%.6f", r.mount.k_yz),
+                           r.mount_estimated ? "1" : "0"};
   std::string line;
   if (json_) {
     const char* keys[] = {"points",
@@ -117,7 +121,11 @@ void FrameReport::Add(const FrameRecord& r) {
                           "invalid_at_origin",
                           "invalid_out_of_range",
                           "invalid_bad_ring",
-                          "ms"};
+                          "ms",
+                          "sensor_height",
+                          "k_xz",
+                          "k_yz",
+                          "mount_estimated"};
     line = std::string(rows_ ? ",\n" : "") + "  {\"input\": " + JsonString(r.input);
     if (r.from_drive)
       line += ", \"sequence\": " + std::to_string(r.sequence) +

@@ -7,6 +7,9 @@
 //                   invalid_at_origin, invalid_out_of_range, invalid_bad_ring (apps/cli/
 //                   invalid_reasons.h; they sum to invalid)
 //   ms              the frame's total time (FrameTimes::total_ms)
+//   sensor_height, k_xz, k_yz   the mount the frame was segmented with (Segmenter::mount())
+//   mount_estimated 1 when that mount is the frame's own estimate (profile key mount per_frame),
+//                   0 when it is the profile's (mount fixed, or too little ground to estimate)
 //   backend, device "vulkan" and the device's name, or "cpu" and "CPU reference"
 //   error           why the frame failed ("" / null when it was segmented; its figures are 0)
 // CSV: a header line, then a line per frame; a field holding a comma, quote or line break is
@@ -18,6 +21,7 @@
 #include <string>
 
 #include "apps/cli/invalid_reasons.h"
+#include "reference_cpu/params.h"
 
 namespace lpir {
 
@@ -30,6 +34,8 @@ struct FrameRecord {
   size_t points = 0, ground = 0, invalid = 0;
   InvalidReasons reasons;
   double ms = 0;
+  Mount mount{0.0f, 0.0f, 0.0f};
+  bool mount_estimated = false;
   std::string error;  // "" when segmented
 };
 

@@ -10,9 +10,9 @@
 
 namespace lpir {
 
-InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p) {
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read) {
   InvalidReasons r;
-  const bool has_ring = !cloud.ring.empty();
+  const bool has_ring = rings_read && !cloud.ring.empty();
   for (size_t i = 0; i < cloud.size(); ++i) {
     const float x = exact::Ftz0(cloud.x(i)), y = exact::Ftz0(cloud.y(i));
     const float z = exact::Ftz0(cloud.z(i));

@@ -18,8 +18,9 @@ struct InvalidReasons {
   size_t total() const { return not_finite + at_origin + out_of_range + bad_ring; }
 };
 
-// The invalid points of `cloud` under `p`, by reason.
-InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p);
+// The invalid points of `cloud` under `p`, by reason; `rings_read`: the profile reads the ring
+// field (pattern spinning), else a ring is never a reason.
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read);
 
 // "3 NaN/Inf, 2 at the origin, 1 out of range, 4 ring outside the beams", naming the reasons with
 // a count (in that order; "" when there are none).

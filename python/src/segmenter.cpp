@@ -219,6 +219,16 @@ class PySegmenter {
   size_t max_points() const { return segmenter_->max_points(); }
   size_t frames_in_flight() const { return segmenter_->frames_in_flight(); }
   bool on_cpu_driver() const { return segmenter_->on_cpu_driver(); }
+  py::dict mount() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const MountEstimate& m = segmenter_->mount();
+    py::dict d;
+    d["sensor_height"] = double(m.mount.sensor_height);
+    d["k_xz"] = double(m.mount.k_xz);
+    d["k_yz"] = double(m.mount.k_yz);
+    d["estimated"] = m.estimated;
+    return d;
+  }
 
  private:
   void CheckSize(const Cloud& cloud, const std::string& name) const {
@@ -361,6 +371,12 @@ void BindSegmenter(py::module_& m) {
                              "batch as constructed).")
       .def_property_readonly("on_cpu_driver", &PySegmenter::on_cpu_driver,
                              "True when the Vulkan device is a CPU driver (lavapipe).")
+      .def_property_readonly(
+          "mount", &PySegmenter::mount,
+          "The mount the last cloud was segmented with (for segment_batch, the last of the "
+          "batch): {\"sensor_height\": m, \"k_xz\": ..., \"k_yz\": ..., \"estimated\": bool}, "
+          "estimated True when it is that cloud's own estimate (profile key mount per_frame), "
+          "False when it is the profile's (mount fixed, or a cloud showing too little ground).")
       .def("__repr__", [](const PySegmenter& s) {
         return "<lpir_gseg.Segmenter sensor='" + s.sensor() + "' backend='" + s.backend() +
                "': " + s.backend_note() + ">";

@@ -20,6 +20,8 @@ REAL_SCANS = {
                "hdl32e/source.ply", "hdl32e/target.ply"],
     "os1-64": ["rellis3d/os1/000104.bin", "rellis3d/os1/frame000104-1581624663_170.ply"],
     "vlp32c": ["rellis3d/vlp32c/000104.bin"],
+    "mid70": ["livox/00/velodyne/000000.bin", "livox/05/velodyne/000003.bin",
+              "livox/08/velodyne/000007.bin"],
 }
 
 

@@ -117,3 +117,21 @@ def test_evaluate_matches_the_cli(cli, tmp_path):
                 assert frame[key] == expected[protocol][key], (protocol, key)
         one = lpir_gseg.evaluate(preds[0], truth[0], protocol)
         assert one["f1"] == report["frames"][0][protocol]["f1"]
+
+
+def test_mount_is_each_clouds_own_with_a_per_frame_profile():
+    livox = [data_file(s) for s in REAL_SCANS["mid70"]]
+    segmenter = lpir_gseg.Segmenter("mid70", backend="cpu")
+    heights = []
+    for path in livox:
+        segmenter.segment(lpir_gseg.read_cloud(path))
+        mount = segmenter.mount
+        assert mount["estimated"] is True, path
+        assert 0.1 <= mount["sensor_height"] <= 3.0 and abs(mount["k_xz"]) <= 0.5, mount
+        heights.append(mount["sensor_height"])
+    assert len(set(heights)) == len(heights), "three recordings, three heights"
+    fixed = lpir_gseg.Segmenter("hdl64e", backend="cpu")
+    with pytest.warns(UserWarning, match="above the top beam"):  # a Livox cloud, a 64-beam profile
+        fixed.segment(lpir_gseg.read_cloud(livox[0]))
+    assert fixed.mount == {"sensor_height": pytest.approx(1.73), "k_xz": 0.0, "k_yz": 0.0,
+                           "estimated": False}
