@@ -9,9 +9,9 @@
 #include <string>
 
 #include "bench/kitti_scans.h"
+#include "host/api/segmenter.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 
 namespace lpir {
 namespace {

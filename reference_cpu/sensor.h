@@ -23,7 +23,7 @@ enum class ScanPattern {
 // Where the mount (k_xz, k_yz, sensor_height) comes from.
 enum class MountSource {
   kFixed,     // the profile's values, for every frame
-  kPerFrame,  // estimated from each cloud's lowest surface (host/mount_estimate.h); the
+  kPerFrame,  // estimated from each cloud's lowest surface (host/api/mount_estimate.h); the
               // profile's values where a cloud shows too little of it
 };
 

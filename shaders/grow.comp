@@ -10,7 +10,7 @@
 // ground pixels after growing, whose roots are the components' lowest pixels.
 // Five passes, one pixel an invocation, chosen by the specialization constant kPass, one
 // pipeline each, recorded in this order with a compute-to-compute barrier between them
-// (host/stages/grow.cpp):
+// (host/gpu/grow.cpp):
 //   0 init    grow_reach[x + 1] = 0 for ground, x + 1 for unknown (kPixUnknown and
 //             kPixUnknownOff alike), kNone otherwise;
 //             grow_reach[0] = 0; pixel_comp[x] = x; grow_sizes[x] = grow_sizes[count + x] = 0.

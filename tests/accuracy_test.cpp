@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "host/api/segmenter.h"
 #include "host/eval/metrics.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "tests/test_util.h"
 
 namespace lpir {

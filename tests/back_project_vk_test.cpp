@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/gpu/back_project.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/back_project.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/pipeline.h"
 #include "reference_cpu/stages.h"

@@ -1,8 +1,8 @@
-// Stage 0, calibrate (host/calib/calibrate.h, paper III-B.3): simulated HDL-64E scans of flat
+// Stage 0, calibrate (host/eval/calibrate.h, paper III-B.3): simulated HDL-64E scans of flat
 // ground tilted by known pitch and roll (apps/sim, the same sign convention) read back as
 // themselves; noise, objects beside the ground and several scans; the refusals; and the payoff:
 // segmenting a tilted street with the calibrated profile scores as the level street does.
-#include "host/calib/calibrate.h"
+#include "host/eval/calibrate.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/eval/metrics.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "reference_cpu/params.h"
 
 namespace lpir {

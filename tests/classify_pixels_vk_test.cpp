@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/gpu/classify_pixels.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/classify_pixels.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/pipeline.h"
 #include "reference_cpu/stages.h"

@@ -12,10 +12,10 @@
 
 #include "apps/cli/invalid_reasons.h"
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "tests/test_util.h"
 
 namespace lpir {

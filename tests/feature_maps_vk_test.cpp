@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/gpu/feature_maps.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/feature_maps.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/pipeline.h"
 #include "reference_cpu/stages.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
-#include "host/frame_pipeline.h"
+#include "host/gpu/frame_pipeline.h"
 #include "host/io/sensor_profile.h"
 #include "reference_cpu/pipeline.h"
 #include "tests/test_util.h"

@@ -1,4 +1,4 @@
-// The whole frame on Vulkan (host/frame_pipeline.h: one command buffer, upload, stages 1-9,
+// The whole frame on Vulkan (host/gpu/frame_pipeline.h: one command buffer, upload, stages 1-9,
 // download) against the CPU reference (RunReference): every buffer of every stage byte for byte
 // (tests/frame_compare.h), on random clouds from 0 points to the pipeline's maximum, simulated
 // scenes of several sensors (with and without ring fields), and every real scan in
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
-#include "host/frame_pipeline.h"
+#include "host/gpu/frame_pipeline.h"
 #include "host/io/cloud_file.h"
 #include "host/io/sensor_profile.h"
 #include "reference_cpu/pipeline.h"

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/gpu/fuse.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/fuse.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/pipeline.h"
 #include "reference_cpu/stages.h"

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/gpu/grid_reduce.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/grid_reduce.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 #include "tests/stage_harness.h"

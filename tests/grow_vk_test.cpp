@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/gpu/grow.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/grow.h"
 #include "host/vk/run_once.h"
 #include "host/vk/transfer.h"
 #include "reference_cpu/pipeline.h"

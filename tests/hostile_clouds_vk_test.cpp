@@ -35,9 +35,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/context.h"
@@ -128,7 +128,7 @@ Cloud WildIntensities() {
 
 // The street with a ring field, every `every`-th ring past (or under) the small sensor's 16
 // beams: below 1 % of the points (every >= 101) invalid points, above it a refused cloud
-// (host/sensor_fit.h).
+// (host/api/sensor_fit.h).
 Cloud RingsPastTheBeams(size_t every) {
   Cloud cloud = Street();
   for (size_t i = 0; i < cloud.size(); ++i)
@@ -661,7 +661,7 @@ TEST_F(HostileVk, MoreThanTheMaximumIsALengthErrorAndTheSegmenterGoesOn) {
 }
 
 // Rings past the beams on a third of the points: a refusal naming the rings and the profile on
-// both backends (host/sensor_fit.h), nothing pending, the next cloud labelled as usual.
+// both backends (host/api/sensor_fit.h), nothing pending, the next cloud labelled as usual.
 TEST_F(HostileVk, RingsPastTheBeamsOnManyPointsAreRefused) {
   const Cloud cloud = RingsPastTheBeams(3);
   for (Segmenter* s : {&Gpu(), &Cpu()}) {

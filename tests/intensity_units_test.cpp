@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "tests/test_util.h"
 
 namespace lpir {

@@ -1,7 +1,7 @@
-// EstimateMount (host/mount_estimate.h) and the Segmenter's use of it: the ground plane found
+// EstimateMount (host/api/mount_estimate.h) and the Segmenter's use of it: the ground plane found
 // under a tilted simulated sensor, the fallback where a cloud shows too little ground, frames
 // segmented with the mount they were estimated with, and non-spinning profiles ignoring rings.
-#include "host/mount_estimate.h"
+#include "host/api/mount_estimate.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <cstring>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "reference_cpu/pipeline.h"
 #include "test_util.h"
 
@@ -33,9 +33,10 @@ TEST(MountEstimate, FindsTheRoadUnderATiltedSensor) {
   struct Case {
     float pitch, roll, height;
   };
-  for (const Case c : {Case{0, 0, 1.73f}, Case{3, -2, 1.73f}, Case{-5, 4, 2.4f}, Case{1, 1, 0.9f}}) {
-    SCOPED_TRACE(testing::Message() << "pitch " << c.pitch << " roll " << c.roll << " height "
-                                    << c.height);
+  for (const Case c :
+       {Case{0, 0, 1.73f}, Case{3, -2, 1.73f}, Case{-5, 4, 2.4f}, Case{1, 1, 0.9f}}) {
+    SCOPED_TRACE(testing::Message()
+                 << "pitch " << c.pitch << " roll " << c.roll << " height " << c.height);
     hdl64e.sensor_height = c.height;
     const SimScan scan = Scan(hdl64e, c.pitch, c.roll, 7);
     const MountEstimate e = EstimateMount(scan.cloud, hdl64e, fallback);

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "host/gpu/prepare.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/prepare.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 #include "tests/stage_harness.h"

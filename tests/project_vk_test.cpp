@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "host/gpu/project.h"
 #include "host/io/cloud_file.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/stages/project.h"
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
 #include "tests/stage_harness.h"

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "tests/frame_compare.h"
 #include "tests/test_util.h"
 #include "tests/vk_test_util.h"

@@ -1,7 +1,7 @@
-// A cloud that does not fit its sensor profile (host/sensor_fit.h): rings past the beams are an
+// A cloud that does not fit its sensor profile (host/api/sensor_fit.h): rings past the beams are an
 // error on more than 1 % of the points and a warning below that; elevations outside the profile's
 // table are a warning; a simulated street of every profile fits its own profile.
-#include "host/sensor_fit.h"
+#include "host/api/sensor_fit.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <string>
 
 #include "apps/sim/scene.h"
+#include "host/api/segmenter.h"
 #include "host/io/cloud_file.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "tests/test_util.h"
 
 namespace lpir {

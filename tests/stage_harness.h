@@ -2,7 +2,7 @@
 // test makes the stage's buffers here from host vectors (inputs uploaded at once, outputs filled
 // after the run), binds them into the stage's <Stage>Buffers, and Run creates the stage, records
 // it once, submits, waits and downloads the outputs. Buffers are device-local and made per run.
-// The library's stages only bind and record (host/stages/); this is their test bench.
+// The library's stages only bind and record (host/gpu/); this is their test bench.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // "Did you mean": the nearest known name to a typo, and none for what is no typo.
-#include "host/suggest.h"
+#include "host/io/suggest.h"
 
 #include <gtest/gtest.h>
 

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "host/stages/coarse_segment.h"
-#include "host/stages/feature_maps.h"
-#include "host/stages/grid_reduce.h"
-#include "host/stages/project.h"
+#include "host/gpu/coarse_segment.h"
+#include "host/gpu/feature_maps.h"
+#include "host/gpu/grid_reduce.h"
+#include "host/gpu/project.h"
 #include "host/vk/buffer.h"
 #include "host/vk/command_buffer.h"
 #include "host/vk/shape.h"

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "host/api/mount_estimate.h"
 #include "host/eval/attribution.h"
 #include "host/eval/by_range.h"
 #include "host/eval/metrics.h"
@@ -18,7 +19,6 @@
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
 #include "host/io/sensor_profile.h"
-#include "host/mount_estimate.h"
 #include "reference_cpu/pipeline.h"
 
 namespace lpir {

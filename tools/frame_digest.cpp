@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "host/api/segmenter.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "reference_cpu/frame.h"
 
 namespace lpir {

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "host/suggest.h"
+#include "host/io/suggest.h"
 
 namespace lpir {
 

@@ -29,10 +29,10 @@
 #include "apps/cli/exit_codes.h"
 #include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
-#include "host/frame_pipeline.h"
+#include "host/api/segmenter.h"
+#include "host/gpu/frame_pipeline.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "host/vk/context.h"
 
 namespace fs = std::filesystem;

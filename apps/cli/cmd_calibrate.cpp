@@ -1,5 +1,5 @@
 // lpir-gseg calibrate SCAN... --sensor NAME [--write-profile FILE] [--json] [options]: the mount
-// tilt (paper III-B.3, eqs. 2-3) from scans of flat ground, by host/calib/calibrate.h, and
+// tilt (paper III-B.3, eqs. 2-3) from scans of flat ground, by host/eval/calibrate.h, and
 // optionally the sensor profile with it, for `segment --sensor FILE`. Exit codes
 // (apps/cli/exit_codes.h): 0 accepted, 3 refused (the reason on stderr: what was measured and
 // what to do; no profile written), 4 errors (unreadable scan, bad profile file), 2 usage.
@@ -13,7 +13,7 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
-#include "host/calib/calibrate.h"
+#include "host/eval/calibrate.h"
 #include "host/io/cloud_file.h"
 #include "host/io/sensor_profile.h"
 
@@ -37,7 +37,7 @@ const char kHelp[] =
     "  --nuscenes         .bin files hold 5 floats per point\n"
     "  --json             one JSON object on stdout: accepted, refusal, reason, k_xz, k_yz,\n"
     "                     b_x, b_y, pitch_deg, roll_deg, xoz/yoz fits, band points\n"
-    "Convention (apps/sim/scene.h, host/calib/calibrate.h): flat ground in the sensor frame is\n"
+    "Convention (apps/sim/scene.h, host/eval/calibrate.h): flat ground in the sensor frame is\n"
     "z = k_xz x + k_yz y - b; pitch = atan(k_xz) > 0: the ground rises ahead (+x); roll =\n"
     "atan(k_yz) > 0: it rises to the left (+y); b_x, b_y > 0: the sensor's height above the\n"
     "ground along its own z axis. `simulate --pitch P --roll R` reads back as P, R.\n"

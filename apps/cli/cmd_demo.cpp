@@ -21,11 +21,11 @@
 #include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
 #include "apps/viz/images.h"
+#include "host/api/segmenter.h"
 #include "host/eval/metrics.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
 #include "host/io/output_paths.h"
-#include "host/segmenter.h"
 
 namespace fs = std::filesystem;
 

@@ -41,6 +41,8 @@
 #include "apps/cli/timing.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
+#include "host/api/segmenter.h"
+#include "host/api/sensor_fit.h"
 #include "host/drive/chunk_pool.h"
 #include "host/drive/drive.h"
 #include "host/drive/inputs.h"
@@ -48,8 +50,6 @@
 #include "host/io/io_error.h"
 #include "host/io/label_file.h"
 #include "host/io/output_paths.h"
-#include "host/segmenter.h"
-#include "host/sensor_fit.h"
 
 namespace fs = std::filesystem;
 
@@ -415,7 +415,7 @@ class SegmentRun {
     Print(stderr, "lpir-gseg segment: note: " + note + once + "\n");
   }
 
-  // The first frame that does not look like the profile's sensor (host/sensor_fit.h: rings past
+  // The first frame that does not look like the profile's sensor (host/api/sensor_fit.h: rings past
   // the beams, elevations outside its table), named with what is wrong, once a run (a wrong
   // --sensor would repeat it for every frame); none with --quiet.
   void FitWarnings(const FrameInput& in) {

@@ -11,7 +11,7 @@
 
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
-#include "host/suggest.h"
+#include "host/io/suggest.h"
 #include "host/vk/device.h"
 #include "host/vk/instance.h"
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "host/mount_estimate.h"
+#include "host/api/mount_estimate.h"
 
 namespace lpir {
 

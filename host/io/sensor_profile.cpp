@@ -16,7 +16,7 @@
 
 #include "host/io/file_bytes.h"
 #include "host/io/io_error.h"
-#include "host/suggest.h"
+#include "host/io/suggest.h"
 #include "reference_cpu/params.h"
 
 namespace lpir {

@@ -1,20 +1,19 @@
-// DefaultSensorsDir (host/io/sensor_profile.h). LPIR_SENSORS_DIR is the folder of the library this
-// object goes into: CMakeLists.txt compiles this file once for the build tree's libraries and once
-// for the installed one.
+// DefaultSensorsDir (host/io/sensor_profile.h). kBuiltSensorsDir is the profiles' folder of the
+// copy of the library this object is linked into, defined in a one-line source that
+// host/io/CMakeLists.txt writes for each copy: the source tree's sensors/ for the build tree's
+// libraries, the installed profiles for the installed archive.
 #include <cstdlib>
 #include <string>
 
 #include "host/io/sensor_profile.h"
 
-#ifndef LPIR_SENSORS_DIR
-#error "LPIR_SENSORS_DIR must name the sensor profiles' folder (CMakeLists.txt defines it)"
-#endif
-
 namespace lpir {
+
+extern const char kBuiltSensorsDir[];
 
 std::string DefaultSensorsDir() {
   const char* env = std::getenv("LPIR_SENSORS_DIR");
-  return env && *env ? env : LPIR_SENSORS_DIR;
+  return env && *env ? env : kBuiltSensorsDir;
 }
 
 }  // namespace lpir

@@ -9,10 +9,10 @@
 // With CMake: find_package(lpir_gseg) and link lpir_gseg::lpir_gseg (C++17; docs/usage.md).
 #pragma once
 
+#include "host/api/segmenter.h"
 #include "host/io/cloud_file.h"
 #include "host/io/io_error.h"
 #include "host/io/label_file.h"
 #include "host/io/sensor_profile.h"
-#include "host/segmenter.h"
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"

@@ -1,8 +1,8 @@
-// lpir_gseg.Segmenter: lpir::Segmenter (host/segmenter.h) for NumPy arrays. Every call releases
+// lpir_gseg.Segmenter: lpir::Segmenter (host/api/segmenter.h) for NumPy arrays. Every call releases
 // the GIL while the library works and takes the object's mutex first (with the GIL released, so
 // two threads sharing one segmenter wait on each other, never deadlock); only the conversion of
 // the input and the allocation of the output hold the GIL.
-#include "host/segmenter.h"
+#include "host/api/segmenter.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -18,8 +18,8 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "host/api/sensor_fit.h"
 #include "host/io/sensor_profile.h"
-#include "host/sensor_fit.h"
 
 namespace lpir::python {
 namespace {
@@ -77,8 +77,8 @@ std::vector<std::pair<std::string, std::string>> SettingsArg(py::handle params) 
   return settings;
 }
 
-// Each of `warnings` (host/sensor_fit.h: the cloud does not look like the profile's sensor) as a
-// Python UserWarning naming `what`; a warning turned into an error by the warnings filter raises.
+// Each of `warnings` (host/api/sensor_fit.h: the cloud does not look like the profile's sensor) as
+// a Python UserWarning naming `what`; a warning turned into an error by the warnings filter raises.
 void Warn(const std::vector<std::string>& warnings, const std::string& what) {
   for (const std::string& w : warnings)
     if (PyErr_WarnEx(PyExc_UserWarning, (what + ": " + w).c_str(), 1) < 0)
