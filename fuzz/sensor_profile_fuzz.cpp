@@ -57,6 +57,7 @@ bool SameProfile(const lpir::SensorProfile& a, const lpir::SensorProfile& b) {
         !SameBits(a.overrides[i].second, b.overrides[i].second))
       return false;
   }
+  if (a.frame_points != b.frame_points) return false;
   return a.name == b.name && a.beams == b.beams && a.width == b.width &&
          a.max_points == b.max_points && SameBits(a.elevation_deg, b.elevation_deg) &&
          SameBits(a.beam_origin_z, b.beam_origin_z) && a.ring_zero_is_top == b.ring_zero_is_top &&

@@ -5,8 +5,8 @@
 // Invalid and noise points are non-ground. The point that won its pixel takes the pixel's label; a
 // point that lost it takes the pixel's label when it lies within bp_range_gate (planar range,
 // Sqrt) and bp_height_gate (z_t) of the winner; otherwise it is ground only when both its own
-// coarse label and the pixel's label say so (a lost point alone would leak coarse errors; SPEC
-// stage 9 reads "otherwise its coarse label": docs/decisions/back_project.md).
+// coarse label and the pixel's label say so (a lost point alone would leak coarse errors; the
+// paper reads "otherwise its coarse label": docs/decisions/back_project.md).
 #include <cmath>
 
 #include "reference_cpu/exact.h"

@@ -4,7 +4,7 @@
 // low/high thresholds (eqs. 9-10; an undefined slope, -1, votes 0). Eq. 11's intensity vote is
 // taken as -1, uniform intensity: it was -1 on nearly every pixel of every labelled scan and bought
 // 0.01 F1 points, while its thresholds tied the result to the intensity's unit
-// (docs/decisions/intensity.md). Eq. 12 completed as SPEC section 2 says, with
+// (docs/decisions/intensity.md). Eq. 12 completed as docs/spec.md, Readings of the paper says, with
 // s = f_slope + f_stdz - 1:
 //   edge 0: s < 0 ground, s > 0 non-ground, s = 0 unknown;  edge 1: s > 0 non-ground, else unknown.
 // A non-ground pixel is a bank (kPixBank, our addition) when f_slope < bank_slope and f_varz <

@@ -3,8 +3,9 @@
 // In: cloud xy, zt, flags, point_cell, cell_zmin/zmax/count; tables.ring_inner.
 // Out: cell_seed_mode, cell_plane (8 ints per cell), coarse (per point).
 //
-// Seeds (eq. 5, read as SPEC section 2 says): lambda = cell radial size * slope_max + seed_margin;
-// h_nmin = lowest z_t of the non-empty 3x3 neighbour cells (own h_min when none).
+// Seeds (eq. 5, read as docs/spec.md, Readings of the paper says): lambda = cell radial size *
+// slope_max + seed_margin; h_nmin = lowest z_t of the non-empty 3x3 neighbour cells (own h_min when
+// none).
 //   mode 0 (no seeds): empty; or h_min - h_nmin > lambda + rise_margin (the cell's lowest point
 //     sits above what neighbour and slope allow: a car roof, a wall filling the cell); or h_min >
 //     -sensor_height + ground_max_above + slope_max * inner radius (far above any ground the

@@ -1,5 +1,5 @@
 // The only arithmetic helpers the stages may use beyond float add/sub/mul/compare/floor and
-// integer operations (SPEC section 3). The shaders use their GLSL mirror,
+// integer operations (docs/spec.md, The bit-exact contract). The shaders use their GLSL mirror,
 // shaders/common/exact.glsl, function for function; both sides must produce the same bits for the
 // same inputs.
 //

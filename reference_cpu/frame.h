@@ -6,32 +6,9 @@
 #include <vector>
 
 #include "reference_cpu/params.h"
+#include "shaders/common/frame_codes.h"  // kNone, kPoint*, kPix*, kWhy*
 
 namespace lpir {
-
-constexpr uint32_t kNone = 0xFFFFFFFFu;  // "no point" / "no pixel"
-
-// Point flags (stage 1).
-constexpr uint32_t kPointValid = 1u;  // finite, not at the origin, inside the range limits
-constexpr uint32_t kPointNoise = 2u;  // reflection noise (III-B.1), valid but never ground
-
-// Pixel classes (stages 6-8).
-constexpr uint32_t kPixNonGround = 0u;
-constexpr uint32_t kPixGround = 1u;
-constexpr uint32_t kPixUnknown = 2u;
-constexpr uint32_t kPixEmpty = 3u;
-// pixel_fused and pixel_grown only: a pixel the occlusion veto (stage 7) took from ground or
-// unknown; in pixel_label stage 8 makes it ground where it lifts the veto, else non-ground.
-constexpr uint32_t kPixVetoed = 4u;
-// pixel_class only: non-ground by eq. 12, but a smooth slope (f_slope < bank_slope, f_varz <
-// bank_rough): a bank, which stage 7 leaves unknown where the coarse label is non-ground.
-constexpr uint32_t kPixBank = 5u;
-// pixel_fused only: unknown where the coarse segmentation saw no ground (its label of the pixel's
-// point non-ground, or no point: a filled hole); stage 8 may climb to it up a bank's grade.
-constexpr uint32_t kPixUnknownOff = 6u;
-
-// Why a point got its final label (for tools and pictures).
-constexpr uint8_t kWhyNonGround = 0, kWhyGround = 1, kWhyInvalid = 2, kWhyNoise = 3;
 
 // A point's label and why in one byte (Frame::label_why): bit 0 the label, bits 1-2 the why.
 constexpr uint8_t PackLabelWhy(uint8_t label, uint8_t why) { return uint8_t(label | why << 1); }

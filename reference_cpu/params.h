@@ -1,5 +1,6 @@
 // Parameters and the tables the host derives from them. Both are handed to every backend as the
-// same bytes (SPEC section 3): the reference and the shaders never compute a trigonometric value.
+// same bytes (docs/spec.md, The bit-exact contract): the reference and the shaders never compute a
+// trigonometric value.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -36,6 +36,10 @@ struct SensorProfile {
   // Largest cloud a segmenter takes unless told (0: beams x width x 2, a point a pixel and as
   // many second returns); for a sensor that fires more often a turn than the image has columns.
   unsigned max_points = 0;
+  // Returns of one 100 ms frame of a non-repetitive pattern (the datasheet's point rate over its
+  // 10 Hz): the rays `simulate` casts a frame (apps/sim/scan_pattern.h). 0: not given; a
+  // spinning sensor's simulated frame is its beams x width rays.
+  unsigned frame_points = 0;
   // Beam elevations (the centres of the elevation bins of a non-repetitive pattern), degrees,
   // row 0 (top) first, descending.
   std::vector<float> elevation_deg;

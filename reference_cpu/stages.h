@@ -1,9 +1,9 @@
-// The stages of the method (SPEC section 2), one file each: reference_cpu/<stage>.cpp, declared
-// here from reference_cpu/stage_table.def. Each is a pure function of the cloud, the parameters,
-// the host tables and earlier stages' buffers in the frame, and (re)writes only its own buffers.
-// Their GPU twins are shaders/<stage>.comp. Each takes last the threads it may split its work over
-// (reference_cpu/threads.h; by default one, the calling thread): the bytes are the same at any
-// count.
+// The stages of the method (docs/spec.md, Stages), one file each: reference_cpu/<stage>.cpp,
+// declared here from reference_cpu/stage_table.def. Each is a pure function of the cloud, the
+// parameters, the host tables and earlier stages' buffers in the frame, and (re)writes only its own
+// buffers. Their GPU twins are shaders/<stage>.comp. Each takes last the threads it may split its
+// work over (reference_cpu/threads.h; by default one, the calling thread): the bytes are the same
+// at any count.
 #pragma once
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"

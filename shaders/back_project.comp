@@ -20,6 +20,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -43,13 +44,6 @@ layout(std430, set = 0, binding = 9) readonly buffer Coarse4 { uvec4 coarse4[]; 
 
 layout(push_constant) uniform Push { uint n; } pc;
 
-const uint kPointValid = 1u;  // reference_cpu/frame.h
-const uint kPointNoise = 2u;
-const uint kPixGround = 1u;
-const uint kWhyNonGround = 0u;
-const uint kWhyGround = 1u;
-const uint kWhyInvalid = 2u;
-const uint kWhyNoise = 3u;
 
 // Point i's byte, label | why << 1, from its flag, pixel, coarse label, r2 and zt. The output is
 // written once, after the branches, no early return (docs/decisions/back_project.md).

@@ -17,6 +17,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 #include "common/compare.glsl"
 
@@ -41,11 +42,6 @@ layout(constant_id = 1) const uint kPass = 0u;  // a pipeline per pass (host/vk/
 
 layout(push_constant) uniform Push { uint pixels; } pc;
 
-const uint kPixNonGround = 0u;  // reference_cpu/frame.h
-const uint kPixGround = 1u;
-const uint kPixUnknown = 2u;
-const uint kPixEmpty = 3u;
-const uint kPixBank = 5u;
 const int kIntensityVote = -1;  // reference_cpu/classify_pixels.cpp
 
 int Vote(float value, float low, float high) {

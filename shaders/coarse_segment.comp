@@ -45,6 +45,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -75,7 +76,6 @@ layout(push_constant) uniform Push {
   uint count;  // cells (passes 0, 2, 4) or points (passes 1, 3, 5)
 } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 const int64_t kQ = int64_t(16384);  // Q14 unit normal
 const int kMinPlaneSeeds = 16;
 const float kMm = 1000.0;

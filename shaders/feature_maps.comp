@@ -38,6 +38,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 #include "common/compare.glsl"
 
@@ -68,7 +69,6 @@ layout(push_constant) uniform Push {
   uint pixels;
 } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
 
 // reference_cpu/feature_maps.cpp: kHeightScale (10000), kHeightQuantum2 (1e-8f), by their bits so
 // that no literal parsing can differ.

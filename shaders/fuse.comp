@@ -30,6 +30,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -57,13 +58,6 @@ const uint kLanes = kQuad ? 4u : 1u;  // pixels per invocation
 
 layout(push_constant) uniform Push { uint pixels; } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
-const uint kPixNonGround = 0u;
-const uint kPixGround = 1u;
-const uint kPixUnknown = 2u;
-const uint kPixEmpty = 3u;
-const uint kPixVetoed = 4u;
-const uint kPixUnknownOff = 6u;
 const uint kNoOpinion = kPixUnknown;
 
 // Element e of a buffer: a quad in pass 1, a pixel (in component x) in pass 0.

@@ -20,6 +20,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 #include "common/compare.glsl"
 
@@ -43,8 +44,6 @@ layout(push_constant) uniform Push {
   uint count;  // cells (pass 0) or points (pass 1)
 } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
-const uint kPointValid = 1u;
 
 // reference_cpu RingOf: the first index with r2 < bound2[index], rings when none.
 // The reference searches by halves; here a guess from the rings' widths (ring_res_near over

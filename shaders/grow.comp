@@ -1,6 +1,6 @@
 // Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
 // In: pixel_fused, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
-// Growing is connected-component labelling (SPEC 2): with the symmetric step tests below, the
+// Growing is connected-component labelling (docs/spec.md, Readings of the paper): with the symmetric step tests below, the
 // unknown pixels that grow are those whose component of the allowed-step graph (nodes: ground
 // and unknown pixels; edges: 8-neighbours, columns wrapping, whose step is allowed) holds a
 // ground pixel. Two union-finds with lowest-index roots (parents only decrease: links and path
@@ -49,6 +49,7 @@
 #extension GL_KHR_memory_scope_semantics : require  // atomicLoad (core SPIR-V)
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -69,12 +70,6 @@ layout(push_constant) uniform Push {
   uint count;  // pixels: width * beams
 } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
-const uint kPixNonGround = 0u;
-const uint kPixGround = 1u;
-const uint kPixUnknown = 2u;
-const uint kPixVetoed = 4u;
-const uint kPixUnknownOff = 6u;
 const uint kSeed = 0u;  // grow_reach's virtual node: the root of every component holding a seed
 
 const uint kInit = 0u, kReach = 1u, kJoin = 2u, kCount = 3u, kFinish = 4u;

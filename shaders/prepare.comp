@@ -18,6 +18,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -31,8 +32,6 @@ layout(std430, set = 0, binding = 5) writeonly buffer R2 { float r2[]; };
 
 layout(push_constant) uniform Push { uint n; } pc;
 
-const uint kPointValid = 1u;  // reference_cpu/frame.h
-const uint kPointNoise = 2u;
 
 bool Finite(float f) { return (floatBitsToUint(f) & 0x7F800000u) != 0x7F800000u; }
 

@@ -37,6 +37,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/params.h"
+#include "common/frame_codes.h"
 #include "common/exact.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -61,9 +62,6 @@ layout(push_constant) uniform Push {
   uint n;
 } pc;
 
-const uint kNone = 0xFFFFFFFFu;  // reference_cpu/frame.h
-const uint kPointValid = 1u;
-const uint kPointNoise = 2u;
 const uint kListLength = 3u, kListStart = 4u;  // project_exact words (0-2: dispatch arguments)
 
 // --- float predicates by their bits (no device float op touches a subnormal) ---

@@ -1,6 +1,6 @@
 // Stage 6, classify pixels (eqs. 8-12): every combination of the edge flag and the two votes
-// against eq. 12 as completed in SPEC section 2 (eq. 11's intensity vote taken as -1), with
-// feature values derived from the Params thresholds.
+// against eq. 12 as completed in docs/spec.md, Readings of the paper (eq. 11's intensity vote taken
+// as -1), with feature values derived from the Params thresholds.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -11,7 +11,8 @@
 namespace lpir {
 namespace {
 
-// Eq. 12 completed (SPEC section 2), s = f_slope + f_stdz + f_stdi with f_stdi = -1.
+// Eq. 12 completed (docs/spec.md, Readings of the paper), s = f_slope + f_stdz + f_stdi with f_stdi
+// = -1.
 uint32_t Expected(bool edge, int s) {
   if (!edge) return s < 0 ? kPixGround : s > 0 ? kPixNonGround : kPixUnknown;
   return s > 0 ? kPixNonGround : kPixUnknown;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "host/io/cloud_file.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -98,11 +99,16 @@ TEST_F(CliExitCodes, HelpCommandPrintsTheCommandsOwnHelp) {
     EXPECT_EQ(help.code, 0) << help.err;
     EXPECT_TRUE(Has(own.out, std::string("usage: lpir-gseg ") + command)) << own.out;
     EXPECT_EQ(help.out, own.out);
+    EXPECT_EQ(own.out.find("{clouds}"), std::string::npos) << own.out;
+    EXPECT_EQ(own.out.find("{writable clouds}"), std::string::npos) << own.out;
     EXPECT_TRUE(Has(own.out,
                     "exit codes: 0 done, 1 some inputs failed, 2 usage, 3 refused, "
                     "4 cannot run"))
         << own.out;
   }
+  r = Cli("segment --help");
+  EXPECT_TRUE(Has(r.out, "cloud files (" + CloudFormatList() + ")")) << r.out;
+  EXPECT_TRUE(Has(r.out, "label (default), " + CloudFormatList(true) + ":")) << r.out;
   r = Cli("help segmnet");
   EXPECT_EQ(r.code, 2);
   EXPECT_TRUE(Has(r.err, "no command 'segmnet'")) << r.err;

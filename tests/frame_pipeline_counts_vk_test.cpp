@@ -1,9 +1,9 @@
 // The counted cost of a frame (FramePipeline::last_counts, counted as CommandBuffer records): in
 // each shape (LPIR_VK_SHAPE=gpu and cpu, read when the pipeline is made), frames of different
-// point counts record the same numbers of dispatches, indirect dispatches and barriers (SPEC
-// section 5: a dispatch count that does not depend on the data), every count positive; the bytes
-// moved grow with the points (the cloud up, at least a byte of label per point down); each
-// frame's labels equal the reference's.
+// point counts record the same numbers of dispatches, indirect dispatches and barriers
+// (docs/spec.md, Performance shape: a dispatch count that does not depend on the data), every count
+// positive; the bytes moved grow with the points (the cloud up, at least a byte of label per point
+// down); each frame's labels equal the reference's.
 #include <gtest/gtest.h>
 
 #include <cstdlib>

@@ -84,7 +84,7 @@ TEST(IoPcd, LabelsAreWrittenAsUint8Field) {
   const Cloud cloud = test::SampleCloud(30, true);
   Labels labels(30);
   for (size_t i = 0; i < labels.size(); ++i) labels[i] = i % 3 == 0;
-  WriteLabelledCloud(dir + "/l.pcd", cloud, labels, CloudFormat::kPcd);
+  WriteLabelledCloud(dir + "/l.pcd", cloud, labels);
   const std::string bytes = test::ReadRaw(dir + "/l.pcd");
   ASSERT_NE(bytes.find("FIELDS x y z intensity ring label\n"), std::string::npos);
   ASSERT_NE(bytes.find("TYPE F F F F I U\n"), std::string::npos);

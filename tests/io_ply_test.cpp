@@ -84,7 +84,7 @@ TEST(IoPly, LabelsAreWrittenAsUcharProperty) {
   const Cloud cloud = test::SampleCloud(30, false);
   Labels labels(30);
   for (size_t i = 0; i < labels.size(); ++i) labels[i] = i % 4 == 1;
-  WriteLabelledCloud(dir + "/l.ply", cloud, labels, CloudFormat::kPly);
+  WriteLabelledCloud(dir + "/l.ply", cloud, labels);
   const std::string bytes = test::ReadRaw(dir + "/l.ply");
   ASSERT_NE(bytes.find("property float intensity\nproperty uchar label\nend_header\n"),
             std::string::npos);

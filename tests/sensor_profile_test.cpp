@@ -114,6 +114,9 @@ TEST(SensorProfile, LivoxBinsCoverTheDatasheetsFieldOfView) {
   EXPECT_EQ(mid360.pattern, ScanPattern::kBand);
   EXPECT_FLOAT_EQ(mid360.elevation_deg.front() + 0.5f, 52.0f);
   EXPECT_FLOAT_EQ(mid360.elevation_deg.back() - 0.5f, -7.0f);
+  // The datasheets' point rates (100,000 and 200,000 points/s) over a 100 ms frame.
+  EXPECT_EQ(mid70.frame_points, 10000u);
+  EXPECT_EQ(mid360.frame_points, 20000u);
   for (const SensorProfile* p : {&mid70, &mid360})
     for (size_t i = 1; i < p->elevation_deg.size(); ++i)
       EXPECT_FLOAT_EQ(p->elevation_deg[i - 1] - p->elevation_deg[i], 1.0f) << p->name << " " << i;
@@ -217,6 +220,7 @@ TEST(SensorProfile, RoundTripsExactly) {
     EXPECT_EQ(b.beams, a.beams);
     EXPECT_EQ(b.width, a.width);
     EXPECT_EQ(b.max_points, a.max_points);
+    EXPECT_EQ(b.frame_points, a.frame_points);
     EXPECT_EQ(b.elevation_deg, a.elevation_deg);  // bit-exact floats
     EXPECT_EQ(b.ring_zero_is_top, a.ring_zero_is_top);
     EXPECT_EQ(b.sensor_height, a.sensor_height);
@@ -237,10 +241,9 @@ TEST(SensorProfile, UnknownNameListsTheKnownProfiles) {
   } catch (const std::invalid_argument& e) {
     std::string m = e.what();
     EXPECT_NE(m.find("unknown sensor profile 'hdl128x'"), std::string::npos) << m;
-    EXPECT_NE(
-        m.find("known: hdl32e, hdl64e, mid360, mid70, os1-128, os1-64, ot128, pandar64, "
-               "rs-ruby80, vlp16, vlp32c"),
-        std::string::npos)
+    EXPECT_NE(m.find("known: hdl32e, hdl64e, mid360, mid70, os1-128, os1-64, ot128, pandar64, "
+                     "rs-ruby80, vlp16, vlp32c"),
+              std::string::npos)
         << m;
   }
 }
@@ -292,6 +295,9 @@ TEST(SensorProfile, MalformedFilesNameTheFileAndTheLine) {
       {"max_points 0", Edit(4, "width 1024\nmax_points 0"), 5, "max_points must be 1..1e8"},
       {"max_points huge", Edit(4, "width 1024\nmax_points 100000001"), 5,
        "max_points must be 1..1e8"},
+      {"frame_points 0", Edit(4, "width 1024\nframe_points 0"), 5, "frame_points must be 1..1e7"},
+      {"frame_points huge", Edit(4, "width 1024\nframe_points 10000001"), 5,
+       "frame_points must be 1..1e7"},
       {"unknown param", Edit(12, "param slope_maximum 0.06"), 12,
        "unknown parameter 'slope_maximum'"},
       {"param value rejected", Edit(13, "param min_component 2.5"), 13, "whole number"},

@@ -20,17 +20,20 @@ namespace lpir {
 namespace {
 
 // DG F1 floors, a little under what seeds 1, 2, 4 measure summed (docs/decisions/sensors.md); the
-// RS-Ruby-80, Pandar64 and OT128 profiles are held to 96 % at least.
+// RS-Ruby-80, Pandar64 and OT128 profiles are held to 96 % at least. The Livox profiles measure
+// 94.6 (mid70) and 93.6 (mid360), under the 95: docs/decisions/livox.md, "Simulation".
 const std::map<std::string, double>& F1Floors() {
   static const std::map<std::string, double> floors = {
-      {"hdl32e", 0.985},    {"hdl64e", 0.988}, {"os1-128", 0.988},
-      {"os1-64", 0.988},    {"ot128", 0.99},   {"pandar64", 0.985},
+      {"hdl32e", 0.985},    {"hdl64e", 0.988}, {"mid360", 0.93}, {"mid70", 0.944},
+      {"os1-128", 0.988},   {"os1-64", 0.988}, {"ot128", 0.99},  {"pandar64", 0.985},
       {"rs-ruby80", 0.985}, {"vlp16", 0.965},  {"vlp32c", 0.98},
   };
   return floors;
 }
 
-constexpr double kPrecisionFloor = 0.97;  // every profile: ground calls stay clean
+// Ground calls stay clean: DG precision at least 97 %, except on the Mid-70's 10,000-return
+// frames (94.5 measured: the lowest decimetres of building walls and car bodies seen ahead).
+double PrecisionFloor(const std::string& name) { return name == "mid70" ? 0.94 : 0.97; }
 
 std::vector<std::string> Profiles() { return KnownSensorProfiles(test::SensorsDir()); }
 
@@ -66,7 +69,7 @@ TEST_P(SensorStreets, UrbanStreetsReachTheProfilesFloor) {
   std::printf("%s summed: DG P %.4f R %.4f F1 %.4f\n", name.c_str(), s.precision, s.recall, s.f1);
   RecordProperty("dg_f1", std::to_string(s.f1));
   EXPECT_GE(s.f1, floor->second);
-  EXPECT_GE(s.precision, kPrecisionFloor);
+  EXPECT_GE(s.precision, PrecisionFloor(name));
 }
 
 // gtest names may hold only letters, digits and '_': os1-64 -> os1_64.

@@ -5,13 +5,18 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "apps/sim/scan_pattern.h"
 #include "apps/sim/scene.h"
 #include "host/io/kitti_bin.h"
 #include "host/io/label_file.h"
@@ -21,7 +26,8 @@
 namespace lpir {
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
 
 // An HDL-64E-like profile built by hand (the KITTI layout: 32 beams at ~1/3 degree from +2,
 // 32 at 1/2 degree from -8.83), so these tests do not depend on the profile parser.
@@ -35,6 +41,24 @@ SensorProfile Hdl64Like() {
   s.sensor_height = 1.73f;
   s.min_range = 2.5f;
   s.max_range = 120.0f;
+  return s;
+}
+
+// Livox-like profiles by hand: 1 degree elevation bins over a Mid-70's 70 degree circle and a
+// Mid-360's -7..+52 degree band, the datasheets' returns a 100 ms frame.
+SensorProfile LivoxLike(ScanPattern pattern) {
+  SensorProfile s;
+  s.pattern = pattern;
+  const bool rosette = pattern == ScanPattern::kRosette;
+  s.name = rosette ? "rosette-test" : "band-test";
+  s.beams = rosette ? 70 : 59;
+  s.width = rosette ? 768 : 384;
+  s.frame_points = rosette ? 10000 : 20000;
+  const float top = rosette ? 34.5f : 51.5f;
+  for (unsigned i = 0; i < s.beams; ++i) s.elevation_deg.push_back(top - i);
+  s.sensor_height = rosette ? 1.5f : 0.5f;
+  s.min_range = rosette ? 3.0f : 0.3f;
+  s.max_range = rosette ? 260.0f : 70.0f;
   return s;
 }
 
@@ -348,6 +372,112 @@ TEST(Simulate, RejectsBadInput) {
   EXPECT_THROW(Simulate(Hdl64Like(), o), std::invalid_argument);
 }
 
+double AngleFromX(double x, double y, double z) { return std::atan2(std::hypot(y, z), x) / kDeg; }
+
+double Elevation(double x, double y, double z) { return std::atan2(z, std::hypot(x, y)) / kDeg; }
+
+// The range-image pixel (row by 1 degree bin under the table's top edge, column by eq. 1's
+// azimuth) of each ray of a frame.
+std::set<std::pair<int, int>> Pixels(const SensorProfile& s,
+                                     const std::vector<std::array<double, 3>>& rays) {
+  const double top = s.elevation_deg[0] + 0.5;
+  std::set<std::pair<int, int>> pixels;
+  for (const auto& d : rays) {
+    const double az = std::atan2(d[1], d[0]);
+    const int row = static_cast<int>(std::floor(top - Elevation(d[0], d[1], d[2])));
+    const int col = static_cast<int>(std::floor((kPi - az) / (2 * kPi) * s.width)) % s.width;
+    pixels.insert({row, col});
+  }
+  return pixels;
+}
+
+TEST(SimulatePattern, RosetteRaysFillTheFieldOfViewCircle) {
+  const SensorProfile s = LivoxLike(ScanPattern::kRosette);
+  const std::vector<std::array<double, 3>> rays = PatternRays(s, 3);
+  ASSERT_EQ(rays.size(), 10000u);
+  double widest = 0;
+  for (const auto& d : rays) {
+    EXPECT_NEAR(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 1.0, 1e-12);
+    widest = std::max(widest, AngleFromX(d[0], d[1], d[2]));
+  }
+  EXPECT_LE(widest, 35.0 + 1e-9);  // the table's top bin centre plus half a bin
+  EXPECT_GT(widest, 34.9);         // the petals reach the edge
+  // Simulated points keep their ray's direction (the range noise moves them along it).
+  const SimScan scan = Simulate(s, Urban(3));
+  EXPECT_GT(scan.cloud.size(), 3000u);
+  EXPECT_LT(scan.cloud.size(), 10000u);  // sky, and the returns under min_range, give none
+  for (size_t i = 0; i < scan.cloud.size(); ++i)
+    ASSERT_LE(AngleFromX(scan.cloud.x(i), scan.cloud.y(i), scan.cloud.z(i)), 35.01) << i;
+}
+
+TEST(SimulatePattern, BandRaysTurnThroughTheElevationBand) {
+  const SensorProfile s = LivoxLike(ScanPattern::kBand);
+  const std::vector<std::array<double, 3>> rays = PatternRays(s, 3);
+  ASSERT_EQ(rays.size(), 20000u);
+  double lowest = 90, highest = -90;
+  std::set<int> octants;  // the azimuth's eighths of a turn
+  for (const auto& d : rays) {
+    const double e = Elevation(d[0], d[1], d[2]);
+    lowest = std::min(lowest, e), highest = std::max(highest, e);
+    const double eighths = (std::atan2(d[1], d[0]) + kPi) / (kPi / 4);  // in [0, 8]
+    octants.insert(std::min(7, static_cast<int>(eighths)));
+  }
+  EXPECT_GE(lowest, -7.0 - 1e-9);
+  EXPECT_LE(highest, 52.0 + 1e-9);
+  EXPECT_LT(lowest, -6.9);
+  EXPECT_GT(highest, 51.9);
+  EXPECT_EQ(octants.size(), 8u);
+  const SimScan scan = Simulate(s, Urban(3));
+  EXPECT_GT(scan.cloud.size(), 3000u);
+  EXPECT_LT(scan.cloud.size(), 20000u);
+  for (size_t i = 0; i < scan.cloud.size(); ++i) {
+    const double e = Elevation(scan.cloud.x(i), scan.cloud.y(i), scan.cloud.z(i));
+    ASSERT_GE(e, -7.01) << i;
+    ASSERT_LE(e, 52.01) << i;
+  }
+}
+
+// Frames (seeds) fire other rays, and ten of them together fill far more of the image than one:
+// the pattern does not repeat.
+TEST(SimulatePattern, FramesDifferAndTogetherFillTheImage) {
+  for (ScanPattern pattern : {ScanPattern::kRosette, ScanPattern::kBand}) {
+    const SensorProfile s = LivoxLike(pattern);
+    SCOPED_TRACE(s.name);
+    const std::vector<std::array<double, 3>> one = PatternRays(s, 1), two = PatternRays(s, 2);
+    ASSERT_EQ(one.size(), two.size());
+    size_t same = 0;
+    for (size_t k = 0; k < one.size(); ++k) same += one[k] == two[k];
+    EXPECT_EQ(same, 0u);
+    EXPECT_EQ(PatternRays(s, 1), one);  // and the same seed fires the same rays
+
+    const size_t first = Pixels(s, one).size();
+    std::set<std::pair<int, int>> all;
+    for (uint32_t seed = 1; seed <= 10; ++seed) {
+      const std::set<std::pair<int, int>> p = Pixels(s, PatternRays(s, seed));
+      all.insert(p.begin(), p.end());
+    }
+    std::printf("%s: one frame %zu pixels, ten frames %zu\n", s.name.c_str(), first, all.size());
+    // Measured: rosette 2,450 -> 8,471 (of the circle's ~8,500), band 15,614 -> all 22,656.
+    EXPECT_GT(static_cast<double>(all.size()),
+              (pattern == ScanPattern::kRosette ? 2.5 : 1.3) * first);
+  }
+}
+
+TEST(SimulatePattern, RejectsRingsAndAMissingFrameSize) {
+  SensorProfile s = LivoxLike(ScanPattern::kRosette);
+  SimOptions o = Urban(1);
+  o.emit_rings = true;
+  EXPECT_THROW(Simulate(s, o), std::invalid_argument);
+  s.frame_points = 0;
+  try {
+    Simulate(s, Urban(1));
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("frame_points"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(PatternRays(Hdl64Like(), 1), std::invalid_argument);
+}
+
 TEST(SimulateCli, RejectsBadArguments) {
   const std::string dir = test::TempDir();
   const std::string cli = test::CliPath() + " simulate ";
@@ -403,6 +533,37 @@ TEST(SimulateCli, WritesScanAndLabels) {
                                 &out))
       << out;
   EXPECT_GT(ReadKittiBin(dir + "/k.bin").size(), 80000u);
+}
+
+// The shipped Livox profiles simulate their own pattern: a Mid-70 frame's points within its
+// 35 degree circle, a Mid-360's all around, fewer than the frame's returns (sky gives none).
+TEST(SimulateCli, LivoxProfilesCastTheirPattern) {
+  if (!std::filesystem::exists(test::SensorsDir() + "/mid70.txt"))
+    GTEST_SKIP() << "sensors/mid70.txt not found in " << test::SensorsDir();
+  const std::string dir = test::TempDir();
+  for (const char* name : {"mid70", "mid360"}) {
+    SCOPED_TRACE(name);
+    const SensorProfile profile = LoadSensorProfile(name, test::SensorsDir());
+    std::string out;
+    ASSERT_EQ(0,
+              test::RunCommand(test::CliPath() + " simulate --sensor " + name + " --seed 2 --out " +
+                                   dir + "/l.bin --labels " + dir + "/l.label",
+                               &out))
+        << out;
+    const Cloud cloud = ReadKittiBin(dir + "/l.bin");
+    EXPECT_GT(cloud.size(), profile.frame_points / 5);
+    EXPECT_LT(cloud.size(), profile.frame_points);
+    double widest = 0, behind = 0;
+    for (size_t i = 0; i < cloud.size(); ++i) {
+      widest = std::max(widest, AngleFromX(cloud.x(i), cloud.y(i), cloud.z(i)));
+      behind += cloud.x(i) < 0;
+    }
+    if (profile.pattern == ScanPattern::kRosette) {
+      EXPECT_LE(widest, 35.01);
+    } else {
+      EXPECT_GT(behind, cloud.size() / 4);
+    }
+  }
 }
 
 }  // namespace

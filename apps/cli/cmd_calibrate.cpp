@@ -13,6 +13,7 @@
 #include "apps/cli/args.h"
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
+#include "apps/cli/help_text.h"
 #include "host/eval/calibrate.h"
 #include "host/io/cloud_file.h"
 #include "host/io/sensor_profile.h"
@@ -25,7 +26,7 @@ const char kHelp[] =
     "                           [--set-height] [--max-b-diff M] [--min-inlier-fraction F]\n"
     "                           [--max-distance M]\n"
     "  (--opt VALUE and --opt=VALUE alike; -s --sensor)\n"
-    "  SCAN...            scans of flat, open ground (.bin, .pcd, .ply; several are pooled)\n"
+    "  SCAN...            scans of flat, open ground ({clouds}; several are pooled)\n"
     "  --sensor NAME      sensor profile (name or file): beam width, sensor_height, ranges\n"
     "  --write-profile F  on success, write the profile with k_xz k_yz b_x b_y to F\n"
     "                     (then: lpir-gseg segment ... --sensor F)\n"
@@ -120,13 +121,13 @@ int RunCalibrate(int argc, char** argv) {
       argc, argv, {"--json", "--set-height", "--nuscenes", "--help"},
       {"--sensor", "--write-profile", "--max-b-diff", "--min-inlier-fraction", "--max-distance"});
   if (args.Has("--help")) {
-    std::fputs(kHelp, stdout);
+    std::fputs(HelpText(kHelp).c_str(), stdout);
     std::fputs(kExitCodesLine, stdout);
     return kExitOk;
   }
   if (args.positional().empty())
     throw std::invalid_argument("no scan given: calibrate SCAN... --sensor NAME\n" +
-                                std::string(kHelp));
+                                HelpText(kHelp));
   const SensorProfile sensor = LoadSensorProfile(args.Require("--sensor"), SensorsDir());
   CalibrateOptions options;
   const double b_diff = args.GetNumber("--max-b-diff", options.max_b_diff);

@@ -34,6 +34,7 @@
 #include "apps/cli/exit_codes.h"
 #include "apps/cli/frame_report.h"
 #include "apps/cli/frame_source.h"
+#include "apps/cli/help_text.h"
 #include "apps/cli/invalid_reasons.h"
 #include "apps/cli/mount_tally.h"
 #include "apps/cli/progress.h"
@@ -60,7 +61,7 @@ namespace {
 const char kHelp[] =
     "usage: lpir-gseg segment INPUT... --sensor NAME --out DIR [options]\n"
     "  (--opt VALUE and --opt=VALUE alike; -s, -o, -b, -f, -t, -r, -q, -v: the short forms)\n"
-    "  INPUT            cloud files (.bin KITTI, .pcd, .ply), recorded drives, or folders of\n"
+    "  INPUT            cloud files ({clouds}), recorded drives, or folders of\n"
     "                   them (a folder's other entries are passed over); a cloud file writes\n"
     "                   DIR/<its name>.label, one found in a folder DIR/<its path below that\n"
     "                   folder>.label. Two inputs that would write one output are refused,\n"
@@ -87,7 +88,7 @@ const char kHelp[] =
     "file\n" LPIR_SET_HELP
     "  -o, --out DIR    where DIR/<stem>.label (uint32 per point: 1 ground, 0 non-ground) go;\n"
     "                   made when the first output is written\n"
-    "  -f, --format F   label (default), pcd or ply: the cloud with a label field instead;\n"
+    "  -f, --format F   label (default), {writable clouds}: the cloud with a label field instead;\n"
     "                   mcap (drives only): <drive stem>.mcap beside its labels, every topic of\n"
     "                   the drive as it was plus <topic>/labelled (a uint32 label field),\n"
     "                   <topic>/ground and <topic>/nonground; bag (ROS 1 .bag and .bag.active\n"
@@ -218,7 +219,7 @@ std::vector<std::string> Outputs(const std::vector<RunInput>& listed, const std:
 SegmentArgs ParseSegmentArgs(const Args& args) {
   SegmentArgs a;
   a.inputs = args.positional();
-  if (a.inputs.empty()) throw std::invalid_argument("no INPUT given\n" + std::string(kHelp));
+  if (a.inputs.empty()) throw std::invalid_argument("no INPUT given\n" + HelpText(kHelp));
   a.out_dir = args.Require("--out");
   a.recursive = args.Has("--recursive");
   a.format = args.Get("--format", "label");
@@ -240,10 +241,11 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
                                   std::to_string(kMaxReadThreads));
     a.read_threads = unsigned(n);
   }
-  if (a.format != "label" && a.format != "pcd" && a.format != "ply" && a.format != "mcap" &&
-      a.format != "bag")
-    throw std::invalid_argument("--format must be label, pcd, ply, mcap or bag, not '" + a.format +
-                                "'");
+  const CloudFormat* cloud_format = CloudFormatOf("." + a.format);
+  if (a.format != "label" && a.format != "mcap" && a.format != "bag" &&
+      !(cloud_format && cloud_format->write_labelled))
+    throw std::invalid_argument("--format must be label, " + CloudFormatList(true) +
+                                ", mcap or bag, not '" + a.format + "'");
   const bool whole = a.format == "mcap" || a.format == "bag";  // the drive written back whole
   for (const RunInput& in : listed) {
     if (whole && !in.drive)
@@ -525,8 +527,7 @@ class SegmentRun {
       std::vector<uint32_t> labels(frame.label.begin(), frame.label.end());
       WriteLabelFile(path.string(), labels);
     } else {
-      WriteLabelledCloud(path.string(), job.cloud, frame.label,
-                         a_.format == "pcd" ? CloudFormat::kPcd : CloudFormat::kPly);
+      WriteLabelledCloud(path.string(), job.cloud, frame.label);
     }
     if (a_.images) {
       std::vector<uint8_t> truth;
@@ -635,7 +636,7 @@ int RunSegment(int argc, char** argv) {
        "--topic", "--report", "--chunks", "--read-threads", "--threads"},
       {"--set"});
   if (args.Has("--help")) {
-    std::fputs(kHelp, stdout);
+    std::fputs(HelpText(kHelp).c_str(), stdout);
     std::fputs(kExitCodesLine, stdout);
     return kExitOk;
   }

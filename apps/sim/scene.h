@@ -1,7 +1,8 @@
-// A deterministic synthetic street seen by a virtual spinning LiDAR: the scene (road with a ramp,
-// curbs, sidewalks, terrain, buildings, parked cars, poles, vegetation, reflection noise) is drawn
-// from a seed, then every beam x azimuth ray of a SensorProfile is cast into it and the nearest
-// hit becomes a point with its SemanticKITTI class. Used by `lpir-gseg simulate`, the demo and
+// A deterministic synthetic street seen by a virtual LiDAR: the scene (road with a ramp, curbs,
+// sidewalks, terrain, buildings, parked cars, poles, vegetation, reflection noise) is drawn from a
+// seed, then every ray of a SensorProfile (a spinning sensor's beam x azimuth rays, a
+// non-repetitive sensor's firing pattern) is cast into it and the nearest hit becomes a point
+// with its SemanticKITTI class. Used by `lpir-gseg simulate`, the demo and
 // the tests (ground truth with known geometry, tilt read-back for calibration).
 #pragma once
 #include <cstdint>
@@ -54,7 +55,8 @@ struct SimOptions {
   float roll_deg = 0.0f;        // atan(k_yz), see above; |value| <= 30
   float range_noise_m = 0.02f;  // sigma of the Gaussian range noise along each ray
   SceneKind kind = kUrban;
-  bool emit_rings = false;       // fill cloud.ring (laser index as the profile numbers rings)
+  bool emit_rings = false;       // fill cloud.ring (laser index as the profile numbers rings;
+                                 // spinning profiles only)
   bool reflection_noise = true;  // a few class-1 points 0.5-2 m under the road (multipath)
 };
 
@@ -120,11 +122,15 @@ struct SimScan {
   SimScene scene;                // what was scanned, for tests and pictures
 };
 
-// Casts beams x width rays (azimuth = pi - 2 pi (col + 0.5) / width: column 0 looks back along
-// -x and the sweep turns clockwise, paper eq. 1; elevations from the profile, row 0 = top) and
-// keeps the nearest hit when its planar range lies in [min_range, max_range]; rays without a hit
-// (sky) give no point. Points come beam by beam from the top beam, columns in order, like a
-// KITTI scan. std::invalid_argument for an inconsistent profile or options out of range.
+// Casts the sensor's rays and keeps the nearest hit when its planar range lies in [min_range,
+// max_range]; rays without a hit (sky) give no point.
+//   spinning: beams x width rays (azimuth = pi - 2 pi (col + 0.5) / width: column 0 looks back
+//     along -x and the sweep turns clockwise, paper eq. 1; elevations from the profile, row 0 =
+//     top), beam by beam from the top beam, columns in order, like a KITTI scan.
+//   rosette, band: the frame_points rays of frame `seed` of the pattern (scan_pattern.h), in
+//     firing order, from the sensor frame's origin; no rings.
+// std::invalid_argument for an inconsistent profile (a non-repetitive one without frame_points),
+// options out of range, or rings asked of a non-repetitive profile.
 // Deterministic: the same profile and options give byte-identical output.
 SimScan Simulate(const SensorProfile& sensor, const SimOptions& options);
 

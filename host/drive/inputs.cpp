@@ -38,8 +38,8 @@ void ListFolder(const fs::path& folder, const std::string& given, bool recursive
           path, is_folder ? recursive ? "a link to a folder, not followed"
                                       : "a folder that is no ROS 2 bag (no metadata.yaml; "
                                         "--recursive walks it)"
-                          : "neither a cloud file (.bin, .pcd, .ply) nor a recorded drive (.mcap, "
-                            ".db3, .bag, .bag.active)"});
+                          : "neither a cloud file (" + CloudFormatList() +
+                                ") nor a recorded drive (.mcap, .db3, .bag, .bag.active)"});
     }
   }
 }

@@ -1,6 +1,6 @@
 // Ground-segmentation scores against SemanticKITTI labels under the four evaluation protocols in
-// use (../shared/data/README.md): DG, PP, PW, GG; and against RELLIS-3D labels under one.
-// Precision, recall and F1 as in the paper's eq. 13, plus the ground IoU.
+// use (docs/accuracy.md, The four protocols): DG, PP, PW, GG; and against RELLIS-3D labels under
+// one. Precision, recall and F1 as in the paper's eq. 13, plus the ground IoU.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,4 +1,5 @@
-// Reading any supported cloud file by its extension, and writing labelled clouds.
+// Reading any supported cloud file by its extension, and writing labelled clouds: the table of
+// formats and the lookups over it.
 #include "host/io/cloud_file.h"
 
 #include <algorithm>
@@ -12,24 +13,59 @@ namespace lpir {
 
 namespace {
 
-enum class Extension { kBin, kPcd, kPly, kOther };
-
-Extension ExtensionOf(const std::string& path) {
+// The lower-case extension of `path`'s last component, without the dot; "" when it has none.
+std::string ExtensionOf(const std::string& path) {
   const size_t slash = path.find_last_of('/');
   const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
-    return Extension::kOther;
-  }
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
   std::string ext = path.substr(dot + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == "bin") return Extension::kBin;
-  if (ext == "pcd") return Extension::kPcd;
-  if (ext == "ply") return Extension::kPly;
-  return Extension::kOther;
+  return ext;
+}
+
+Cloud ReadBin(const std::string& path, const ReadOptions& options, std::string*) {
+  return ReadKittiBin(path, BinLayoutFor(path, options));
+}
+Cloud ReadPcdFile(const std::string& path, const ReadOptions&, std::string* note) {
+  return ReadPcd(path, note);
+}
+Cloud ReadPlyFile(const std::string& path, const ReadOptions&, std::string* note) {
+  return ReadPly(path, note);
+}
+void WritePcdLabelled(const std::string& path, const Cloud& cloud, const Labels& labels) {
+  WritePcd(path, cloud, &labels, /*binary=*/true);
+}
+void WritePlyLabelled(const std::string& path, const Cloud& cloud, const Labels& labels) {
+  WritePly(path, cloud, &labels, /*binary=*/true);
 }
 
 }  // namespace
+
+const std::vector<CloudFormat>& CloudFormats() {
+  static const std::vector<CloudFormat> formats = {
+      {"bin", ".bin (KITTI)", ReadBin, nullptr},
+      {"pcd", ".pcd", ReadPcdFile, WritePcdLabelled},
+      {"ply", ".ply", ReadPlyFile, WritePlyLabelled},
+  };
+  return formats;
+}
+
+const CloudFormat* CloudFormatOf(const std::string& path) {
+  const std::string ext = ExtensionOf(path);
+  for (const CloudFormat& f : CloudFormats())
+    if (ext == f.extension) return &f;
+  return nullptr;
+}
+
+std::string CloudFormatList(bool writable) {
+  std::string list;
+  for (const CloudFormat& f : CloudFormats()) {
+    if (writable && !f.write_labelled) continue;
+    list += (list.empty() ? "" : ", ") + std::string(writable ? f.extension : f.summary);
+  }
+  return list;
+}
 
 BinLayout BinLayoutFor(const std::string& path, const ReadOptions& options) {
   if (options.bin_layout) return *options.bin_layout;
@@ -41,28 +77,20 @@ BinLayout BinLayoutFor(const std::string& path, const ReadOptions& options) {
 
 Cloud ReadCloud(const std::string& path, const ReadOptions& options, std::string* note) {
   if (note) note->clear();
-  switch (ExtensionOf(path)) {
-    case Extension::kBin:
-      return ReadKittiBin(path, BinLayoutFor(path, options));
-    case Extension::kPcd:
-      return ReadPcd(path, note);
-    case Extension::kPly:
-      return ReadPly(path, note);
-    case Extension::kOther:
-      break;
-  }
-  throw IoError(path, "unknown cloud file extension (expected .bin, .pcd or .ply)");
+  const CloudFormat* format = CloudFormatOf(path);
+  if (!format)
+    throw IoError(path, "unknown cloud file extension (expected " + CloudFormatList() + ")");
+  return format->read(path, options, note);
 }
 
-bool IsCloudFile(const std::string& path) { return ExtensionOf(path) != Extension::kOther; }
+bool IsCloudFile(const std::string& path) { return CloudFormatOf(path) != nullptr; }
 
-void WriteLabelledCloud(const std::string& path, const Cloud& cloud, const Labels& labels,
-                        CloudFormat format) {
-  if (format == CloudFormat::kPcd) {
-    WritePcd(path, cloud, &labels, /*binary=*/true);
-  } else {
-    WritePly(path, cloud, &labels, /*binary=*/true);
-  }
+void WriteLabelledCloud(const std::string& path, const Cloud& cloud, const Labels& labels) {
+  const CloudFormat* format = CloudFormatOf(path);
+  if (!format || !format->write_labelled)
+    throw IoError(path, "no labelled-cloud writer for this extension (writable: " +
+                            CloudFormatList(true) + ")");
+  format->write_labelled(path, cloud, labels);
 }
 
 }  // namespace lpir

@@ -31,6 +31,7 @@ const char* const kKeys[] = {"name",
                              "beams",
                              "width",
                              "max_points",
+                             "frame_points",
                              "elevation_deg",
                              "beam_origin_z",
                              "ring_zero_is_top",
@@ -121,6 +122,9 @@ void SetOneValueKey(SensorProfile& p, const std::string& key, const std::string&
   } else if (key == "max_points") {
     p.max_points = ParseUnsigned(key, v);
     if (p.max_points < 1 || p.max_points > 100000000) fail("max_points must be 1..1e8");
+  } else if (key == "frame_points") {
+    p.frame_points = ParseUnsigned(key, v);
+    if (p.frame_points < 1 || p.frame_points > 10000000) fail("frame_points must be 1..1e7");
   } else if (key == "ring_zero_is_top") {
     if (v != "0" && v != "1") fail("ring_zero_is_top must be 0 or 1, got '" + v + "'");
     p.ring_zero_is_top = v == "1";
@@ -387,6 +391,7 @@ void WriteSensorProfile(const std::string& path, const SensorProfile& p) {
   s += "beams " + std::to_string(p.beams) + "\n";
   s += "width " + std::to_string(p.width) + "\n";
   if (p.max_points) s += "max_points " + std::to_string(p.max_points) + "\n";
+  if (p.frame_points) s += "frame_points " + std::to_string(p.frame_points) + "\n";
   s += "elevation_deg";
   for (size_t i = 0; i < p.elevation_deg.size(); ++i) {
     if (i > 0 && i % 8 == 0) s += "\n ";

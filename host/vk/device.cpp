@@ -33,7 +33,7 @@ const char* TypeName(VkPhysicalDeviceType type) {
   }
 }
 
-// Discrete GPUs first (SPEC: any Vulkan 1.2 device; lavapipe last but allowed).
+// Discrete GPUs first (docs/spec.md: any Vulkan 1.2 device; lavapipe last but allowed).
 int TypeRank(VkPhysicalDeviceType type) {
   switch (type) {
     case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:

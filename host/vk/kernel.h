@@ -1,9 +1,9 @@
 // Kernel: the generic dispatcher. One compute shader ready to run over a 1-D range: a pipeline
 // for each of its desc.passes passes (compute_pipeline.h: the pass is specialization constant 1)
 // and one descriptor set bound to buffers fixed at creation (allocated once for the largest
-// cloud, SPEC section 5), shared by the passes (their set layouts are identical). Recording
-// binds, pushes the constants and dispatches ceil(invocations / local size) workgroups; the
-// shader skips invocations past its count. The kernel's shape (shape.h, read at creation) sets
+// cloud, docs/spec.md, Performance shape), shared by the passes (their set layouts are identical).
+// Recording binds, pushes the constants and dispatches ceil(invocations / local size) workgroups;
+// the shader skips invocations past its count. The kernel's shape (shape.h, read at creation) sets
 // the items per invocation of its chunked passes (specialization constant 2): desc.cpu_items in
 // the CPU shape, 1 in the GPU shape; the stage sizes those passes with Chunks(). Kernels made on
 // one device from the same description share their pipelines (built once, freed with the last

@@ -1,9 +1,9 @@
-// Shape: how much work one invocation of a chunked pass takes on a device (SPEC section 5).
-// kGpu runs one point or pixel per invocation: neighbouring lanes on neighbouring elements
-// (coalesced), no serial loop, a workgroup per 64 elements to fill the device. kCpu runs a chunk
-// of consecutive points or pixels per invocation, runs of one cell merged in registers before
-// the atomics: a CPU driver such as lavapipe pays for every invocation and every buffer access
-// (a loop over its SIMD lanes), so fewer, longer invocations are faster there
+// Shape: how much work one invocation of a chunked pass takes on a device (docs/spec.md,
+// Performance shape). kGpu runs one point or pixel per invocation: neighbouring lanes on
+// neighbouring elements (coalesced), no serial loop, a workgroup per 64 elements to fill the
+// device. kCpu runs a chunk of consecutive points or pixels per invocation, runs of one cell merged
+// in registers before the atomics: a CPU driver such as lavapipe pays for every invocation and
+// every buffer access (a loop over its SIMD lanes), so fewer, longer invocations are faster there
 // (docs/decisions/shapes.md). Both shapes produce the same bytes.
 // Kernel::Create asks ShapeFor once per kernel and specializes the shaders' kItems (constant 2).
 #pragma once

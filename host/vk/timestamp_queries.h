@@ -1,6 +1,6 @@
-// TimestampQueries: a pool of GPU timestamps for per-stage timing (SPEC section 5). Record
-// CommandBuffer::ResetQueries first, CommandBuffer::WriteTimestamp(k) after each stage, then
-// read them once the submission's fence has signalled.
+// TimestampQueries: a pool of GPU timestamps for per-stage timing (docs/spec.md, Performance
+// shape). Record CommandBuffer::ResetQueries first, CommandBuffer::WriteTimestamp(k) after each
+// stage, then read them once the submission's fence has signalled.
 #pragma once
 #include <vulkan/vulkan.h>
 

@@ -534,8 +534,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         description="Labels every point of every input cloud on a Dask cluster and writes "
                     "OUT/<stem>.label, as `lpir-gseg segment` does.")
     parser.add_argument("inputs", nargs="+", metavar="INPUT",
-                        help="cloud files (.bin KITTI, .pcd, .ply), recorded drives (.mcap, "
-                             ".db3, ROS 2 bag folders, .bag, .bag.active) or folders of them")
+                        help="cloud files (%s), recorded drives (.mcap, .db3, ROS 2 bag "
+                             "folders, .bag, .bag.active) or folders of them" %
+                             ", ".join(lpir_gseg.cloud_formats()))
     parser.add_argument("--sensor", required=True,
                         help="sensor profile name (%s) or a profile file" %
                              ", ".join(lpir_gseg.sensors()))

@@ -395,8 +395,18 @@ Raises:
         output that is an input.)doc");
   m.def(
       "is_cloud_file", [](py::handle path) { return IsCloudFile(PathArg(path)); }, py::arg("path"),
-      "is_cloud_file(path)\n--\n\nTrue for the extensions read_cloud reads (.bin, .pcd, .ply): how "
+      "is_cloud_file(path)\n--\n\nTrue for the extensions read_cloud reads (cloud_formats()): how "
       "a folder is listed.");
+  m.def(
+      "cloud_formats",
+      [] {
+        std::vector<std::string> extensions;
+        for (const CloudFormat& f : CloudFormats())
+          extensions.push_back("." + std::string(f.extension));
+        return extensions;
+      },
+      "cloud_formats()\n--\n\nThe extensions of the cloud files read_cloud reads, as the command "
+      "line's help lists them: ['.bin', '.pcd', '.ply'] (host/io/cloud_file.h, one row a format).");
 }
 
 }  // namespace lpir::python

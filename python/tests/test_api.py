@@ -332,6 +332,18 @@ def test_read_cloud_formats_round_trip(scan, tmp_path):
     assert lpir_gseg.read_cloud(path, ring=True)[1] is None
 
 
+def test_cloud_formats_are_the_extensions_read_and_listed(tmp_path):
+    formats = lpir_gseg.cloud_formats()
+    assert {".bin", ".pcd", ".ply"} <= set(formats)
+    for extension in formats:
+        assert lpir_gseg.is_cloud_file(tmp_path / ("scan" + extension.upper()))
+    assert not lpir_gseg.is_cloud_file(tmp_path / "scan.txt")
+    bad = tmp_path / "scan.txt"
+    bad.write_text("1 2 3\n")
+    with pytest.raises(OSError, match=r"\.bin \(KITTI\), \.pcd, \.ply"):
+        lpir_gseg.read_cloud(bad)
+
+
 def test_read_cloud_finds_the_intensity_by_other_writers_names_and_warns_without(tmp_path):
     header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
     header += "property float z\n"

@@ -65,6 +65,34 @@ def test_the_ring_comes_with_the_points_and_reaches_the_segmenter():
         assert 0 < labels.mean() < 1, i  # ground and non-ground both: a mix-up would show
 
 
+LIVOX = DRIVES / "livox"  # two simulated Mid-70 frames; scripts/make_livox_drive_fixture.sh
+
+
+def test_a_livox_drive_gives_the_labels_segment_gives_its_frames_and_its_messages(cli, tmp_path):
+    """livox_ros_driver2's PointCloud2 (x y z intensity tag line timestamp, point_step 26): the
+    points read back as the .bin's, `line` gives no ring, and the Segmenter, `segment` of the
+    .bin files and `segment` of the drive write the same bytes."""
+    bins = [LIVOX / f"{i:06}.bin" for i in range(2)]
+    for inputs, out in ((bins, "bins"), ([LIVOX / "mid70.mcap"], "drive")):
+        result = subprocess.run([str(cli), "segment", *map(str, inputs), "--sensor", "mid70",
+                                 "--backend", "cpu", "--quiet", "--out", str(tmp_path / out)],
+                                capture_output=True, text=True)
+        assert result.returncode == 0, result.stderr
+    drive_labels = fleet_labels(tmp_path / "drive")
+    assert len(drive_labels) == 2
+    seg = lpir_gseg.Segmenter("mid70", backend="cpu")
+    messages = list(lpir_gseg.read_drive(LIVOX / "mid70.mcap", "/livox/lidar", ring=True))
+    assert len(messages) == 2
+    for i, (_, points, ring) in enumerate(messages):
+        expected = np.fromfile(bins[i], dtype="<f4").reshape(-1, 4)
+        assert same_bits(points, expected), i
+        assert ring is None, i  # `line` is no ring
+        labels = seg.segment(points).astype("<u4").tobytes()
+        assert labels == (tmp_path / "bins" / f"{i:06}.label").read_bytes(), i
+        assert labels == (tmp_path / "drive" / drive_labels[i]).read_bytes(), i
+        assert 0 < np.frombuffer(labels, "<u4").mean() < 1, i  # ground and non-ground both
+
+
 def truncated(tmp_path, name, fraction=0.85):
     """The fixture cut inside its last chunk (the third frame's, of three: 2/3 of the file on)."""
     data = (DRIVES / name).read_bytes()

@@ -5,13 +5,14 @@
 //
 // usage: node write_mcap.mjs --out FILE.mcap --compression zstd|lz4|none [--topic /points]
 //                            [--frame-id velodyne] [--chunk-size BYTES] [--first N]
-//                            [--extras 1] FRAME.bin...
+//                            [--extras 1] [--layout velodyne|livox] FRAME.bin...
 // A chunk is closed once it holds more than --chunk-size bytes (default 1 MiB; 1 gives one
 // message per chunk). log_time = publish_time = the header stamp. --first N: the frames are
 // frames N, N + 1, ... of the drive (their stamps and sequence numbers; default 0), as in the
 // second file of a split bag. --extras 1 adds the other topics of extras.mjs (/imu/data,
 // /gps/fix) in log-time order among the frames, each channel with its own sequence from 0, and
-// first a metadata record and an attachment.
+// first a metadata record and an attachment. --layout: the PointCloud2's fields (pointcloud.mjs;
+// default velodyne).
 import { open } from "node:fs/promises";
 
 import { McapWriter } from "@mcap/core";
@@ -40,11 +41,12 @@ class FileWritable {
 async function main() {
   const { options, positional } =
       parseArgs(process.argv.slice(2),
-                ["out", "compression", "topic", "frame-id", "chunk-size", "first", "extras"]);
+                ["out", "compression", "topic", "frame-id", "chunk-size", "first", "extras",
+                 "layout"]);
   if (!options.out || !options.compression || positional.length === 0)
     throw new Error("usage: write_mcap.mjs --out FILE.mcap --compression zstd|lz4|none " +
                     "[--topic T] [--frame-id F] [--chunk-size BYTES] [--first N] [--extras 1] " +
-                    "FRAME.bin...");
+                    "[--layout velodyne|livox] FRAME.bin...");
   let compressChunk;
   if (options.compression === "zstd") {
     await zstd.isLoaded;
@@ -58,6 +60,7 @@ async function main() {
   const frameId = options["frame-id"] ?? "velodyne";
   const chunkSize = Number(options["chunk-size"] ?? 1024 * 1024);
   const first = Number(options.first ?? 0);
+  const layout = options.layout ?? "velodyne";
 
   const handle = await open(options.out, "w");
   const writer = new McapWriter({ writable: new FileWritable(handle), chunkSize, compressChunk });
@@ -77,7 +80,7 @@ async function main() {
   for (let k = 0; k < positional.length; ++k) {
     const i = first + k;
     messages.push({ channel: cloudChannel, stampNs: stampNs(i),
-                    data: cdr.writeMessage(pointCloudMessage(positional[k], i, frameId)) });
+                    data: cdr.writeMessage(pointCloudMessage(positional[k], i, frameId, layout)) });
   }
   if (options.extras === "1") {
     await writer.addMetadata(EXTRA_METADATA);
