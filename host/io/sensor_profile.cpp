@@ -56,6 +56,15 @@ unsigned ParseUnsigned(const std::string& key, const std::string& t) {
   return static_cast<unsigned>(std::stoul(t));
 }
 
+// Token `t` of `key` as a whole number within lo..hi; std::invalid_argument otherwise, saying
+// `range` when the number lies outside.
+unsigned ParseCount(const std::string& key, const std::string& t, unsigned lo, unsigned hi,
+                    const char* range) {
+  const unsigned n = ParseUnsigned(key, t);
+  if (n < lo || n > hi) throw std::invalid_argument(range);
+  return n;
+}
+
 // Token `t` of `key` (k_xz, k_yz) as a tilt slope within -1..1; std::invalid_argument otherwise.
 float ParseTiltSlope(const std::string& key, const std::string& t) {
   const float k = ParseFloat(key, t);
@@ -95,45 +104,39 @@ struct Key {
   bool required;
   bool settable;
   void (*set)(SensorProfile& p, const std::string& key, const std::string& v);
-  std::vector<float> SensorProfile::*list;
+  std::vector<float> SensorProfile::*list = nullptr;
 };
 
 // Every key a profile may hold, one row each; every key but `param` appears at most once (a
 // `param` line once per parameter name). SettingNames lists the settable ones in this order.
 const Key kKeys[] = {
-    {"name", Shape::kOne, true, false, [](auto& p, auto&, auto& v) { p.name = v; }, nullptr},
+    {"name", Shape::kOne, true, false, [](auto& p, auto&, auto& v) { p.name = v; }},
     {"pattern", Shape::kOne, false, false,
      [](auto& p, auto& k, auto& v) {
        p.pattern = static_cast<ScanPattern>(ParseWord(k, v, kPatternNames));
-     },
-     nullptr},
+     }},
     {"beams", Shape::kOne, true, false,
      [](auto& p, auto& k, auto& v) {
-       p.beams = ParseUnsigned(k, v);
-       if (p.beams < 1 || p.beams > 4096) Fail("beams must be 1..4096");
-     },
-     nullptr},
+       p.beams = ParseCount(k, v, 1, 4096, "beams must be 1..4096");
+     }},
     {"width", Shape::kOne, true, false,
      [](auto& p, auto& k, auto& v) {
        p.width = ParseUnsigned(k, v);
        if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
          Fail("width " + v + " must be a positive multiple of 64 (at most 65536)");
-     },
-     nullptr},
+     }},
     {"elevation_deg", Shape::kList, true, false, nullptr, &SensorProfile::elevation_deg},
     {"beam_origin_z", Shape::kList, false, false, nullptr, &SensorProfile::beam_origin_z},
     {"sensor_height", Shape::kOne, false, true,
      [](auto& p, auto& k, auto& v) {
        p.sensor_height = ParseFloat(k, v);
        if (!(p.sensor_height > 0)) Fail("sensor_height must be > 0");
-     },
-     nullptr},
+     }},
     {"min_range", Shape::kOne, false, true,
      [](auto& p, auto& k, auto& v) {
        p.min_range = ParseFloat(k, v);
        if (p.min_range < 0) Fail("min_range must be >= 0");
-     },
-     nullptr},
+     }},
     // Bounded so that every valid point's coordinates and corrected height stay inside the
     // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger one
     // let a point with z = 1e20 through to an overflowing float -> int64 conversion.
@@ -141,36 +144,29 @@ const Key kKeys[] = {
      [](auto& p, auto& k, auto& v) {
        p.max_range = ParseFloat(k, v);
        if (!(p.max_range <= kMaxProfileRange)) Fail("max_range must be at most 1000 m");
-     },
-     nullptr},
+     }},
     // A mount tilt of at most 45 degrees: |z_t| <= 3 max_range (eq. 3). k_xz = 1e30 made z_t
     // overflow the same conversion.
     {"k_xz", Shape::kOne, false, true,
-     [](auto& p, auto& k, auto& v) { p.k_xz = ParseTiltSlope(k, v); }, nullptr},
+     [](auto& p, auto& k, auto& v) { p.k_xz = ParseTiltSlope(k, v); }},
     {"k_yz", Shape::kOne, false, true,
-     [](auto& p, auto& k, auto& v) { p.k_yz = ParseTiltSlope(k, v); }, nullptr},
+     [](auto& p, auto& k, auto& v) { p.k_yz = ParseTiltSlope(k, v); }},
     {"ring_zero_is_top", Shape::kOne, false, true,
      [](auto& p, auto&, auto& v) {
        if (v != "0" && v != "1") Fail("ring_zero_is_top must be 0 or 1, got '" + v + "'");
        p.ring_zero_is_top = v == "1";
-     },
-     nullptr},
+     }},
     {"max_points", Shape::kOne, false, true,
      [](auto& p, auto& k, auto& v) {
-       p.max_points = ParseUnsigned(k, v);
-       if (p.max_points < 1 || p.max_points > 100000000) Fail("max_points must be 1..1e8");
-     },
-     nullptr},
+       p.max_points = ParseCount(k, v, 1, 100000000, "max_points must be 1..1e8");
+     }},
     {"mount", Shape::kOne, false, true,
      [](auto& p, auto& k, auto& v) {
        p.mount = static_cast<MountSource>(ParseWord(k, v, kMountNames));
-     },
-     nullptr},
-    {"b_x", Shape::kOne, false, false, [](auto& p, auto& k, auto& v) { p.b_x = ParseFloat(k, v); },
-     nullptr},
-    {"b_y", Shape::kOne, false, false, [](auto& p, auto& k, auto& v) { p.b_y = ParseFloat(k, v); },
-     nullptr},
-    {"param", Shape::kParam, false, false, nullptr, nullptr},
+     }},
+    {"b_x", Shape::kOne, false, false, [](auto& p, auto& k, auto& v) { p.b_x = ParseFloat(k, v); }},
+    {"b_y", Shape::kOne, false, false, [](auto& p, auto& k, auto& v) { p.b_y = ParseFloat(k, v); }},
+    {"param", Shape::kParam, false, false, nullptr},
 };
 
 // The row of `key`; nullptr when no key has that name.
