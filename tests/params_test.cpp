@@ -44,7 +44,7 @@ std::string SourceDir() { return std::string(LPIR_SENSORS_DIR) + "/.."; }
 // A default as the docs and the script show it: the literal without its float suffix.
 std::string DefaultText(const Row& r) {
   std::string t = r.default_text;
-  if (!t.empty() && t.back() == 'f' && t.find_first_not_of("-.0123456789f") == std::string::npos)
+  if (!t.empty() && t.back() == 'f' && t.find_first_not_of("-.0123456789ef") == std::string::npos)
     t.pop_back();
   return t;
 }
