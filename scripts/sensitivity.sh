@@ -14,7 +14,7 @@ params=()
 while read -r name value type; do
   params+=("$name $value $type")
 done < <(sed -n 's/^LPIR_PARAM(\([^,]*\), *\([^,]*\), *\([^,]*\), *\([^,]*\), *"[^"]*", *1,.*/\3 \4 \2/p' \
-  shaders/common/params.def | sed 's/^\([^ ]*\) \([-0-9.]*\)f /\1 \2 /')
+  shaders/common/params.def | sed 's/^\([^ ]*\) \([-0-9.e]*\)f /\1 \2 /')
 if [[ ${1:-} == --list ]]; then
   printf '%s\n' "${params[@]}"
   exit 0
