@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace lpir {
 namespace {
@@ -15,29 +17,14 @@ struct Field {
   bool is_uint;
 };
 
-#define LPIR_F(name) \
-  { #name, offsetof(Params, name), false }
-#define LPIR_U(name) \
-  { #name, offsetof(Params, name), true }
-// Fields a profile may override (the image geometry comes from the profile itself).
+// The parameters (shaders/common/params.def's LPIR_PARAM rows): what a profile may override (the
+// image geometry and the mount come from the profile itself).
 const Field kFields[] = {
-    LPIR_F(h_noise),          LPIR_U(rings_near),     LPIR_U(rings_far),
-    LPIR_U(sectors_near),     LPIR_U(sectors_far),    LPIR_F(ring_res_near),
-    LPIR_F(ring_res_far),     LPIR_F(slope_max),      LPIR_F(seed_margin),
-    LPIR_F(h_athr),           LPIR_F(rise_margin),    LPIR_F(plane_dist_floor),
-    LPIR_F(plane_dist_scale), LPIR_F(normal_min_z2),  LPIR_F(ground_max_above),
-    LPIR_F(hole_gap),         LPIR_F(t_edge),         LPIR_F(t_slope_low),
-    LPIR_F(t_slope_high),     LPIR_F(t_stdz_low),     LPIR_F(t_stdz_high),
-    LPIR_F(bank_slope),       LPIR_F(bank_rough),     LPIR_F(grow_dz),
-    LPIR_F(grow_grade),       LPIR_U(min_component),  LPIR_F(bp_range_gate),
-    LPIR_F(bp_height_gate),   LPIR_U(occ_rows),       LPIR_F(occ_margin),
-    LPIR_F(occ_rise),         LPIR_F(occ_grade),      LPIR_F(occ_front),
-    LPIR_F(occ_pass),         LPIR_U(occ_step_rows),  LPIR_F(occ_step),
-    LPIR_F(occ_step_grade),   LPIR_F(occ_step_reach), LPIR_U(comp_seed_min),
-    LPIR_F(comp_seed_share),
+#define LPIR_PARAM(stage, type, name, default_value, unit, swept, meaning) \
+  {#name, offsetof(Params, name), std::is_same_v<type, uint>},
+#define LPIR_DERIVED(stage, type, name, default_value, unit, meaning)
+#include "shaders/common/params.def"
 };
-#undef LPIR_F
-#undef LPIR_U
 
 // A subnormal parameter is an operand a device may flush (Vulkan allows it), so the stages' bytes
 // would depend on the device (docs/decisions/denormals.md): rejected, naming the parameter.
@@ -53,61 +40,11 @@ void RejectSubnormal(const std::string& profile, const std::string& name, float 
 }  // namespace
 
 Params DefaultParams() {
-  Params p{};
-  p.width = 2048;
-  p.beams = 64;
-  p.ring_zero_is_top = 0;
-  p.has_ring = 0;
-  p.min_range2 = 2.5f * 2.5f;
-  p.max_range2 = 120.0f * 120.0f;
-  p.k_xz = 0.0f;
-  p.k_yz = 0.0f;
-  p.h_noise = -3.73f;  // 2 m under the road for a 1.73 m mount (see ParamsForSensor)
-  p.sensor_height = 1.73f;
-  p.rings_near = 10;     // 10 x 2 m = 20 m near zone
-  p.rings_far = 25;      // 25 x 4 m beyond: to 120 m
-  p.sectors_near = 128;  // 2.8 degrees
-  p.sectors_far = 64;
-  p.ring_res_near = 2.0f;
-  p.ring_res_far = 4.0f;
-  // Stages 4-9: the measurements behind each default are in docs/decisions/params.md and the
-  // stages' pages beside it.
-  p.slope_max = 0.10f;
-  p.seed_margin = 0.06f;
-  p.h_athr = 0.12f;
-  p.rise_margin = 0.3f;
-  p.plane_dist_floor = 0.1f;  // docs/decisions/coarse_segment.md, The plane band (issue 28)
-  p.plane_dist_scale = 2.5f;
-  p.normal_min_z2 = 0.7f;  // normal within ~33 degrees of vertical
-  // 0.3 keeps the roof of a car parked beside the sensor out of the seeds
-  // (docs/decisions/coarse_segment.md).
-  p.ground_max_above = 0.3f;
-  p.hole_gap = 0.25f;
-  p.t_edge = 0.12f;
-  p.t_slope_low = 0.09f;
-  p.t_slope_high = 0.25f;
-  p.t_stdz_low = 0.000025f;   // (5 mm)^2
-  p.t_stdz_high = 0.000144f;  // (12 mm)^2
-  p.bank_slope = 0.8f;        // 39 degrees
-  p.bank_rough = 0.01f;       // (10 cm)^2: grass on a bank
-  p.grow_dz = 0.03f;
-  p.grow_grade = 0.0f;
-  p.column_arc = float(2.0 * 3.14159265358979323846 / 2048.0);
-  p.min_component = 300;
-  p.bp_range_gate = 0.15f;
-  p.bp_height_gate = 0.2f;
-  p.occ_rows = 2;
-  p.occ_margin = 0.3f;
-  p.occ_rise = 0.045f;
-  p.occ_grade = 0.0002f;
-  p.occ_front = 0.1f;
-  p.occ_pass = 0.15f;
-  p.occ_step_rows = 10;
-  p.occ_step = 0.15f;
-  p.occ_step_grade = 0.1f;
-  p.occ_step_reach = 3.0f;
-  p.comp_seed_min = 10;
-  p.comp_seed_share = 0.8f;
+  Params p;
+  std::memset(&p, 0, sizeof p);  // the tail that rounds the block to vec4s is zero, not garbage
+#define LPIR_PARAM(stage, type, name, default_value, unit, swept, meaning) p.name = default_value;
+#define LPIR_DERIVED(stage, type, name, default_value, unit, meaning) p.name = default_value;
+#include "shaders/common/params.def"
   return p;
 }
 

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -23,33 +22,6 @@ namespace lpir {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Every key a profile may hold; `param` may repeat (once per parameter name), the others not.
-const char* const kKeys[] = {"name",
-                             "pattern",
-                             "mount",
-                             "beams",
-                             "width",
-                             "max_points",
-                             "frame_points",
-                             "elevation_deg",
-                             "beam_origin_z",
-                             "ring_zero_is_top",
-                             "sensor_height",
-                             "min_range",
-                             "max_range",
-                             "k_xz",
-                             "k_yz",
-                             "b_x",
-                             "b_y",
-                             "param"};
-const char* const kRequired[] = {"name", "beams", "width", "elevation_deg"};
-
-std::string KnownKeys() {
-  std::string all;
-  for (const char* k : kKeys) all += std::string(all.empty() ? "" : ", ") + k;
-  return all;
-}
 
 // Splits a line into whitespace-separated tokens after dropping a `#` comment.
 std::vector<std::string> Tokens(const std::string& line) {
@@ -84,10 +56,22 @@ unsigned ParseUnsigned(const std::string& key, const std::string& t) {
   return static_cast<unsigned>(std::stoul(t));
 }
 
-// The one-number keys a setting may change (ApplySettings): those that tune the segmentation of
-// a sensor already described, not its geometry (beams, width, elevation_deg).
-const char* const kSettableKeys[] = {"sensor_height", "min_range",        "max_range",  "k_xz",
-                                     "k_yz",          "ring_zero_is_top", "max_points", "mount"};
+// Token `t` of `key` as a whole number within lo..hi; std::invalid_argument otherwise, saying
+// `range` when the number lies outside.
+unsigned ParseCount(const std::string& key, const std::string& t, unsigned lo, unsigned hi,
+                    const char* range) {
+  const unsigned n = ParseUnsigned(key, t);
+  if (n < lo || n > hi) throw std::invalid_argument(range);
+  return n;
+}
+
+// Token `t` of `key` (k_xz, k_yz) as a tilt slope within -1..1; std::invalid_argument otherwise.
+float ParseTiltSlope(const std::string& key, const std::string& t) {
+  const float k = ParseFloat(key, t);
+  if (!(std::fabs(k) <= kMaxProfileTiltSlope))
+    throw std::invalid_argument(key + " must be within -1..1 (a mount tilt of at most 45 degrees)");
+  return k;
+}
 
 // The words of the enumerated keys, in enum order.
 const char* const kPatternNames[] = {"spinning", "rosette", "band"};
@@ -104,54 +88,102 @@ size_t ParseWord(const std::string& key, const std::string& v, const char* const
   throw std::invalid_argument(key + " must be one of " + all + ", got '" + v + "'");
 }
 
-// Sets the one-value key `key` of `p` (any key but name, the lists and param) from its token
-// `v`, checking it as the reader does; std::invalid_argument with the problem.
-void SetOneValueKey(SensorProfile& p, const std::string& key, const std::string& v) {
-  auto fail = [](const std::string& problem) { throw std::invalid_argument(problem); };
-  if (key == "pattern") {
-    p.pattern = static_cast<ScanPattern>(ParseWord(key, v, kPatternNames));
-  } else if (key == "mount") {
-    p.mount = static_cast<MountSource>(ParseWord(key, v, kMountNames));
-  } else if (key == "beams") {
-    p.beams = ParseUnsigned(key, v);
-    if (p.beams < 1 || p.beams > 4096) fail("beams must be 1..4096");
-  } else if (key == "width") {
-    p.width = ParseUnsigned(key, v);
-    if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
-      fail("width " + v + " must be a positive multiple of 64 (at most 65536)");
-  } else if (key == "max_points") {
-    p.max_points = ParseUnsigned(key, v);
-    if (p.max_points < 1 || p.max_points > 100000000) fail("max_points must be 1..1e8");
-  } else if (key == "frame_points") {
-    p.frame_points = ParseUnsigned(key, v);
-    if (p.frame_points < 1 || p.frame_points > 10000000) fail("frame_points must be 1..1e7");
-  } else if (key == "ring_zero_is_top") {
-    if (v != "0" && v != "1") fail("ring_zero_is_top must be 0 or 1, got '" + v + "'");
-    p.ring_zero_is_top = v == "1";
-  } else if (key == "sensor_height") {
-    p.sensor_height = ParseFloat(key, v);
-    if (!(p.sensor_height > 0)) fail("sensor_height must be > 0");
-  } else if (key == "min_range") {
-    p.min_range = ParseFloat(key, v);
-    if (p.min_range < 0) fail("min_range must be >= 0");
-  } else if (key == "max_range") {
+[[noreturn]] void Fail(const std::string& problem) { throw std::invalid_argument(problem); }
+
+// What follows a key on its line: one value (set by the row's `set`), a list of numbers that may
+// continue on the following lines (the row's `list`), or `NAME VALUE` of a parameter.
+enum class Shape { kOne, kList, kParam };
+
+// One key of a profile file. `set` parses and checks token `v` of `key` into the profile, with
+// std::invalid_argument naming the problem. `settable`: a setting (ApplySettings) may change it,
+// as it tunes the segmentation of a sensor already described; the geometry (beams, width, the
+// lists) is the file's alone.
+struct Key {
+  const char* key;
+  Shape shape;
+  bool required;
+  bool settable;
+  void (*set)(SensorProfile& p, const std::string& key, const std::string& v);
+  std::vector<float> SensorProfile::*list = nullptr;
+};
+
+// Every key a profile may hold, one row each; every key but `param` appears at most once (a
+// `param` line once per parameter name). SettingNames lists the settable ones in this order.
+const Key kKeys[] = {
+    {"name", Shape::kOne, true, false, [](auto& p, auto&, auto& v) { p.name = v; }},
+    {"pattern", Shape::kOne, false, false,
+     [](auto& p, auto& k, auto& v) {
+       p.pattern = static_cast<ScanPattern>(ParseWord(k, v, kPatternNames));
+     }},
+    {"beams", Shape::kOne, true, false,
+     [](auto& p, auto& k, auto& v) {
+       p.beams = ParseCount(k, v, 1, 4096, "beams must be 1..4096");
+     }},
+    {"width", Shape::kOne, true, false,
+     [](auto& p, auto& k, auto& v) {
+       p.width = ParseUnsigned(k, v);
+       if (p.width == 0 || p.width % 64 != 0 || p.width > 65536)
+         Fail("width " + v + " must be a positive multiple of 64 (at most 65536)");
+     }},
+    {"elevation_deg", Shape::kList, true, false, nullptr, &SensorProfile::elevation_deg},
+    {"beam_origin_z", Shape::kList, false, false, nullptr, &SensorProfile::beam_origin_z},
+    {"sensor_height", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) {
+       p.sensor_height = ParseFloat(k, v);
+       if (!(p.sensor_height > 0)) Fail("sensor_height must be > 0");
+     }},
+    {"min_range", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) {
+       p.min_range = ParseFloat(k, v);
+       if (p.min_range < 0) Fail("min_range must be >= 0");
+     }},
     // Bounded so that every valid point's coordinates and corrected height stay inside the
-    // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger
-    // one let a point with z = 1e20 through to an overflowing float -> int64 conversion.
-    p.max_range = ParseFloat(key, v);
-    if (!(p.max_range <= kMaxProfileRange)) fail("max_range must be at most 1000 m");
-  } else if (key == "k_xz" || key == "k_yz") {
-    // A mount tilt of at most 45 degrees: |z_t| <= 3 max_range (eq. 3). k_xz = 1e30 made
-    // z_t overflow the same conversion.
-    const float k = ParseFloat(key, v);
-    if (!(std::fabs(k) <= kMaxProfileTiltSlope))
-      fail(key + " must be within -1..1 (a mount tilt of at most 45 degrees)");
-    (key == "k_xz" ? p.k_xz : p.k_yz) = k;
-  } else if (key == "b_x") {
-    p.b_x = ParseFloat(key, v);
-  } else if (key == "b_y") {
-    p.b_y = ParseFloat(key, v);
-  }
+    // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger one
+    // let a point with z = 1e20 through to an overflowing float -> int64 conversion.
+    {"max_range", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) {
+       p.max_range = ParseFloat(k, v);
+       if (!(p.max_range <= kMaxProfileRange)) Fail("max_range must be at most 1000 m");
+     }},
+    // A mount tilt of at most 45 degrees: |z_t| <= 3 max_range (eq. 3). k_xz = 1e30 made z_t
+    // overflow the same conversion.
+    {"k_xz", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) { p.k_xz = ParseTiltSlope(k, v); }},
+    {"k_yz", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) { p.k_yz = ParseTiltSlope(k, v); }},
+    {"ring_zero_is_top", Shape::kOne, false, true,
+     [](auto& p, auto&, auto& v) {
+       if (v != "0" && v != "1") Fail("ring_zero_is_top must be 0 or 1, got '" + v + "'");
+       p.ring_zero_is_top = v == "1";
+     }},
+    {"max_points", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) {
+       p.max_points = ParseCount(k, v, 1, 100000000, "max_points must be 1..1e8");
+     }},
+    {"frame_points", Shape::kOne, false, false,
+     [](auto& p, auto& k, auto& v) {
+       p.frame_points = ParseCount(k, v, 1, 10000000, "frame_points must be 1..1e7");
+     }},
+    {"mount", Shape::kOne, false, true,
+     [](auto& p, auto& k, auto& v) {
+       p.mount = static_cast<MountSource>(ParseWord(k, v, kMountNames));
+     }},
+    {"b_x", Shape::kOne, false, false, [](auto& p, auto& k, auto& v) { p.b_x = ParseFloat(k, v); }},
+    {"b_y", Shape::kOne, false, false, [](auto& p, auto& k, auto& v) { p.b_y = ParseFloat(k, v); }},
+    {"param", Shape::kParam, false, false, nullptr},
+};
+
+// The row of `key`; nullptr when no key has that name.
+const Key* FindKey(const std::string& key) {
+  for (const Key& k : kKeys)
+    if (key == k.key) return &k;
+  return nullptr;
+}
+
+std::string KnownKeys() {
+  std::string all;
+  for (const Key& k : kKeys) all += std::string(all.empty() ? "" : ", ") + k.key;
+  return all;
 }
 
 // Parameter `name` = `value` checked against the parameter table (ApplyOverride's rules);
@@ -184,8 +216,6 @@ class Parser {
     p.overrides.clear();
     std::map<std::string, int> seen;          // key -> line of its first appearance
     std::map<std::string, int> params_seen;   // override name -> line
-    int elevation_line = 0;                   // line of the elevation_deg key
-    int origin_line = 0;                      // line of the beam_origin_z key
     std::vector<float>* open_list = nullptr;  // the list the previous line was (or continued)
     std::string open_key;
     std::istringstream in(text);
@@ -205,10 +235,9 @@ class Parser {
       }
       open_list = nullptr;
       const std::string& key = tok[0];
-      bool known = false;
-      for (const char* k : kKeys) known = known || key == k;
-      if (!known) Fail(line, "unknown key '" + key + "' (known: " + KnownKeys() + ")");
-      if (key != "param") {
+      const Key* row = FindKey(key);
+      if (!row) Fail(line, "unknown key '" + key + "' (known: " + KnownKeys() + ")");
+      if (row->shape != Shape::kParam) {
         auto it = seen.find(key);
         if (it != seen.end())
           Fail(line,
@@ -216,14 +245,13 @@ class Parser {
         seen[key] = line;
       }
       const size_t values = tok.size() - 1;
-      if (key == "elevation_deg" || key == "beam_origin_z") {
-        (key == "elevation_deg" ? elevation_line : origin_line) = line;
-        open_list = key == "elevation_deg" ? &p.elevation_deg : &p.beam_origin_z;
+      if (row->shape == Shape::kList) {
+        open_list = &(p.*row->list);
         open_key = key;
         for (size_t i = 1; i < tok.size(); ++i) open_list->push_back(Float(line, key, tok[i]));
         continue;
       }
-      if (key == "param") {
+      if (row->shape == Shape::kParam) {
         if (values != 2) Fail(line, "param expects a name and a value: param NAME VALUE");
         const std::string& name = tok[1];
         float v = Float(line, "param " + name, tok[2]);
@@ -242,22 +270,22 @@ class Parser {
       }
       if (values != 1)
         Fail(line, key + " expects exactly one value, got " + std::to_string(values));
-      const std::string& v = tok[1];
-      if (key == "name") {
-        p.name = v;
-        continue;
-      }
       try {
-        SetOneValueKey(p, key, v);
+        row->set(p, key, tok[1]);
       } catch (const std::invalid_argument& e) {
         Fail(line, e.what());
       }
     }
-    for (const char* k : kRequired) {
-      if (!seen.count(k))
-        Fail(line + 1, std::string("end of file without the required key '") + k +
-                           "' (required: name, beams, width, elevation_deg)");
+    std::string required;
+    for (const Key& k : kKeys)
+      if (k.required) required += std::string(required.empty() ? "" : ", ") + k.key;
+    for (const Key& k : kKeys) {
+      if (k.required && !seen.count(k.key))
+        Fail(line + 1, std::string("end of file without the required key '") + k.key +
+                           "' (required: " + required + ")");
     }
+    const int elevation_line = seen["elevation_deg"];
+    const int origin_line = seen.count("beam_origin_z") ? seen["beam_origin_z"] : 0;
     if (p.elevation_deg.size() != p.beams)
       Fail(elevation_line, "elevation_deg has " + std::to_string(p.elevation_deg.size()) +
                                " values but beams is " + std::to_string(p.beams));
@@ -327,7 +355,9 @@ SensorProfile LoadSensorProfile(const std::string& name_or_path, const std::stri
 }
 
 std::vector<std::string> SettingNames() {
-  std::vector<std::string> names(std::begin(kSettableKeys), std::end(kSettableKeys));
+  std::vector<std::string> names;
+  for (const Key& k : kKeys)
+    if (k.settable) names.push_back(k.key);
   for (const std::string& name : ParamNames()) names.push_back(name);
   return names;
 }
@@ -338,12 +368,12 @@ void ApplySettings(SensorProfile& profile,
   for (const auto& [name, value] : settings) {
     const std::string setting = name + "=" + value;
     all += (all.empty() ? "" : ", ") + setting;
-    const bool key = std::find(std::begin(kSettableKeys), std::end(kSettableKeys), name) !=
-                     std::end(kSettableKeys);
+    const Key* row = FindKey(name);
+    const bool key = row && row->settable;
     const std::vector<std::string> params = ParamNames();
     try {
       if (key) {
-        SetOneValueKey(profile, name, value);
+        row->set(profile, name, value);
       } else if (std::find(params.begin(), params.end(), name) != params.end()) {
         const float v = ParseFloat(name, value);
         CheckParam(name, v);
