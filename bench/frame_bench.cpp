@@ -3,6 +3,7 @@
 // consecutive SemanticKITTI 00 scans: one benchmark per scan and backend, 20 repetitions, median
 // reported. Before timing, each checks that its labels equal the CPU reference's byte for byte.
 // Counters: the per-stage times (reference: wall time; Vulkan: GPU timestamps), mean per frame.
+// The reference runs on one thread.
 // Run: build/bench/frame_bench  (data from ../shared/data; absent -> nothing to run, says so).
 #include <benchmark/benchmark.h>
 
@@ -24,6 +25,7 @@ void BM_Frame(benchmark::State& state, const std::string& path, Backend backend)
   const Cloud cloud = ReadKittiBin(path);
   const SensorProfile sensor = LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR);
   SegmenterOptions options = SegmenterOptions::For(backend);
+  options.threads = 1;
   if (const char* device = std::getenv("LPIR_VK_DEVICE")) options.device = device;
   std::unique_ptr<Segmenter> segmenter;
   try {

@@ -18,8 +18,9 @@ namespace {
 
 void BM_Reference(benchmark::State& state, const std::string& path) {
   const Cloud cloud = ReadKittiBin(path);
-  Segmenter segmenter(LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR),
-                      SegmenterOptions::For(Backend::kCpu));
+  SegmenterOptions options = SegmenterOptions::For(Backend::kCpu);
+  options.threads = 1;
+  Segmenter segmenter(LoadSensorProfile("hdl64e", LPIR_SENSORS_DIR), options);
   // Check before timing: every point labelled, some ground, some non-ground.
   const Frame& check = segmenter.Segment(cloud);
   size_t ground = 0;

@@ -14,11 +14,10 @@
 
 namespace lpir {
 
-void BackProject(const Params& p, Frame& f) {
-  const uint32_t n = f.n;
-  f.label.resize(n);
-  f.why.resize(n);
-  f.label_why.resize(n);
+namespace {
+
+// Points [r.begin, r.end).
+void BackProjectRange(const Params& p, Frame& f, Range r) {
   const uint32_t* __restrict flags = f.flags.data();
   const uint32_t* __restrict point_pixel = f.point_pixel.data();
   const uint32_t* __restrict pixel_point = f.pixel_point.data();
@@ -32,7 +31,7 @@ void BackProject(const Params& p, Frame& f) {
   uint8_t* __restrict why = f.why.data();
   uint8_t* __restrict label_why = f.label_why.data();
   const float range_gate = p.bp_range_gate, height_gate = p.bp_height_gate;
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = r.begin; i < r.end; ++i) {
     const uint32_t flag = flags[i];
     if ((flag & (kPointValid | kPointNoise)) != kPointValid) {  // invalid, or noise
       label[i] = 0;
@@ -54,6 +53,17 @@ void BackProject(const Params& p, Frame& f) {
     why[i] = ground ? kWhyGround : kWhyNonGround;
     label_why[i] = PackLabelWhy(label[i], why[i]);
   }
+}
+
+}  // namespace
+
+void BackProject(const Params& p, Frame& f, Threads threads) {
+  const uint32_t n = f.n;
+  f.label.resize(n);
+  f.why.resize(n);
+  f.label_why.resize(n);
+  ForPieces(threads, PiecesFor(threads, n, 8192), n,
+            [&](uint32_t, Range r) { BackProjectRange(p, f, r); });
 }
 
 }  // namespace lpir

@@ -25,11 +25,8 @@ inline int Vote(float value, float low, float high) {
   return 0;
 }
 
-}  // namespace
-
-void ClassifyPixels(const Params& p, Frame& f) {
-  const uint32_t pixels = p.width * p.beams;
-  f.pixel_class.resize(pixels);
+// Pixels [r.begin, r.end).
+void ClassifyRange(const Params& p, Frame& f, Range r) {
   // Raw pointers: the outputs never alias the inputs, so the loop keeps nothing in memory.
   const uint32_t* __restrict filled = f.pixel_filled.data();
   const float* __restrict edge_l = f.f_edge_l.data();
@@ -38,7 +35,7 @@ void ClassifyPixels(const Params& p, Frame& f) {
   const float* __restrict varz = f.f_varz.data();
   uint32_t* __restrict out = f.pixel_class.data();
   const Params q = p;  // thresholds in registers
-  for (uint32_t pix = 0; pix < pixels; ++pix) {
+  for (uint32_t pix = r.begin; pix < r.end; ++pix) {
     const bool edge = (edge_l[pix] >= q.t_edge) | (edge_r[pix] >= q.t_edge);  // eq. 8
     const float slope = slope_map[pix];
     const int s = (slope < 0.0f ? 0 : Vote(slope, q.t_slope_low, q.t_slope_high)) +  // eq. 9
@@ -53,6 +50,15 @@ void ClassifyPixels(const Params& p, Frame& f) {
       c = kPixUnknown;
     out[pix] = filled[pix] ? c : kPixEmpty;
   }
+}
+
+}  // namespace
+
+void ClassifyPixels(const Params& p, Frame& f, Threads threads) {
+  const uint32_t pixels = p.width * p.beams;
+  f.pixel_class.resize(pixels);
+  ForPieces(threads, PiecesFor(threads, pixels, 8192), pixels,
+            [&](uint32_t, Range r) { ClassifyRange(p, f, r); });
 }
 
 }  // namespace lpir

@@ -30,6 +30,8 @@
 // CPU layout (same integers, fewer passes): coordinates go to mm four at a time in int32 (the
 // contract's int64 path when one exceeds 2^30 mm); the centred moments come from raw sums modulo
 // 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept over runs of one cell.
+// Threads (reference_cpu/threads.h): pieces of points, each summing into its own slots and cells,
+// merged by integer addition; pieces of slots fit the planes.
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
@@ -208,9 +210,9 @@ struct Fit {
   int64_t nx, ny, nz, offset;
 };
 
-// Buffers reused from frame to frame (the reference is single-threaded). Per-cell tables are
-// indexed by cell + 1 (uint32): a point without a cell (kNone) wraps to entry 0, which says "no
-// seed, no ground".
+// Buffers reused from frame to frame (each thread has its own). Per-cell tables are indexed by
+// cell + 1 (uint32): a point without a cell (kNone) wraps to entry 0, which says "no seed, no
+// ground".
 struct Scratch {
   std::vector<SeedTest> test;       // per cell + 1
   std::vector<int64_t> thr;         // per cell + 1: the threshold, -1 when no ground
@@ -222,6 +224,10 @@ struct Scratch {
   std::vector<uint8_t> ground;      // per slot: 1 when the cell may hold ground
   std::vector<uint8_t> seed;        // per point: 1 for a seed
   std::vector<int64_t> dist;        // per point: |n . (q - mean)|, 0 in cells without ground
+  // The sums of the pieces of points after the first (which sums into sums and dist_sum): per
+  // piece a slot's SeedSums and a cell + 1's distance sum.
+  std::vector<SeedSums> piece_sums;
+  std::vector<int64_t> piece_dist_sums;
 };
 thread_local Scratch scratch;
 
@@ -281,11 +287,9 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   }
 }
 
-// Every point with a cell in mm (0 without one): x, y and z_t into s.qx, s.qy, s.qz, SSE-wide;
-// the scalar path of the contract if any coordinate lies beyond 2^30 mm.
-[[gnu::noinline]] void ToMillimetres(const Cloud& cloud, const Frame& f, Scratch& s) {
-  const uint32_t n = f.n;
-  s.qx.resize(n), s.qy.resize(n), s.qz.resize(n);
+// Every point of `points` with a cell in mm (0 without one): x, y and z_t into s.qx, s.qy, s.qz,
+// SSE-wide; the scalar path of the contract if any coordinate lies beyond 2^30 mm.
+[[gnu::noinline]] void ToMillimetres(const Cloud& cloud, const Frame& f, Scratch& s, Range points) {
   const float* __restrict xyzi = cloud.xyzi.data();
   const float* __restrict zt = f.zt.data();
   const uint32_t* __restrict point_cell = f.point_cell.data();
@@ -293,13 +297,13 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   int32_t* __restrict qy = s.qy.data();
   int32_t* __restrict qz = s.qz.data();
   uint32_t bad = 0;
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = points.begin; i < points.end; ++i) {
     const uint32_t keep = 0u - uint32_t(point_cell[i] != kNone);
     qx[i] = ToMm(Keep(xyzi[4 * size_t(i)], keep), bad);
     qy[i] = ToMm(Keep(xyzi[4 * size_t(i) + 1], keep), bad);
     qz[i] = ToMm(Keep(zt[i], keep), bad);
   }
-  for (uint32_t i = 0; bad && i < n; ++i) {
+  for (uint32_t i = points.begin; bad && i < points.end; ++i) {
     if (point_cell[i] == kNone) continue;
     qx[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i)], kMm));
     qy[i] = int32_t(exact::ToFixed(xyzi[4 * size_t(i) + 1], kMm));
@@ -307,20 +311,17 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   }
 }
 
-// The seed test of every point (s.seed), and the seeds' sums per slot (s.sums, int64,
-// order-independent). Points come in runs of one cell (scan order): a run's sums stay in
+// The seed test of every point of `points` (s.seed), and the seeds' sums per slot into `sums`
+// (int64, order-independent). Points come in runs of one cell (scan order): a run's sums stay in
 // registers and go to the cell's when the run ends.
-[[gnu::noinline]] void SumSeeds(const Frame& f, Scratch& s) {
-  const uint32_t n = f.n;
-  s.sums.assign(s.cell_of.size(), SeedSums{});
-  s.seed.resize(n);
+[[gnu::noinline]] void SumSeeds(const Frame& f, Scratch& s, Range points,
+                                SeedSums* __restrict sums) {
   const float* __restrict zt = f.zt.data();
   const uint32_t* __restrict point_cell = f.point_cell.data();
   const int32_t* __restrict qx = s.qx.data();
   const int32_t* __restrict qy = s.qy.data();
   const int32_t* __restrict qz = s.qz.data();
   const SeedTest* __restrict test = s.test.data();
-  SeedSums* __restrict sums = s.sums.data();
   uint8_t* __restrict seed = s.seed.data();
   SeedTest st = test[0];
   uint32_t run_cell = kNone;
@@ -333,7 +334,7 @@ inline int32_t ToMm(float v, uint32_t& bad) {
     rn = rx = ry = rz = 0;
     rxx = rxy = rxz = ryy = ryz = rzz = 0;
   };
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = points.begin; i < points.end; ++i) {
     const uint32_t c = point_cell[i];
     if (c != run_cell) {
       flush();
@@ -352,15 +353,18 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   flush();
 }
 
-// Mean, centred moments and normal per slot with seeds (eqs. 6-7) into cell_plane (all but the
-// threshold); the slots whose normal is flat enough get their s.fit and s.ground, the others
-// threshold -1 (no ground).
-[[gnu::noinline]] void FitPlanes(const Params& p, Frame& f, Scratch& s) {
-  const uint32_t cells = CellCount(p), slots = uint32_t(s.cell_of.size());
+// b's sums added to a's (int64 and modulo 2^64: the same in any order).
+inline void AddSums(SeedSums& a, const SeedSums& b) {
+  a.n += b.n, a.x += b.x, a.y += b.y, a.z += b.z;
+  a.xx += b.xx, a.xy += b.xy, a.xz += b.xz, a.yy += b.yy, a.yz += b.yz, a.zz += b.zz;
+}
+
+// Mean, centred moments and normal per slot of `slots` with seeds (eqs. 6-7) into cell_plane (all
+// but the threshold); the slots whose normal is flat enough get their s.fit and s.ground, the
+// others threshold -1 (no ground). Slot 0 (no cell) is passed over.
+[[gnu::noinline]] void FitPlanes(const Params& p, Frame& f, Scratch& s, Range slots) {
   const int64_t min_z2 = exact::ToFixed(p.normal_min_z2, float(kQ * kQ));
-  s.fit.assign(size_t(cells) + 1, Fit{0, 0, 0, 0});
-  s.ground.assign(slots, 0);
-  for (uint32_t k = 1; k < slots; ++k) {
+  for (uint32_t k = std::max(slots.begin, 1u); k < slots.end; ++k) {
     const SeedSums& a = s.sums[k];
     if (a.n == 0) continue;
     int32_t* plane = &f.cell_plane[size_t(s.cell_of[k]) * 8];
@@ -388,24 +392,22 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   }
 }
 
-// Distance in mm * 2^14 of every point to its cell's plane (s.dist; 0 in cells without ground),
-// and the seeds' sum per cell (s.dist_sum), again kept in a register over a run of one cell.
-[[gnu::noinline]] void SumDistances(const Params& p, const Frame& f, Scratch& s) {
-  const uint32_t n = f.n;
-  s.dist_sum.assign(size_t(CellCount(p)) + 1, 0);
-  s.dist.resize(n);
+// Distance in mm * 2^14 of every point of `points` to its cell's plane (s.dist; 0 in cells without
+// ground), and the seeds' sum per cell + 1 into `dist_sum`, again kept in a register over a run of
+// one cell.
+[[gnu::noinline]] void SumDistances(const Frame& f, Scratch& s, Range points,
+                                    int64_t* __restrict dist_sum) {
   const int32_t* __restrict qx = s.qx.data();
   const int32_t* __restrict qy = s.qy.data();
   const int32_t* __restrict qz = s.qz.data();
   const uint32_t* __restrict point_cell = f.point_cell.data();
   const uint8_t* __restrict seed = s.seed.data();
   const Fit* __restrict fit = s.fit.data();
-  int64_t* __restrict dist_sum = s.dist_sum.data();
   int64_t* __restrict dist = s.dist.data();
   uint32_t run_cell = kNone;
   Fit g = fit[0];
   int64_t run_sum = 0;
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = points.begin; i < points.end; ++i) {
     const uint32_t c = point_cell[i];
     if (c != run_cell) {
       dist_sum[run_cell + 1u] += run_sum;
@@ -438,32 +440,66 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   }
 }
 
-// Coarse label per point: distances are >= 0, so a threshold of -1 (no seeds, no ground) or any
-// negative one says 0.
-[[gnu::noinline]] void Label(Frame& f, const Scratch& s) {
-  const uint32_t n = f.n;
+// Coarse label per point of `points`: distances are >= 0, so a threshold of -1 (no seeds, no
+// ground) or any negative one says 0.
+[[gnu::noinline]] void Label(Frame& f, const Scratch& s, Range points) {
   const uint32_t* __restrict point_cell = f.point_cell.data();
   const int64_t* __restrict dist = s.dist.data();
   const int64_t* __restrict thr = s.thr.data();
   uint32_t* __restrict coarse = f.coarse.data();
-  for (uint32_t i = 0; i < n; ++i) coarse[i] = dist[i] <= thr[point_cell[i] + 1u];
+  for (uint32_t i = points.begin; i < points.end; ++i)
+    coarse[i] = dist[i] <= thr[point_cell[i] + 1u];
 }
 
 }  // namespace
 
-void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
-  const uint32_t cells = CellCount(p);
+// Pieces of points for the per-point passes, each summing into its own slots and cells (the first
+// into s.sums and s.dist_sum), merged by integer addition (the same in any order); pieces of slots
+// for the planes.
+void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& f,
+                   Threads threads) {
+  const uint32_t n = f.n, cells = CellCount(p);
   f.cell_seed_mode.assign(cells, 0u);
   f.cell_plane.assign(size_t(cells) * 8, 0);
-  f.coarse.resize(f.n);
+  f.coarse.resize(n);
   Scratch& s = scratch;
   SeedModes(p, t, f, s);
-  ToMillimetres(cloud, f, s);
-  SumSeeds(f, s);
-  FitPlanes(p, f, s);
-  SumDistances(p, f, s);
+  const uint32_t slots = uint32_t(s.cell_of.size());
+  s.qx.resize(n), s.qy.resize(n), s.qz.resize(n);
+  s.seed.resize(n);
+  s.dist.resize(n);
+  s.sums.assign(slots, SeedSums{});
+  s.dist_sum.assign(size_t(cells) + 1, 0);
+  const uint32_t pieces = PiecesFor(threads, n, 4096);
+  s.piece_sums.resize(size_t(pieces - 1) * slots);
+  s.piece_dist_sums.resize(size_t(pieces - 1) * (cells + 1));
+  auto piece_sums = [&](uint32_t k) {
+    return k ? s.piece_sums.data() + size_t(k - 1) * slots : s.sums.data();
+  };
+  auto piece_dist_sums = [&](uint32_t k) {
+    return k ? s.piece_dist_sums.data() + size_t(k - 1) * (cells + 1) : s.dist_sum.data();
+  };
+  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
+    ToMillimetres(cloud, f, s, points);
+    SeedSums* sums = piece_sums(k);
+    if (k) std::fill(sums, sums + slots, SeedSums{});
+    SumSeeds(f, s, points, sums);
+  });
+  for (uint32_t k = 1; k < pieces; ++k)
+    for (uint32_t slot = 0; slot < slots; ++slot) AddSums(s.sums[slot], piece_sums(k)[slot]);
+  s.fit.assign(size_t(cells) + 1, Fit{0, 0, 0, 0});
+  s.ground.assign(slots, 0);
+  ForPieces(threads, PiecesFor(threads, slots, 64), slots,
+            [&](uint32_t, Range r) { FitPlanes(p, f, s, r); });
+  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
+    int64_t* dist_sum = piece_dist_sums(k);
+    if (k) std::fill(dist_sum, dist_sum + cells + 1, 0);
+    SumDistances(f, s, points, dist_sum);
+  });
+  for (uint32_t k = 1; k < pieces; ++k)
+    for (uint32_t c = 0; c <= cells; ++c) s.dist_sum[c] += piece_dist_sums(k)[c];
   Thresholds(p, f, s);
-  Label(f, s);
+  ForPieces(threads, pieces, n, [&](uint32_t, Range points) { Label(f, s, points); });
 }
 
 }  // namespace lpir

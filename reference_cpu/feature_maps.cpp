@@ -31,7 +31,8 @@
 // CPU implementation (the bits do not depend on it): row by row, each row measured and filled
 // just before the row above it needs it; columns wrap without %; slope and edges without branches
 // (every quotient computed on a non-zero divisor, then the defined value selected) so that those
-// loops vectorise.
+// loops vectorise. Threads (reference_cpu/threads.h): pieces of rows, each measuring the rows just
+// outside it once more for itself.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -54,12 +55,15 @@ struct Sums {
   int64_t z, zz, n, r, rr, rz;
 };
 
-// Scratch reused from frame to frame (the reference is single-threaded): the sums of three image
-// rows, and an empty row that stands for the one below the last.
+// Scratch reused from frame to frame (each thread has its own): the sums of three image rows, an
+// empty row that stands for the ones above the first and below the last, and the two rows just
+// outside a band of rows, measured for it (filled, range, height of each).
 struct Scratch {
   std::vector<Sums> sums[3];
   std::vector<uint32_t> empty_filled;
   std::vector<float> empty_value;
+  std::vector<uint32_t> outside_filled[2];
+  std::vector<float> outside_range[2], outside_height[2];
 };
 thread_local Scratch scratch;
 
@@ -202,27 +206,33 @@ void SlopeEdges(const Row& row, const Row& below, uint32_t w, float* __restrict 
 
 }  // namespace
 
-void FeatureMaps(const Params& p, Frame& f) {
-  const uint32_t w = p.width, h = p.beams, pixels = w * h;
-  f.pixel_filled.resize(pixels);
-  f.f_range.resize(pixels);
-  f.f_height.resize(pixels);
-  f.f_slope.resize(pixels);
-  f.f_edge_l.resize(pixels);
-  f.f_edge_r.resize(pixels);
-  f.f_varz.resize(pixels);
-  if (pixels == 0) return;
-  Scratch& s = scratch;
+namespace {
+
+// Rows v0 .. v1 - 1 of the maps, row by row, each row measured and filled just before the row above
+// it needs it. A row just outside the band (v0 - 1, v1) is measured into s's own rows, never the
+// frame's, so that bands of rows run side by side and write only their own rows.
+void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s) {
+  const uint32_t w = p.width, h = p.beams;
   for (std::vector<Sums>& row : s.sums) row.resize(w);
   s.empty_filled.assign(w, 0u);
   s.empty_value.assign(w, 0.0f);
-
+  for (int k = 0; k < 2; ++k) {
+    s.outside_filled[k].resize(w);
+    s.outside_range[k].resize(w);
+    s.outside_height[k].resize(w);
+  }
+  // Row v: the frame's inside the band, s's just outside it, empty outside the image.
   auto row_of = [&](uint32_t v) {
     if (v >= h) return Row{s.empty_filled.data(), s.empty_value.data(), s.empty_value.data()};
+    if (v + 1 == v0 || v == v1) {
+      const int k = v == v1;
+      return Row{s.outside_filled[k].data(), s.outside_range[k].data(), s.outside_height[k].data()};
+    }
     const size_t o = size_t(v) * w;
     return Row{f.pixel_filled.data() + o, f.f_range.data() + o, f.f_height.data() + o};
   };
   auto measure = [&](uint32_t v) {
+    if (v >= h) return;
     MeasureRow(f.pixel_point.data() + size_t(v) * w, f.r2.data(), f.zt.data(), p.hole_gap, w,
                row_of(v));
   };
@@ -231,14 +241,20 @@ void FeatureMaps(const Params& p, Frame& f) {
   Sums* above = s.sums[0].data();
   Sums* here = s.sums[1].data();
   Sums* below = s.sums[2].data();
-  for (uint32_t u = 0; u < w; ++u) above[u] = Sums{0, 0, 0, 0, 0, 0};
-  measure(0);
+  if (v0 == 0) {
+    for (uint32_t u = 0; u < w; ++u) above[u] = Sums{0, 0, 0, 0, 0, 0};
+  } else {
+    measure(v0 - 1);
+    const Row r = row_of(v0 - 1);
+    RowSums(r.filled, r.height, r.range, w, above);
+  }
+  measure(v0);
   {
-    const Row r = row_of(0);
+    const Row r = row_of(v0);
     RowSums(r.filled, r.height, r.range, w, here);
   }
-  if (h > 1) measure(1);
-  for (uint32_t v = 0; v < h; ++v) {
+  measure(v0 + 1);
+  for (uint32_t v = v0; v < v1; ++v) {
     const Row row = row_of(v), next = row_of(v + 1);
     RowSums(next.filled, next.height, next.range, w, below);
     const size_t o = size_t(v) * w;
@@ -263,8 +279,25 @@ void FeatureMaps(const Params& p, Frame& f) {
     }
     Sums* spare = above;
     above = here, here = below, below = spare;
-    if (v + 2 < h) measure(v + 2);
+    if (v + 2 <= v1) measure(v + 2);
   }
+}
+
+}  // namespace
+
+// Pieces of rows (FeatureRows), each measuring the row above and below it once more for itself.
+void FeatureMaps(const Params& p, Frame& f, Threads threads) {
+  const uint32_t w = p.width, h = p.beams, pixels = w * h;
+  f.pixel_filled.resize(pixels);
+  f.f_range.resize(pixels);
+  f.f_height.resize(pixels);
+  f.f_slope.resize(pixels);
+  f.f_edge_l.resize(pixels);
+  f.f_edge_r.resize(pixels);
+  f.f_varz.resize(pixels);
+  if (pixels == 0) return;
+  ForPieces(threads, PiecesFor(threads, h, 8), h,
+            [&](uint32_t, Range rows) { FeatureRows(p, f, rows.begin, rows.end, scratch); });
 }
 
 }  // namespace lpir

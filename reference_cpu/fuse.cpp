@@ -159,9 +159,12 @@ void Decide(const uint32_t* __restrict cls, const uint32_t* __restrict occluded,
 
 }  // namespace
 
-void Fuse(const Params& p, Frame& f) {
-  const uint32_t w = p.width, h = p.beams, pixels = w * h;
-  f.pixel_fused.resize(pixels);
+namespace {
+
+// Rows `rows` of pixel_fused; each row reads only the stage's inputs, its own and those of the rows
+// above it.
+void FuseRows(const Params& p, Frame& f, Range rows) {
+  const uint32_t w = p.width;
   const uint32_t* __restrict cls = f.pixel_class.data();
   const uint32_t* __restrict point = f.pixel_point.data();
   static const uint32_t kNoPoints[1] = {0};  // read in place of coarse[0] when there are no points
@@ -173,7 +176,7 @@ void Fuse(const Params& p, Frame& f) {
   // Pieces of rows, so that the scratch stays in the L1 cache.
   float reach[kPiece], top[kPiece];
   uint32_t occluded[kPiece], opinion[kPiece];
-  for (uint32_t v = 0; v < h; ++v) {
+  for (uint32_t v = rows.begin; v < rows.end; ++v) {
     // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
     const uint32_t rows_above = p.occ_rows < v ? p.occ_rows : v;
     const uint32_t step_rows = p.occ_step_rows < v ? p.occ_step_rows : v;
@@ -201,6 +204,15 @@ void Fuse(const Params& p, Frame& f) {
       Decide(cls + at, occluded, opinion, n, fused + at);
     }
   }
+}
+
+}  // namespace
+
+void Fuse(const Params& p, Frame& f, Threads threads) {
+  const uint32_t h = p.beams;
+  f.pixel_fused.resize(size_t(p.width) * h);
+  ForPieces(threads, PiecesFor(threads, h, 4), h,
+            [&](uint32_t, Range rows) { FuseRows(p, f, rows); });
 }
 
 }  // namespace lpir

@@ -27,35 +27,36 @@ uint32_t RingOf(float r2, const float* bound2, uint32_t rings) {
   return lo;
 }
 
-void GridReduce(const Params& p, const Tables& t, Frame& f) {
-  const uint32_t n = f.n, cells = CellCount(p), rings = p.rings_near + p.rings_far;
+namespace {
+
+// Per cell: the ordered keys of min and max z_t, and the count.
+struct CellSums {
+  uint32_t* zmin;
+  uint32_t* zmax;
+  uint32_t* count;
+};
+
+// The cell of every point of `points` (point_cell) and the cells' reductions over them into
+// `out` (which holds kNone, 0, 0 for a cell no point has reached).
+void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restrict sn,
+             const uint32_t* __restrict sf, Range points, const CellSums& out) {
+  const uint32_t rings = p.rings_near + p.rings_far;
   const uint32_t width = p.width, rings_near = p.rings_near;
   const uint32_t sectors_near = p.sectors_near, sectors_far = p.sectors_far;
-  f.point_cell.resize(n);
-  f.cell_zmin.assign(cells, kNone);
-  f.cell_zmax.assign(cells, 0u);
-  f.cell_count.assign(cells, 0u);
-  const uint32_t cols_near = width / sectors_near, cols_far = width / sectors_far;
   const float* bound2 = t.ring_bound2.data();
-  // Sector of every column in each zone, so the per-point loop divides nothing.
-  thread_local std::vector<uint32_t> sector_near, sector_far;
-  sector_near.resize(width), sector_far.resize(width);
-  for (uint32_t u = 0; u < width; ++u) sector_near[u] = u / cols_near, sector_far[u] = u / cols_far;
   const float inv_width = exact::Div(1.0f, float(width));
   const uint32_t* __restrict flags = f.flags.data();
   const float* __restrict r2s = f.r2.data();
   const float* __restrict zt = f.zt.data();
   const uint32_t* __restrict point_pixel = f.point_pixel.data();
   uint32_t* __restrict point_cell = f.point_cell.data();
-  uint32_t* __restrict zmin = f.cell_zmin.data();
-  uint32_t* __restrict zmax = f.cell_zmax.data();
-  uint32_t* __restrict count = f.cell_count.data();
-  const uint32_t* __restrict sn = sector_near.data();
-  const uint32_t* __restrict sf = sector_far.data();
+  uint32_t* __restrict zmin = out.zmin;
+  uint32_t* __restrict zmax = out.zmax;
+  uint32_t* __restrict count = out.count;
   const uint32_t far_base = rings_near * sectors_near;
   uint32_t hint =
       0;  // the previous point's ring: the ring is unique, so a right hint is the answer
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = points.begin; i < points.end; ++i) {
     point_cell[i] = kNone;
     if (flags[i] != kPointValid) continue;  // invalid or noise
     const float r2 = r2s[i];
@@ -77,6 +78,60 @@ void GridReduce(const Params& p, const Tables& t, Frame& f) {
     zmax[cell] = std::max(zmax[cell], key);
     count[cell] += 1;
   }
+}
+
+// Scratch reused from frame to frame: every column's sector in each zone, and the cell reductions
+// of the pieces after the first (which reduces into the frame), three cells' arrays a piece.
+struct Scratch {
+  std::vector<uint32_t> sector_near, sector_far;
+  std::vector<uint32_t> pieces;
+};
+thread_local Scratch scratch;
+
+}  // namespace
+
+// Pieces of points, each reducing into its own cells (the first into the frame's); then the
+// pieces' cells are merged (min, max, sum: integers, in any order the same).
+void GridReduce(const Params& p, const Tables& t, Frame& f, Threads threads) {
+  const uint32_t n = f.n, cells = CellCount(p), width = p.width;
+  f.point_cell.resize(n);
+  f.cell_zmin.assign(cells, kNone);
+  f.cell_zmax.assign(cells, 0u);
+  f.cell_count.assign(cells, 0u);
+  Scratch& s = scratch;
+  // Sector of every column in each zone, so the per-point loop divides nothing.
+  const uint32_t cols_near = width / p.sectors_near, cols_far = width / p.sectors_far;
+  s.sector_near.resize(width), s.sector_far.resize(width);
+  for (uint32_t u = 0; u < width; ++u)
+    s.sector_near[u] = u / cols_near, s.sector_far[u] = u / cols_far;
+  const uint32_t pieces = PiecesFor(threads, n, 4096);
+  s.pieces.resize(size_t(pieces - 1) * 3 * cells);
+  auto sums = [&](uint32_t k) {
+    if (k == 0) return CellSums{f.cell_zmin.data(), f.cell_zmax.data(), f.cell_count.data()};
+    uint32_t* c = s.pieces.data() + size_t(k - 1) * 3 * cells;
+    return CellSums{c, c + cells, c + 2 * cells};
+  };
+  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
+    const CellSums out = sums(k);
+    if (k > 0) {  // the frame's were set above
+      std::fill(out.zmin, out.zmin + cells, kNone);
+      std::fill(out.zmax, out.zmax + cells, 0u);
+      std::fill(out.count, out.count + cells, 0u);
+    }
+    CellsOf(p, t, f, s.sector_near.data(), s.sector_far.data(), points, out);
+  });
+  if (pieces == 1) return;
+  ForPieces(threads, PiecesFor(threads, cells, 256), cells, [&](uint32_t, Range r) {
+    const CellSums all = sums(0);
+    for (uint32_t k = 1; k < pieces; ++k) {
+      const CellSums piece = sums(k);
+      for (uint32_t c = r.begin; c < r.end; ++c) {
+        all.zmin[c] = std::min(all.zmin[c], piece.zmin[c]);
+        all.zmax[c] = std::max(all.zmax[c], piece.zmax[c]);
+        all.count[c] += piece.count[c];
+      }
+    }
+  });
 }
 
 }  // namespace lpir

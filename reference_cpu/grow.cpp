@@ -14,8 +14,9 @@
 // The test is symmetric in the two pixels, so the grown set is exactly the unknown
 // pixels whose component of the allowed-step graph (ground and unknown pixels, allowed steps
 // between 8-neighbours) holds a seed: what the shader computes with union-find in a fixed number
-// of passes, and what the depth-first search below reaches from the unknown pixels. Unknown
-// pixels left over are non-ground. Decision and measurements: docs/decisions/grow.md.
+// of passes, and what the depth-first search below reaches from the unknown pixels (on threads,
+// bands of rows searched side by side, then their edges again until nothing grows: GrowAll).
+// Unknown pixels left over are non-ground. Decision and measurements: docs/decisions/grow.md.
 // Connectivity: 8-connected components of ground pixels, each labelled by its lowest pixel index
 // (pixel_comp, kNone elsewhere); components of fewer than min_component pixels become non-ground
 // in pixel_label and keep their component label in pixel_comp (it records the components found),
@@ -58,12 +59,21 @@ struct Run {
   uint32_t start, u0, u1;
 };
 
-// Scratch reused from frame to frame (the reference is single-threaded).
-thread_local std::vector<uint8_t> state;
-thread_local std::vector<Pixel> stack;
-thread_local std::vector<Run> runs;
-thread_local std::vector<uint32_t> row_runs;  // beams + 1 offsets into runs
-thread_local std::vector<uint32_t> parent, comp_size, comp_seeds, lifted;
+// Scratch reused from frame to frame, each thread's own. A frame split over threads keeps its
+// buffers in the calling thread's, the pieces writing disjoint parts of them; each piece's search
+// uses its own thread's stack.
+struct Scratch {
+  std::vector<uint8_t> state;  // per pixel: kGround, kUnknown or 0
+  std::vector<uint8_t> edges;  // per band: its first and last rows' states, w each
+  std::vector<Pixel> stack;
+  std::vector<Run> runs;
+  std::vector<uint32_t> row_runs;  // beams + 1 offsets into runs
+  std::vector<uint32_t> parent, comp_size, run_seeds, comp_seeds;
+  std::vector<uint8_t> band_grew;  // per band: grown from its edges in the last round
+  std::vector<std::vector<Run>> band_runs;
+  std::vector<std::vector<uint32_t>> lifted, kept;  // per band: vetoed pixels lifted, kept vetoed
+};
+thread_local Scratch scratch;
 
 // Eight bytes of the state (any alignment).
 inline uint64_t Word(const uint8_t* s) {
@@ -137,22 +147,29 @@ void WriteOutputs(const uint32_t* __restrict fused, const uint8_t* __restrict s,
 // Every pair (ground, unknown neighbour) is tested, when the scan reaches the unknown pixel or
 // when the ground pixel is grown, so the search ends at the fixed point. Each neighbour is named
 // by hand (columns wrap, rows do not; `moved` when its column differs), without dividing by the
-// width.
+// width. It grows rows v0 .. v1 - 1 (a band; the whole image: 0 .. h) and writes only them; the
+// states of the rows just outside it, v0 - 1 and v1, are read from `above` and `below` (copies
+// taken while nothing grows; null: the row is not seen), so that bands grow side by side.
 class Growing {
  public:
-  Growing(const Params& p, const Frame& f, uint8_t* s)
+  Growing(const Params& p, const Frame& f, uint8_t* s, std::vector<Pixel>& stack, uint32_t v0,
+          uint32_t v1, const uint8_t* above, const uint8_t* below)
       : p_(p),
         w_(p.width),
-        h_(p.beams),
+        v0_(v0),
+        v1_(v1),
         height_(f.f_height.data()),
         range_(f.f_range.data()),
         fused_(f.pixel_fused.data()),
-        s_(s) {}
+        s_(s),
+        above_(above),
+        below_(below),
+        stack_(stack) {}
 
-  // Visits every unknown pixel in scan order (eight at a time where a word holds none).
+  // Visits every unknown pixel of the rows in scan order (eight at a time where a word holds none).
   void Scan() {
-    stack.clear();
-    for (uint32_t v = 0; v < h_; ++v) {
+    stack_.clear();
+    for (uint32_t v = v0_; v < v1_; ++v) {
       const uint8_t* row = s_ + v * w_;
       uint32_t u = 0;
       for (; u + 8 <= w_; u += 8)
@@ -164,45 +181,70 @@ class Growing {
     }
   }
 
+  // Visits the unknown pixels of the first and last rows again, against the rows outside them:
+  // whatever grew there since the last look. Returns whether any pixel grew.
+  bool ScanEdges() {
+    stack_.clear();
+    grew_ = false;
+    for (uint32_t v : {v0_, v1_ - 1}) {
+      if (v == v0_ ? !above_ : !below_) continue;
+      for (uint32_t u = 0; u < w_; ++u)
+        if (s_[v * w_ + u] == kUnknown) Visit(v, u);
+    }
+    return grew_;
+  }
+
  private:
+  // The states of row v: the band's own, a copy for the rows just outside it, else null.
+  const uint8_t* RowState(uint32_t v) const {
+    if (v >= v0_ && v < v1_) return s_ + v * w_;
+    if (v + 1 == v0_) return above_;
+    return v == v1_ ? below_ : nullptr;
+  }
+
   // Tests the unknown pixel (v, u) against its ground neighbours; grows from it if one passes.
   // The scan reads each pixel's state when it reaches it: pixels grown meanwhile are skipped.
   void Visit(uint32_t v, uint32_t u) {
-    const uint32_t w = w_, h = h_;
-    const uint8_t* s = s_;
+    const uint32_t w = w_;
     const uint32_t at = v * w, r = at + u;
     const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
     const bool left = ul != u, right = ur != u;
     const float zr = height_[r], rr = range_[r];
-    auto from = [&](uint32_t q, bool moved) {
-      if (s[q] != kGround) return false;
-      return StepAllowed(p_, height_[q], range_[q], zr, rr, moved);
+    // Whether the pixel of column c of the row starting at pixel `row`, states `st`, is ground
+    // and may step to r.
+    auto from = [&](const uint8_t* st, uint32_t row, uint32_t c, bool moved) {
+      if (st[c] != kGround) return false;
+      return StepAllowed(p_, height_[row + c], range_[row + c], zr, rr, moved);
     };
-    bool grows = from(at + ul, left) || from(at + ur, right);
-    if (!grows && v > 0) {
+    const uint8_t* here = s_ + at;
+    bool grows = from(here, at, ul, left) || from(here, at, ur, right);
+    const uint8_t* up = RowState(v - 1);  // v - 1 wraps past every row when v is 0
+    if (!grows && up) {
       const uint32_t above = at - w;
-      grows = from(above + ul, left) || from(above + u, false) || from(above + ur, right) ||
-              (s[above + u] == kGround && Climbs(above + u, r));
+      grows = from(up, above, ul, left) || from(up, above, u, false) ||
+              from(up, above, ur, right) || (up[u] == kGround && Climbs(above + u, r));
     }
-    if (!grows && v + 1 < h) {
+    const uint8_t* down = RowState(v + 1);
+    if (!grows && down) {
       const uint32_t below = at + w;
-      grows = from(below + ul, left) || from(below + u, false) || from(below + ur, right) ||
-              (s[below + u] == kGround && Climbs(r, below + u));
+      grows = from(down, below, ul, left) || from(down, below, u, false) ||
+              from(down, below, ur, right) || (down[u] == kGround && Climbs(r, below + u));
     }
     if (grows) {
       s_[r] = kGround;
-      stack.push_back({r, v});
+      grew_ = true;
+      stack_.push_back({r, v});
       Drain();
     }
   }
 
-  // Grows on from the pixels on the stack until it is empty.
+  // Grows on from the pixels on the stack until it is empty, within the band's rows.
   void Drain() {
-    const uint32_t w = w_, h = h_;
+    const uint32_t w = w_;
     uint8_t* s = s_;
-    while (!stack.empty()) {
-      const Pixel q = stack.back();
-      stack.pop_back();
+    while (!stack_.empty()) {
+      const Pixel q = stack_.back();
+      stack_.pop_back();
       const uint32_t v = q.v, at = v * w, u = q.pix - at;
       const uint32_t ul = u == 0 ? w - 1 : u - 1, ur = u + 1 == w ? 0 : u + 1;
       const bool left = ul != u, right = ur != u;
@@ -213,15 +255,15 @@ class Growing {
         if (StepAllowed(p_, zq, rq, height_[r], range_[r], moved) ||
             (vertical > 0 && Climbs(r, q.pix)) || (vertical < 0 && Climbs(q.pix, r))) {
           s[r] = kGround;
-          stack.push_back({r, rv});
+          stack_.push_back({r, rv});
         }
       };
-      if (v > 0) {
+      if (v > v0_) {
         const uint32_t above = at - w;
         to(above + ul, v - 1, left), to(above + u, v - 1, false, 1), to(above + ur, v - 1, right);
       }
       to(at + ul, v, left), to(at + ur, v, right);
-      if (v + 1 < h) {
+      if (v + 1 < v1_) {
         const uint32_t below = at + w;
         to(below + ul, v + 1, left), to(below + u, v + 1, false, -1), to(below + ur, v + 1, right);
       }
@@ -236,19 +278,64 @@ class Growing {
   }
 
   const Params& p_;
-  const uint32_t w_, h_;
+  const uint32_t w_, v0_, v1_;
   const float* const height_;
   const float* const range_;
   const uint32_t* const fused_;
   uint8_t* const s_;
+  const uint8_t* const above_;
+  const uint8_t* const below_;
+  std::vector<Pixel>& stack_;
+  bool grew_ = false;
 };
 
-// The runs of ground pixels of every row, row by row (row_runs[v] .. row_runs[v + 1] - 1 are row
-// v's), skipping eight pixels at a time where a word is all in or all out of the current run.
-void FindRuns(const uint8_t* s, uint32_t w, uint32_t h) {
+// Grows the whole image: one band on one thread, else bands of rows side by side, each growing
+// within its rows (the states of the rows just outside it as they were before), then rounds in
+// which every band visits its first and last rows' unknown pixels against copies of the
+// neighbouring bands' edge rows, until a round grows nothing. The step test is symmetric and the
+// growth only adds, so this ends at the same fixed point as one search over the image: the unknown
+// pixels whose allowed-step component holds a seed.
+void GrowAll(const Params& p, const Frame& f, Scratch& s, Threads threads) {
+  const uint32_t w = p.width, h = p.beams;
+  uint8_t* state = s.state.data();
+  const uint32_t bands = PiecesFor(threads, h, 8);
+  if (bands == 1) {
+    Growing(p, f, state, s.stack, 0, h, nullptr, nullptr).Scan();
+    return;
+  }
+  // Band b's first row's states at edges[2 b w], its last row's at edges[(2 b + 1) w].
+  s.edges.resize(size_t(2) * bands * w);
+  s.band_grew.assign(bands, 0);
+  auto copy_edges = [&] {
+    for (uint32_t b = 0; b < bands; ++b) {
+      const Range rows = PieceOf(h, bands, b);
+      std::memcpy(&s.edges[size_t(2 * b) * w], state + size_t(rows.begin) * w, w);
+      std::memcpy(&s.edges[size_t(2 * b + 1) * w], state + size_t(rows.end - 1) * w, w);
+    }
+  };
+  auto band = [&](uint32_t b, Range rows) {
+    const uint8_t* above = b > 0 ? &s.edges[size_t(2 * b - 1) * w] : nullptr;
+    const uint8_t* below = b + 1 < bands ? &s.edges[size_t(2 * b + 2) * w] : nullptr;
+    return Growing(p, f, state, scratch.stack, rows.begin, rows.end, above, below);
+  };
+  copy_edges();
+  ForPieces(threads, bands, h, [&](uint32_t b, Range rows) { band(b, rows).Scan(); });
+  for (bool grew = true; grew;) {
+    copy_edges();
+    ForPieces(threads, bands, h,
+              [&](uint32_t b, Range rows) { s.band_grew[b] = band(b, rows).ScanEdges(); });
+    grew = false;
+    for (uint8_t g : s.band_grew) grew = grew || g;
+  }
+}
+
+// The runs of ground pixels of rows `rows`, row by row, into `runs` (row_runs[v] .. row_runs[v +
+// 1] - 1 are row v's), skipping eight pixels at a time where a word is all in or all out of the
+// current run.
+void FindRuns(const uint8_t* s, uint32_t w, Range rows, std::vector<Run>& runs,
+              uint32_t* row_runs) {
   runs.clear();
-  row_runs.resize(h + 1);
-  for (uint32_t v = 0; v < h; ++v) {
+  for (uint32_t v = rows.begin; v < rows.end; ++v) {
     row_runs[v] = uint32_t(runs.size());
     const uint32_t row = v * w;
     const uint8_t* g = s + row;
@@ -269,46 +356,79 @@ void FindRuns(const uint8_t* s, uint32_t w, uint32_t h) {
     }
     if (in_run) runs.push_back({row + u0, u0, w - 1});
   }
-  row_runs[h] = uint32_t(runs.size());
 }
 
-// Joins the runs that touch: on the same row across the wrap, on adjacent rows (8-connected,
-// across the wrap too). Leaves every run's root in parent (the component's lowest run) and each
-// root's pixel count in comp_size.
-void JoinRuns(uint32_t w, uint32_t h) {
-  const uint32_t n = uint32_t(runs.size());
-  parent.resize(n);
-  comp_size.assign(n, 0);
-  uint32_t* __restrict up = parent.data();
-  for (uint32_t k = 0; k < n; ++k) up[k] = k;
-  const Run* __restrict run = runs.data();
-  for (uint32_t v = 0; v < h; ++v) {
-    const uint32_t b = row_runs[v], e = row_runs[v + 1];
-    if (b == e) continue;
-    if (run[b].u0 == 0 && run[e - 1].u1 == w - 1) Union(up, b, e - 1);  // the wrap on the row
-    if (v == 0) continue;
-    const uint32_t pb = row_runs[v - 1], pe = row_runs[v];
-    if (pb == pe) continue;
-    // The diagonals across the wrap.
-    if (run[pe - 1].u1 == w - 1 && run[b].u0 == 0) Union(up, pe - 1, b);
-    if (run[pb].u0 == 0 && run[e - 1].u1 == w - 1) Union(up, pb, e - 1);
-    for (uint32_t i = pb, j = b; i < pe && j < e;) {
-      if (run[i].u1 + 1 < run[j].u0) {
+// Joins the runs of row v that touch across the wrap.
+void JoinWrap(uint32_t* __restrict up, const Scratch& s, uint32_t w, uint32_t v) {
+  const Run* __restrict run = s.runs.data();
+  const uint32_t b = s.row_runs[v], e = s.row_runs[v + 1];
+  if (b != e && run[b].u0 == 0 && run[e - 1].u1 == w - 1) Union(up, b, e - 1);
+}
+
+// Joins the runs of row v (v > 0) that touch runs of row v - 1 (8-connected, across the wrap too).
+void JoinAbove(uint32_t* __restrict up, const Scratch& s, uint32_t w, uint32_t v) {
+  const Run* __restrict run = s.runs.data();
+  const uint32_t b = s.row_runs[v], e = s.row_runs[v + 1];
+  const uint32_t pb = s.row_runs[v - 1], pe = s.row_runs[v];
+  if (b == e || pb == pe) return;
+  // The diagonals across the wrap.
+  if (run[pe - 1].u1 == w - 1 && run[b].u0 == 0) Union(up, pe - 1, b);
+  if (run[pb].u0 == 0 && run[e - 1].u1 == w - 1) Union(up, pb, e - 1);
+  for (uint32_t i = pb, j = b; i < pe && j < e;) {
+    if (run[i].u1 + 1 < run[j].u0) {
+      ++i;
+    } else if (run[j].u1 + 1 < run[i].u0) {
+      ++j;
+    } else {
+      Union(up, i, j);
+      if (run[i].u1 < run[j].u1)
         ++i;
-      } else if (run[j].u1 + 1 < run[i].u0) {
+      else
         ++j;
-      } else {
-        Union(up, i, j);
-        if (run[i].u1 < run[j].u1)
-          ++i;
-        else
-          ++j;
-      }
     }
   }
+}
+
+// The runs of every row (FindRuns, in bands of rows, then laid end to end), and the runs that
+// touch joined (in bands of rows, then across the bands' edges). A union keeps the lower root, so
+// a set's root is its lowest run, the one with the lowest pixel, whatever the order of the unions.
+// Leaves every run's root in parent and each root's pixel count in comp_size.
+void FindComponents(uint32_t w, uint32_t h, Scratch& s, Threads threads) {
+  const uint8_t* state = s.state.data();
+  s.row_runs.resize(h + 1);
+  const uint32_t bands = PiecesFor(threads, h, 8);
+  if (bands == 1) {
+    FindRuns(state, w, {0, h}, s.runs, s.row_runs.data());
+  } else {
+    s.band_runs.resize(bands);
+    ForPieces(threads, bands, h, [&](uint32_t b, Range rows) {
+      FindRuns(state, w, rows, s.band_runs[b], s.row_runs.data());
+    });
+    s.runs.clear();
+    for (uint32_t b = 0; b < bands; ++b) {
+      const Range rows = PieceOf(h, bands, b);
+      for (uint32_t v = rows.begin; v < rows.end; ++v) s.row_runs[v] += uint32_t(s.runs.size());
+      s.runs.insert(s.runs.end(), s.band_runs[b].begin(), s.band_runs[b].end());
+    }
+  }
+  s.row_runs[h] = uint32_t(s.runs.size());
+  const uint32_t n = uint32_t(s.runs.size());
+  s.parent.resize(n);
+  s.comp_size.assign(n, 0);
+  uint32_t* __restrict up = s.parent.data();
+  for (uint32_t k = 0; k < n; ++k) up[k] = k;
+  // A band's unions touch only its own runs.
+  ForPieces(threads, bands, h, [&](uint32_t, Range rows) {
+    for (uint32_t v = rows.begin; v < rows.end; ++v) {
+      JoinWrap(up, s, w, v);
+      if (v > rows.begin) JoinAbove(up, s, w, v);
+    }
+  });
+  for (uint32_t b = 1; b < bands; ++b) JoinAbove(up, s, w, PieceOf(h, bands, b).begin);
+  const Run* __restrict run = s.runs.data();
   for (uint32_t k = 0; k < n; ++k) {
     up[k] = Find(up, k);  // roots come first, so one pass flattens every set
-    comp_size[up[k]] += run[k].u1 - run[k].u0 + 1;
+    s.comp_size[up[k]] += run[k].u1 - run[k].u0 + 1;
   }
 }
 
@@ -320,36 +440,46 @@ inline bool Removed(const Params& p, uint32_t size, uint32_t seeds) {
 
 // Each run's pixels get their component's label (the start of its root run) in pixel_comp, and
 // non-ground in pixel_label when the component is removed (Removed: its size and seed count).
-void LabelComponents(const Params& p, Frame& f) {
+// Pieces of runs count their seeds, added up per component in run order, then write their runs.
+void LabelComponents(const Params& p, Frame& f, Scratch& s, Threads threads) {
   uint32_t* __restrict comp = f.pixel_comp.data();
   uint32_t* __restrict label = f.pixel_label.data();
   const uint32_t* __restrict fused = f.pixel_fused.data();
-  const uint32_t* __restrict up = parent.data();
-  const Run* __restrict run = runs.data();
-  const uint32_t n = uint32_t(runs.size());
-  comp_seeds.assign(n, 0);
-  for (uint32_t k = 0; k < n; ++k) {
-    uint32_t seeds = 0;
-    for (uint32_t x = run[k].start; x <= run[k].start + (run[k].u1 - run[k].u0); ++x)
-      seeds += fused[x] == kPixGround;
-    comp_seeds[up[k]] += seeds;
-  }
-  for (uint32_t k = 0; k < n; ++k) {
-    const uint32_t root = up[k], len = run[k].u1 - run[k].u0 + 1;
-    std::fill(comp + run[k].start, comp + run[k].start + len, run[root].start);
-    if (Removed(p, comp_size[root], comp_seeds[root]))
-      std::fill(label + run[k].start, label + run[k].start + len, kPixNonGround);
-  }
+  const uint32_t* __restrict up = s.parent.data();
+  const Run* __restrict run = s.runs.data();
+  const uint32_t n = uint32_t(s.runs.size());
+  const uint32_t pieces = PiecesFor(threads, n, 256);
+  s.run_seeds.resize(n);
+  ForPieces(threads, pieces, n, [&](uint32_t, Range runs) {
+    for (uint32_t k = runs.begin; k < runs.end; ++k) {
+      uint32_t seeds = 0;
+      for (uint32_t x = run[k].start; x <= run[k].start + (run[k].u1 - run[k].u0); ++x)
+        seeds += fused[x] == kPixGround;
+      s.run_seeds[k] = seeds;
+    }
+  });
+  s.comp_seeds.assign(n, 0);
+  for (uint32_t k = 0; k < n; ++k) s.comp_seeds[up[k]] += s.run_seeds[k];
+  ForPieces(threads, pieces, n, [&](uint32_t, Range runs) {
+    for (uint32_t k = runs.begin; k < runs.end; ++k) {
+      const uint32_t root = up[k], len = run[k].u1 - run[k].u0 + 1;
+      std::fill(comp + run[k].start, comp + run[k].start + len, run[root].start);
+      if (Removed(p, s.comp_size[root], s.comp_seeds[root]))
+        std::fill(label + run[k].start, label + run[k].start + len, kPixNonGround);
+    }
+  });
 }
 
-// The veto's lift over labels after the component test, every vetoed pixel decided on the labels
-// before any lift: one that stays is written non-ground at once (its neighbours read it as not
-// ground either way), the lifted ones are collected and written ground after the scan.
-void LiftVetoed(const Params& p, const float* __restrict range, const float* __restrict height,
-                uint32_t* __restrict label) {
-  const uint32_t w = p.width, h = p.beams;
+// The veto's lift over labels after the component test, for the vetoed pixels of rows `rows`:
+// each decided on the labels before any lift, into `lifted` or `kept`, written by the caller once
+// every pixel has been decided.
+void DecideVetoed(const Params& p, const float* __restrict range, const float* __restrict height,
+                  const uint32_t* __restrict label, Range rows, std::vector<uint32_t>& lifted,
+                  std::vector<uint32_t>& kept) {
+  const uint32_t w = p.width;
   lifted.clear();
-  for (uint32_t v = 0; v < h; ++v) {
+  kept.clear();
+  for (uint32_t v = rows.begin; v < rows.end; ++v) {
     for (uint32_t u = 0; u < w; ++u) {
       const uint32_t x = v * w + u;
       if (label[x] != kPixVetoed) continue;
@@ -363,32 +493,44 @@ void LiftVetoed(const Params& p, const float* __restrict range, const float* __r
         const float r = range[x], d = exact::Ftz0(range[x - w] - r);
         lift = !(d < 0.0f && exact::Ftz0(height[x] * d) >= exact::Ftz0(p.occ_pass * r));
       }
-      if (lift)
-        lifted.push_back(x);
-      else
-        label[x] = kPixNonGround;
+      (lift ? lifted : kept).push_back(x);
     }
   }
-  for (uint32_t x : lifted) label[x] = kPixGround;
 }
 
 }  // namespace
 
-void Grow(const Params& p, Frame& f) {
+void Grow(const Params& p, Frame& f, Threads threads) {
   const uint32_t w = p.width, h = p.beams, pixels = w * h;
-  state.resize(pixels);
-  uint8_t* s = state.data();
-  ToState(f.pixel_fused.data(), s, pixels);
-  Growing(p, f, s).Scan();
-  FindRuns(s, w, h);
-  JoinRuns(w, h);
+  Scratch& s = scratch;
+  s.state.resize(pixels);
+  uint8_t* state = s.state.data();
+  const uint32_t pieces = PiecesFor(threads, pixels, 8192);
+  ForPieces(threads, pieces, pixels, [&](uint32_t, Range r) {
+    ToState(f.pixel_fused.data() + r.begin, state + r.begin, r.end - r.begin);
+  });
+  GrowAll(p, f, s, threads);
+  FindComponents(w, h, s, threads);
   f.pixel_grown.resize(pixels);
   f.pixel_comp.resize(pixels);
   f.pixel_label.resize(pixels);
-  WriteOutputs(f.pixel_fused.data(), s, pixels, f.pixel_grown.data(), f.pixel_label.data(),
-               f.pixel_comp.data());
-  LabelComponents(p, f);
-  LiftVetoed(p, f.f_range.data(), f.f_height.data(), f.pixel_label.data());
+  ForPieces(threads, pieces, pixels, [&](uint32_t, Range r) {
+    WriteOutputs(f.pixel_fused.data() + r.begin, state + r.begin, r.end - r.begin,
+                 f.pixel_grown.data() + r.begin, f.pixel_label.data() + r.begin,
+                 f.pixel_comp.data() + r.begin);
+  });
+  LabelComponents(p, f, s, threads);
+  // A vetoed pixel kept is written non-ground (its neighbours read it as not ground either way).
+  const uint32_t bands = PiecesFor(threads, h, 8);
+  s.lifted.resize(bands), s.kept.resize(bands);
+  ForPieces(threads, bands, h, [&](uint32_t b, Range rows) {
+    DecideVetoed(p, f.f_range.data(), f.f_height.data(), f.pixel_label.data(), rows, s.lifted[b],
+                 s.kept[b]);
+  });
+  ForPieces(threads, bands, h, [&](uint32_t b, Range) {
+    for (uint32_t x : s.lifted[b]) f.pixel_label[x] = kPixGround;
+    for (uint32_t x : s.kept[b]) f.pixel_label[x] = kPixNonGround;
+  });
 }
 
 }  // namespace lpir

@@ -9,27 +9,27 @@ namespace {
 
 // A stage's call with the arguments its parameter list takes: the four lists a table line may
 // give (reference_cpu/stage_table.def).
-void Call(void (*stage)(const Cloud&, const Params&, Frame&), const Cloud& cloud, const Params& p,
-          const Tables&, Frame& f) {
-  stage(cloud, p, f);
+void Call(void (*stage)(const Cloud&, const Params&, Frame&, Threads), const Cloud& cloud,
+          const Params& p, const Tables&, Frame& f, Threads threads) {
+  stage(cloud, p, f, threads);
 }
-void Call(void (*stage)(const Cloud&, const Params&, const Tables&, Frame&), const Cloud& cloud,
-          const Params& p, const Tables& t, Frame& f) {
-  stage(cloud, p, t, f);
+void Call(void (*stage)(const Cloud&, const Params&, const Tables&, Frame&, Threads),
+          const Cloud& cloud, const Params& p, const Tables& t, Frame& f, Threads threads) {
+  stage(cloud, p, t, f, threads);
 }
-void Call(void (*stage)(const Params&, const Tables&, Frame&), const Cloud&, const Params& p,
-          const Tables& t, Frame& f) {
-  stage(p, t, f);
+void Call(void (*stage)(const Params&, const Tables&, Frame&, Threads), const Cloud&,
+          const Params& p, const Tables& t, Frame& f, Threads threads) {
+  stage(p, t, f, threads);
 }
-void Call(void (*stage)(const Params&, Frame&), const Cloud&, const Params& p, const Tables&,
-          Frame& f) {
-  stage(p, f);
+void Call(void (*stage)(const Params&, Frame&, Threads), const Cloud&, const Params& p,
+          const Tables&, Frame& f, Threads threads) {
+  stage(p, f, threads);
 }
 
 }  // namespace
 
 void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
-                  FrameTimes* times) {
+                  FrameTimes* times, Threads threads) {
   Params p = params;
   p.has_ring = cloud.ring.empty() ? 0u : 1u;
   using Clock = std::chrono::steady_clock;
@@ -45,7 +45,7 @@ void RunReference(const Cloud& cloud, const Params& params, const Tables& tables
     t0 = t1;
     ++stage;
   };
-#define LPIR_STAGE(name, Type, parameters) Call(Type, cloud, p, tables, frame), lap();
+#define LPIR_STAGE(name, Type, parameters) Call(Type, cloud, p, tables, frame, threads), lap();
 #define LPIR_BUFFER LPIR_IGNORE
 #define LPIR_HOST_BUFFER LPIR_IGNORE
 #define LPIR_SCRATCH LPIR_IGNORE

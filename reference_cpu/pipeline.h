@@ -6,6 +6,7 @@
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/frame.h"
 #include "reference_cpu/params.h"
+#include "reference_cpu/threads.h"
 
 namespace lpir {
 
@@ -26,8 +27,9 @@ struct FrameTimes {
   double upload_ms = 0, stage_ms[kStageCount] = {}, download_ms = 0, total_ms = 0;
 };
 
-// Runs every stage in order; `times` (optional) receives per-stage wall times.
+// Runs every stage in order, each split over `threads` (the same bytes at any count: one runs the
+// reference's loops on the calling thread); `times` (optional) receives per-stage wall times.
 void RunReference(const Cloud& cloud, const Params& params, const Tables& tables, Frame& frame,
-                  FrameTimes* times = nullptr);
+                  FrameTimes* times = nullptr, Threads threads = Threads());
 
 }  // namespace lpir

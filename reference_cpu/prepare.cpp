@@ -21,12 +21,11 @@ namespace {
 // instructions.
 inline uint32_t Finite(float f) { return uint32_t(f - f == 0.0f); }
 
-// Every test of every point is computed and the outputs selected by the validity, without a
-// branch, so the compiler turns the loop into vector code. Ftz is the identity on all but
-// subnormals and -0, so flushing every input and result is the rule above.
+// Points [r.begin, r.end). Every test of every point is computed and the outputs selected by the
+// validity, without a branch, so the compiler turns the loop into vector code. Ftz is the identity
+// on all but subnormals and -0, so flushing every input and result is the rule above.
 template <bool kRing>
-void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
-  const uint32_t n = f.n;
+void PrepareRange(const Cloud& cloud, const Params& p, Frame& f, Range r) {
   const float* __restrict xyzi = cloud.xyzi.data();
   const int32_t* __restrict ring = cloud.ring.data();
   uint32_t* __restrict flags_out = f.flags.data();
@@ -35,7 +34,7 @@ void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
   const int32_t beams = int32_t(p.beams);
   const float min_range2 = p.min_range2, max_range2 = p.max_range2, k_xz = p.k_xz, k_yz = p.k_yz;
   const float h_noise = p.h_noise;
-  for (size_t i = 0; i < n; ++i) {  // size_t: 4 * i must not wrap, or no vectors
+  for (size_t i = r.begin; i < r.end; ++i) {  // size_t: 4 * i must not wrap, or no vectors
     const float x = exact::Ftz0(xyzi[4 * i]), y = exact::Ftz0(xyzi[4 * i + 1]);
     const float z = exact::Ftz0(xyzi[4 * i + 2]);
     const float xx = exact::Ftz0(x * x), yy = exact::Ftz0(y * y);
@@ -60,16 +59,18 @@ void PrepareAll(const Cloud& cloud, const Params& p, Frame& f) {
 
 }  // namespace
 
-void Prepare(const Cloud& cloud, const Params& p, Frame& f) {
+void Prepare(const Cloud& cloud, const Params& p, Frame& f, Threads threads) {
   const uint32_t n = uint32_t(cloud.size());
   f.n = n;
   f.flags.resize(n);
   f.zt.resize(n);
   f.r2.resize(n);
-  if (cloud.ring.empty())
-    PrepareAll<false>(cloud, p, f);
-  else
-    PrepareAll<true>(cloud, p, f);
+  ForPieces(threads, PiecesFor(threads, n, 4096), n, [&](uint32_t, Range r) {
+    if (cloud.ring.empty())
+      PrepareRange<false>(cloud, p, f, r);
+    else
+      PrepareRange<true>(cloud, p, f, r);
+  });
 }
 
 }  // namespace lpir

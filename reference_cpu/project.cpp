@@ -15,6 +15,8 @@
 // Winner: the smallest r2 on the pixel (ordered key, atomic min), then the lowest point index
 //   among those with that key. Noise points get a pixel but never compete (they are not ground
 //   evidence); invalid points get neither.
+// Threads (reference_cpu/threads.h): pieces of points find their pixels, then pieces of rows take
+// their pixels' winners, each reading every point in index order.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -147,28 +149,24 @@ inline uint32_t RowNear(float z, float r2, const float* bound, const float* orig
 
 }  // namespace
 
-void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
-  const uint32_t n = f.n, pixels = p.width * p.beams, width = p.width, beams = p.beams;
-  f.point_pixel.resize(n);
-  f.pixel_key.assign(pixels, kNone);
-  f.pixel_point.assign(pixels, kNone);
+namespace {
+
+// The pixel of every point of `points` (point_pixel: v * width + u, kNone when invalid). Each
+// search starts from the previous valid point's row and column in the range (the range's first
+// from row 0, column 0): the answer is unique, so where a range starts changes no byte.
+void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Columns& columns,
+                 Frame& f, Range points) {
+  const uint32_t width = p.width, beams = p.beams;
   const float* __restrict xyzi = cloud.xyzi.data();
   const uint32_t* __restrict flags = f.flags.data();
   const float* __restrict r2 = f.r2.data();
   uint32_t* __restrict point_pixel = f.point_pixel.data();
-  uint32_t* __restrict pixel_key = f.pixel_key.data();
-  uint32_t* __restrict pixel_point = f.pixel_point.data();
-  thread_local std::vector<uint8_t> upper;  // scratch reused from frame to frame
-  upper.resize(width);
-  for (uint32_t k = 0; k < width; ++k)
-    upper[k] = Upper(t.column_dir[2 * k], t.column_dir[2 * k + 1]);
-  const Columns columns{t.column_dir.data(), upper.data(), width};
   const float* bound = t.beam_bound.data();
   const float* origin = t.beam_origin.data();
   const bool has_ring = !cloud.ring.empty();
   uint32_t column = 0, row = 0;  // the previous valid point's
   int32_t step = 0;              // and its column step, clamped to -1..1
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = points.begin; i < points.end; ++i) {
     if (!(flags[i] & kPointValid)) {
       point_pixel[i] = kNone;
       continue;
@@ -186,14 +184,49 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f) {
       v = RowNear(z, r2[i], bound, origin, beams, row);
       row = v;
     }
-    const uint32_t pix = v * width + u;
-    point_pixel[i] = pix;
-    if (flags[i] & kPointNoise) continue;
-    // The points come in index order, so the first to reach a pixel's smallest key is the
-    // lowest index with it: one pass instead of the shader's atomic min, then its tie-break.
+    point_pixel[i] = v * width + u;
+  }
+}
+
+// The winner of every pixel in `pixels` (pixel_key, pixel_point; kNone where no point competes).
+// The points are read in index order, so the first to reach a pixel's smallest key is the lowest
+// index with it: one pass instead of the shader's atomic min, then its tie-break.
+void Winners(const Frame& f, Range pixels, uint32_t* __restrict pixel_key,
+             uint32_t* __restrict pixel_point) {
+  const uint32_t n = f.n, first = pixels.begin, count = pixels.end - pixels.begin;
+  const uint32_t* __restrict flags = f.flags.data();
+  const float* __restrict r2 = f.r2.data();
+  const uint32_t* __restrict point_pixel = f.point_pixel.data();
+  std::fill(pixel_key + first, pixel_key + pixels.end, kNone);
+  std::fill(pixel_point + first, pixel_point + pixels.end, kNone);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t pix = point_pixel[i];
+    // Outside the range (kNone, an invalid point's, included), or noise: not competing here.
+    if (pix - first >= count || (flags[i] & kPointNoise)) continue;
     const uint32_t key = exact::Key(r2[i]);
     if (key < pixel_key[pix]) pixel_key[pix] = key, pixel_point[pix] = i;
   }
+}
+
+}  // namespace
+
+// Pieces of points find their pixels; then pieces of rows take their pixels' winners from every
+// point (each reads all the pixels, but writes only its own).
+void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f, Threads threads) {
+  const uint32_t n = f.n, pixels = p.width * p.beams, width = p.width;
+  f.point_pixel.resize(n);
+  f.pixel_key.resize(pixels);
+  f.pixel_point.resize(pixels);
+  thread_local std::vector<uint8_t> upper;  // scratch reused from frame to frame
+  upper.resize(width);
+  for (uint32_t k = 0; k < width; ++k)
+    upper[k] = Upper(t.column_dir[2 * k], t.column_dir[2 * k + 1]);
+  const Columns columns{t.column_dir.data(), upper.data(), width};
+  ForPieces(threads, PiecesFor(threads, n, 4096), n,
+            [&](uint32_t, Range points) { PointPixels(cloud, p, t, columns, f, points); });
+  ForPieces(threads, PiecesFor(threads, p.beams, 4), p.beams, [&](uint32_t, Range rows) {
+    Winners(f, {rows.begin * width, rows.end * width}, f.pixel_key.data(), f.pixel_point.data());
+  });
 }
 
 }  // namespace lpir

@@ -11,6 +11,7 @@ PACKAGES=(
   libzstd-dev liblz4-dev libbz2-dev zlib1g-dev libsqlite3-dev  # recorded drives (host/drive/)
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools
   clang libclang-rt-14-dev  # the fuzz build (fuzz/): clang with libFuzzer and its sanitizers
+  libomp-dev  # OpenMP for clang (the sanitizer and fuzz builds); GCC brings its own libgomp
   clang-format  # scripts/test.sh checks every C++ source against .clang-format
   # The Python package (python/) and its suite: built offline in a venv that sees these
   python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-pybind11

@@ -14,7 +14,10 @@
 #      it found the simulator's order-of-evaluation dependence), else c++; $LPIR_SANITIZE_CXX
 #      chooses;
 #   3. builds the libFuzzer targets with clang (LPIR_FUZZ=ON; ./build-fuzz or $LPIR_FUZZ_BUILD_DIR)
-#      and runs their bounded runs (a few seconds each, ctest -L fuzz).
+#      and runs their bounded runs (a few seconds each, ctest -L fuzz);
+#   4. builds the CPU backend's threaded tests alone (threads_test, cpu_pipeline_test) under
+#      ThreadSanitizer with clang and LLVM's OpenMP (LPIR_TSAN=ON; ./build-tsan or
+#      $LPIR_TSAN_BUILD_DIR) and runs them: every stage at 2 to 8 threads and frames in flight.
 # After step 1, the Python package: a fresh `python3 -m venv --system-site-packages` (./build-venv
 # or $LPIR_PY_VENV; Debian's /usr/bin/python3, whose site packages hold python3-numpy and the
 # rest, or $LPIR_PYTHON), `pip install --no-build-isolation --no-index ./python` (offline; the
@@ -25,7 +28,8 @@
 # <file>.gpu.<test> and <file>.cpu.<test> with LPIR_VK_SHAPE set; docs/decisions/shapes.md).
 # ctest runs on every core and prints the output of failing tests. Every step runs even when an
 # earlier one failed; the exit code is non-zero when any failed. Arguments go to the ctest of steps
-# 1 and 2, e.g. scripts/test.sh -R images. LPIR_TEST_SANITIZE=0 / LPIR_TEST_FUZZ=0 skip step 2 / 3.
+# 1 and 2, e.g. scripts/test.sh -R images. LPIR_TEST_SANITIZE=0 / LPIR_TEST_FUZZ=0 /
+# LPIR_TEST_TSAN=0 skip step 2 / 3 / 4.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -34,6 +38,7 @@ jobs="$(nproc 2> /dev/null || echo 2)"
 build_dir="${LPIR_BUILD_DIR:-${root}/build}"
 asan_dir="${LPIR_ASAN_BUILD_DIR:-${root}/build-asan}"
 fuzz_dir="${LPIR_FUZZ_BUILD_DIR:-${root}/build-fuzz}"
+tsan_dir="${LPIR_TSAN_BUILD_DIR:-${root}/build-tsan}"
 pkg_dir="${LPIR_PKG_BUILD_DIR:-${root}/build-pkg}"
 say() { echo "[test] $*"; }
 failed=()
@@ -137,7 +142,7 @@ package_steps() {
   return "${rc}"
 }
 
-say "step 1/3: Release build and suite"
+say "step 1/4: Release build and suite"
 built=0
 if step "build" bash "${root}/scripts/build.sh"; then
   built=1
@@ -165,7 +170,7 @@ if [[ "${LPIR_TEST_PYTHON:-1}" != "0" && ${built} -eq 1 ]]; then
 fi
 
 if [[ "${LPIR_TEST_SANITIZE:-1}" != "0" ]]; then
-  say "step 2/3: AddressSanitizer + UBSan build and suite in ${asan_dir}"
+  say "step 2/4: AddressSanitizer + UBSan build and suite in ${asan_dir}"
   asan_cxx="${LPIR_SANITIZE_CXX:-$(command -v clang++ || command -v c++)}"
   asan_cxx="$(command -v "${asan_cxx}")"
   # A folder configured with another compiler is started afresh (cmake would refuse to switch).
@@ -184,7 +189,7 @@ if [[ "${LPIR_TEST_SANITIZE:-1}" != "0" ]]; then
 fi
 
 if [[ "${LPIR_TEST_FUZZ:-1}" != "0" ]]; then
-  say "step 3/3: fuzz targets (clang) and their bounded runs in ${fuzz_dir}"
+  say "step 3/4: fuzz targets (clang) and their bounded runs in ${fuzz_dir}"
   if ! command -v clang++ > /dev/null 2>&1; then
     say "no clang++: the fuzz targets are not built (Debian: apt-get install clang libclang-rt-14-dev)"
     failed+=("fuzz (no clang++)")
@@ -192,6 +197,20 @@ if [[ "${LPIR_TEST_FUZZ:-1}" != "0" ]]; then
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DLPIR_FUZZ=ON &&
     step "fuzz build" cmake --build "${fuzz_dir}" --parallel "${jobs}" --target lpir_fuzzers; then
     step "fuzz runs" ctest --test-dir "${fuzz_dir}" --output-on-failure -j "${jobs}" -L fuzz || true
+  fi
+fi
+
+if [[ "${LPIR_TEST_TSAN:-1}" != "0" ]]; then
+  say "step 4/4: ThreadSanitizer build of the threaded CPU tests (clang) in ${tsan_dir}"
+  if ! command -v clang++ > /dev/null 2>&1; then
+    say "no clang++: the ThreadSanitizer tests are not built (Debian: apt-get install clang libomp-dev)"
+    failed+=("tsan (no clang++)")
+  elif step "tsan configure" cmake -S "${root}" -B "${tsan_dir}" -G Ninja \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DLPIR_TSAN=ON \
+    -DLPIR_BUILD_BENCH=OFF &&
+    step "tsan build" cmake --build "${tsan_dir}" --parallel "${jobs}" \
+      --target threads_test cpu_pipeline_test; then
+    step "tsan suite" ctest --test-dir "${tsan_dir}" --output-on-failure -j "${jobs}" || true
   fi
 fi
 

@@ -91,6 +91,26 @@ TEST(InvalidReasons, RingOutsideTheBeamsIsItsOwnReason) {
   EXPECT_EQ(r.total(), CountWhy(seg.Segment(c), kWhyInvalid));
 }
 
+// Counted from the frame's why (what segment does), the reasons are those of every point.
+TEST(InvalidReasons, FromTheFramesWhyTheSameAsFromEveryPoint) {
+  Segmenter seg(LoadSensorProfile("hdl64e", test::SensorsDir()),
+                SegmenterOptions::For(Backend::kCpu));
+  Cloud c = WithInvalidPoints(Scan(1));
+  c.ring.assign(c.size(), 10);
+  c.ring[0] = -1;
+  c.ring[c.size() / 2] = 64;
+  const std::vector<uint8_t> why = seg.Segment(c).why;
+  for (bool rings_read : {true, false}) {
+    const InvalidReasons all = CountInvalidReasons(c, seg.params(), rings_read);
+    const InvalidReasons from_why = CountInvalidReasons(c, seg.params(), rings_read, why);
+    EXPECT_EQ(from_why.not_finite, all.not_finite);
+    EXPECT_EQ(from_why.at_origin, all.at_origin);
+    EXPECT_EQ(from_why.out_of_range, all.out_of_range);
+    EXPECT_EQ(from_why.bad_ring, all.bad_ring);
+  }
+  EXPECT_EQ(CountInvalidReasons(c, seg.params(), true, why).bad_ring, 2u);
+}
+
 // A CSV line's fields (no quoted fields expected but the error column's).
 std::vector<std::string> CsvFields(const std::string& line) {
   std::vector<std::string> fields(1);

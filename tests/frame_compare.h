@@ -1,7 +1,7 @@
 // Byte comparison of two whole frames (every buffer of every stage, reference_cpu/frame.h), for
-// the tests that run the full pipeline on both backends. A mismatch names the stage, the buffer,
-// the first differing element, both values in decimal and hex, and the point, pixel (u, v) or
-// cell the element belongs to.
+// the tests that run the full pipeline on both backends, or on one thread and on several. A
+// mismatch names the stage, the buffer, the first differing element, both values in decimal and
+// hex, and the point, pixel (u, v) or cell the element belongs to.
 #pragma once
 #include <gtest/gtest.h>
 
@@ -32,11 +32,17 @@ std::string ElementText(T value) {
   return text;
 }
 
+// The two sides' names in a mismatch's message.
+struct Sides {
+  const char* first = "CPU";
+  const char* second = "GPU";
+};
+
 // Compares one buffer; returns the number of bytes compared (0 on a size mismatch).
 template <typename T>
 uint64_t ExpectSameBuffer(const char* stage, const char* buffer, Per per, uint32_t stride,
                           const std::vector<T>& cpu, const std::vector<T>& gpu, const Params& p,
-                          const Cloud* cloud, const std::string& what) {
+                          const Cloud* cloud, const std::string& what, Sides sides = Sides()) {
   EXPECT_EQ(gpu.size(), cpu.size()) << what << ": " << stage << " buffer " << buffer << " size";
   if (gpu.size() != cpu.size()) return 0;
   size_t first = cpu.size(), count = 0;
@@ -61,21 +67,22 @@ uint64_t ExpectSameBuffer(const char* stage, const char* buffer, Per per, uint32
     }
     ADD_FAILURE() << what << ": stage " << stage << ", buffer " << buffer << " differs first at "
                   << "element " << first << " (" << count << " of " << cpu.size()
-                  << " differ): CPU " << ElementText(cpu[first]) << ", GPU "
-                  << ElementText(gpu[first]) << "; " << where;
+                  << " differ): " << sides.first << " " << ElementText(cpu[first]) << ", "
+                  << sides.second << " " << ElementText(gpu[first]) << "; " << where;
   }
   return uint64_t(cpu.size()) * sizeof(T);
 }
 
 // Every buffer of the two frames (ForEachBuffer: every table line's); returns the bytes compared.
 inline uint64_t ExpectSameFrame(const Params& p, const Frame& cpu, const Frame& gpu,
-                                const Cloud* cloud, const std::string& what) {
+                                const Cloud* cloud, const std::string& what,
+                                Sides sides = Sides()) {
   EXPECT_EQ(gpu.n, cpu.n) << what << ": point count";
   uint64_t bytes = 0;
   ForEachBuffer(
       [&](const BufferInfo& info, const auto& a, const auto& b) {
-        bytes +=
-            ExpectSameBuffer(info.stage, info.name, info.per, info.stride, a, b, p, cloud, what);
+        bytes += ExpectSameBuffer(info.stage, info.name, info.per, info.stride, a, b, p, cloud,
+                                  what, sides);
       },
       cpu, gpu);
   return bytes;

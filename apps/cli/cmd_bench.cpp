@@ -2,9 +2,12 @@
 // CPU reference (single-threaded) and the Vulkan device: each stage's median time and spread
 // (reference: wall time; Vulkan: GPU timestamps) and their ratio; the whole frame end to end
 // (upload, stages, download: wall time of Segmenter::Segment); sustained frames per second over
-// a sequence with 1, 2 and 4 frames in flight; peak host memory and device memory allocated;
-// and the scaling of cost with points and image size from 16 to 256 beams (simulated streets:
-// VLP-16, then OS1-128's field of view with 32, 64, 128 and 256 beams).
+// a sequence with 1, 2 and 4 frames in flight; the CPU backend's thread scaling (1, 2 and every
+// core this process may use: a frame's latency alone and frames per second with two frames in
+// flight, and the parallel efficiency); peak host memory and device memory allocated; and the
+// scaling of cost with points and image size from 16 to 256 beams (simulated streets: VLP-16,
+// then OS1-128's field of view with 32, 64, 128 and 256 beams). The per-stage table, the CPU's
+// throughput and the scaling table run the reference on one thread.
 // Every timed configuration first checks that its labels equal the CPU reference's byte for byte.
 // The counted GPU cost: for each shape (LPIR_VK_SHAPE=gpu and cpu, set before its pipeline is
 // made) every scan once through a FramePipeline of its own, the commands of each frame counted
@@ -29,6 +32,7 @@
 #include "apps/cli/exit_codes.h"
 #include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
+#include "host/api/cpu_pipeline.h"
 #include "host/api/segmenter.h"
 #include "host/gpu/frame_pipeline.h"
 #include "host/io/kitti_bin.h"
@@ -52,6 +56,8 @@ const char kHelp[] =
     "  --device D         Vulkan device (index or name part; none such: exit code 4); without\n"
     "                     --device and without a usable device, CPU rows only\n"
     "  --json             one JSON object instead of the table\n";
+
+constexpr int kThreadRounds = 5;  // rounds of the thread table
 
 struct Spread {
   double median = 0, p25 = 0, p75 = 0;
@@ -302,6 +308,14 @@ Scans LoadScans(const std::string& data, const SensorProfile& hdl64e) {
   return s;
 }
 
+// The CPU backend at one thread count: a frame's median latency alone (Segment) and the median
+// frames per second with two frames in flight over rounds; efficiency: fps / (threads * fps of
+// one thread), 1 for perfect scaling.
+struct ThreadRow {
+  uint32_t threads = 0;
+  double frame_ms = 0, fps = 0, efficiency = 0;
+};
+
 // Everything the report shows.
 struct BenchReport {
   std::string device, cpu_name, first_scan;
@@ -314,6 +328,8 @@ struct BenchReport {
   uint64_t device_bytes = 0;
   std::vector<GpuCost> costs;
   std::vector<ScalingRow> scaling;
+  uint32_t cores = 0;              // AvailableCores()
+  std::vector<ThreadRow> threads;  // 1, 2 and `cores` threads (each once)
 };
 
 // Both shapes' counted GPU cost of every scan on the device `device`.
@@ -344,6 +360,40 @@ void MeasureThroughput(const SensorProfile& sensor, const SegmenterOptions& cpu_
   for (int k = 0; k < 3; ++k)
     r.fps[k] = Throughput(sensor, vk_options, clouds, in_flight[k], r.throughput_frames);
   r.fps[3] = Throughput(sensor, vk_options, clouds, 2, r.throughput_frames, kBatch);
+}
+
+// The CPU backend's thread scaling over 1, 2 and every available core (each count once):
+// `rounds` rounds, each timing every count in turn (so that a spell of load on a shared machine
+// falls on all alike), a round being one Segment of every cloud (latency) and `frames` frames
+// with two in flight (throughput). Every count's labels are checked against `reference` first.
+std::vector<ThreadRow> MeasureThreads(const SensorProfile& sensor, SegmenterOptions options,
+                                      Segmenter& reference, const Scans& scans, uint32_t cores,
+                                      int frames, int rounds) {
+  std::vector<uint32_t> counts = {1, 2, cores};
+  std::sort(counts.begin(), counts.end());
+  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
+  std::vector<std::unique_ptr<Segmenter>> alone;
+  for (uint32_t n : counts) {
+    options.threads = n;
+    alone.push_back(std::make_unique<Segmenter>(sensor, options));
+    CheckAgainstReference(*alone.back(), reference, scans.clouds, scans.names);
+  }
+  std::vector<std::vector<double>> latency(counts.size()), fps(counts.size());
+  for (int round = 0; round < rounds; ++round)
+    for (size_t k = 0; k < counts.size(); ++k) {
+      for (const Cloud& cloud : scans.clouds) {
+        const auto t0 = Clock::now();
+        alone[k]->Segment(cloud);
+        latency[k].push_back(Ms(t0, Clock::now()));
+      }
+      options.threads = counts[k];
+      fps[k].push_back(Throughput(sensor, options, scans.clouds, 2, frames));
+    }
+  std::vector<ThreadRow> rows;
+  for (size_t k = 0; k < counts.size(); ++k)
+    rows.push_back({counts[k], SpreadOf(latency[k]).median, SpreadOf(fps[k]).median, 0});
+  for (ThreadRow& row : rows) row.efficiency = row.fps / (row.threads * rows[0].fps);
+  return rows;
 }
 
 // The scaling table: a simulated street for VLP-16 and OS1-128's field of view with 32 to 256
@@ -412,6 +462,7 @@ BenchReport Measure(const BenchArgs& a) {
   r.runs = a.runs, r.throughput_frames = a.frames, r.scaling_runs = a.scaling_runs;
 
   SegmenterOptions cpu_options = SegmenterOptions::For(Backend::kCpu);
+  cpu_options.threads = 1;
   SegmenterOptions vk_options = SegmenterOptions::For(Backend::kVulkan);
   vk_options.device = a.device;
   vk_options.frames_in_flight = 1;
@@ -440,6 +491,10 @@ BenchReport Measure(const BenchArgs& a) {
   r.rss = PeakRssMiB();
   say("scaling");
   r.scaling = MeasureScaling(cpu_options, vk_options, r.has_gpu, a.scaling_runs);
+  say("threads");
+  r.cores = AvailableCores();
+  r.threads =
+      MeasureThreads(hdl64e, cpu_options, reference, scans, r.cores, a.frames, kThreadRounds);
   return r;
 }
 
@@ -482,6 +537,21 @@ std::string JsonScaling(const std::vector<ScalingRow>& scaling) {
     j += b;
   }
   return j;
+}
+
+// The "threads" object: the cores, and one entry per thread count.
+std::string JsonThreads(const BenchReport& r) {
+  std::string j = "{\"cores\": " + std::to_string(r.cores) + ", \"rows\": [";
+  for (size_t k = 0; k < r.threads.size(); ++k) {
+    const ThreadRow& t = r.threads[k];
+    char b[256];
+    std::snprintf(b, sizeof b,
+                  "%s{\"threads\": %u, \"frame_ms\": %.4f, \"fps\": %.2f, "
+                  "\"efficiency\": %.3f}",
+                  k ? ", " : "", t.threads, t.frame_ms, t.fps, t.efficiency);
+    j += b;
+  }
+  return j + "]}";
 }
 
 // The "gpu_cost" object: one entry per shape, null without a device.
@@ -532,7 +602,8 @@ std::string ReportJson(const BenchReport& r) {
                 "\"peak_host_mib\": %.1f, \"device_mib\": %.1f, \"scaling\": [",
                 r.cpu_fps, r.fps[0], r.fps[1], r.fps[2], r.fps[3], r.rss,
                 double(r.device_bytes) / (1 << 20));
-  j += b + JsonScaling(r.scaling) + "], \"gpu_cost\": " + JsonCosts(r.costs);
+  j += b + JsonScaling(r.scaling) + "], \"threads\": " + JsonThreads(r) +
+       ", \"gpu_cost\": " + JsonCosts(r.costs);
   return j + "}";
 }
 
@@ -602,6 +673,17 @@ void PrintScaling(const BenchReport& r) {
   }
 }
 
+// The thread table.
+void PrintThreads(const BenchReport& r) {
+  std::printf(
+      "\nthreads (CPU backend, %u cores available; medians of %d rounds: a frame alone, "
+      "and frames/s with 2 in flight over %d frames):\n",
+      r.cores, kThreadRounds, r.throughput_frames);
+  std::printf("%8s %12s %10s %11s\n", "threads", "frame ms", "frames/s", "efficiency");
+  for (const ThreadRow& t : r.threads)
+    std::printf("%8u %12.2f %10.1f %11.2f\n", t.threads, t.frame_ms, t.fps, t.efficiency);
+}
+
 // The report as tables.
 void PrintReport(const BenchReport& r) {
   std::printf("lpir-gseg bench: %zu frames (%s..., %zu points on average), %d runs each\n",
@@ -616,6 +698,7 @@ void PrintReport(const BenchReport& r) {
               double(r.device_bytes) / (1 << 20), r.device.c_str());
   PrintCosts(r);
   PrintScaling(r);
+  PrintThreads(r);
 }
 
 }  // namespace

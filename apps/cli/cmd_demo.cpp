@@ -18,6 +18,7 @@
 #include "apps/cli/commands.h"
 #include "apps/cli/exit_codes.h"
 #include "apps/cli/sensor_args.h"
+#include "apps/cli/thread_args.h"
 #include "apps/cli/timing.h"
 #include "apps/sim/scene.h"
 #include "apps/viz/images.h"
@@ -37,17 +38,19 @@ constexpr int kWarmupFrames = 3;  // after the first: caches, lazy allocations, 
 const char kHelp[] =
     "usage: lpir-gseg demo [--out DIR (default demo_out)] [--seed N (default 1)]\n"
     "                      [--backend auto|vulkan|cpu (default auto)] [--runs N (default 20)]\n"
-    "                      [--set NAME=VALUE ...]\n"
+    "                      [--threads N] [--set NAME=VALUE ...]\n"
     "  Simulates a street, segments it, checks Vulkan against the CPU reference, scores it and\n"
     "  writes pictures. Timing: set-up (device, pipelines, buffers) and the first frame are\n"
     "  stated apart; then 3 warm-up frames, then N timed frames (1 to 1000): their median wall\n"
-    "  time a frame, upload to download, and the frames per second it gives.\n"
+    "  time a frame, upload to download, and the frames per second it gives. --threads N: the\n"
+    "  CPU backend's threads (default: the cores this process may run on).\n"
     "  (--opt VALUE and --opt=VALUE alike; -o --out, -b --backend)\n" LPIR_SET_HELP;
 
 }  // namespace
 
 int RunDemo(int argc, char** argv) {
-  const Args args(argc, argv, {"--help"}, {"--out", "--seed", "--backend", "--runs"}, {"--set"});
+  const Args args(argc, argv, {"--help"}, {"--out", "--seed", "--backend", "--runs", "--threads"},
+                  {"--set"});
   if (args.Has("--help")) {
     std::fputs(kHelp, stdout);
     std::fputs(kExitCodesLine, stdout);
@@ -56,6 +59,7 @@ int RunDemo(int argc, char** argv) {
   SegmenterOptions segmenter_options;
   segmenter_options.backend = ParseBackend(args.Get("--backend", "auto"));
   segmenter_options.all_buffers = true;  // for the pictures
+  segmenter_options.threads = ParseThreads(args);
   const std::string out = args.Get("--out", "demo_out");
   const double seed = args.GetNumber("--seed", 1);
   if (!(seed >= 0) || seed > 4294967295.0 || seed != double(uint32_t(seed)))

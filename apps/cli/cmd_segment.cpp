@@ -39,6 +39,7 @@
 #include "apps/cli/mount_tally.h"
 #include "apps/cli/progress.h"
 #include "apps/cli/sensor_args.h"
+#include "apps/cli/thread_args.h"
 #include "apps/cli/timing.h"
 #include "apps/cli/truth.h"
 #include "apps/viz/images.h"
@@ -107,6 +108,9 @@ const char kHelp[] =
     "  --device D       Vulkan device: index or part of its name (`lpir-gseg devices` lists them)\n"
     "  --batch N        Vulkan: N frames a command buffer, interleaved pass by pass (offline\n"
     "                   relabelling of a folder; default 1)\n"
+    "  --threads N      CPU backend: threads (1 to 1024; default: the cores this process may\n"
+    "                   run on). Two frames are in flight, each on threads / 2 of them; 1: the\n"
+    "                   reference on one thread. The labels are the same at any count\n"
     "  --timings        per-stage times of every frame (GPU timestamps on Vulkan, wall time on\n"
     "                   the CPU) and their medians at the end\n"
     "  -q, --quiet      errors only (nothing on success)\n"
@@ -272,6 +276,7 @@ SegmentArgs ParseSegmentArgs(const Args& args) {
   if (!(batch >= 1 && batch <= 64) || batch != double(uint32_t(batch)))
     throw std::invalid_argument("--batch must be a whole number from 1 to 64");
   a.options.batch = uint32_t(batch);
+  a.options.threads = ParseThreads(args);
   const char* validation = std::getenv("LPIR_VK_VALIDATION");
   a.options.validation = validation && *validation && std::string(validation) != "0";
   a.sensor = args.Require("--sensor");
@@ -479,8 +484,9 @@ class SegmentRun {
       r.mount_estimated = segmenter_.mount().estimated;
       mounts_.Add(segmenter_.mount());
       if (r.invalid)
-        r.reasons = CountInvalidReasons(job.cloud, segmenter_.params(),
-                                        segmenter_.sensor().pattern == ScanPattern::kSpinning);
+        r.reasons =
+            CountInvalidReasons(job.cloud, segmenter_.params(),
+                                segmenter_.sensor().pattern == ScanPattern::kSpinning, frame.why);
       ++frames_;
       invalid_ += r.invalid;
       reasons_.not_finite += r.reasons.not_finite;
@@ -627,7 +633,7 @@ int RunSegment(int argc, char** argv) {
       argc, argv,
       {"--images", "--nuscenes", "--quiet", "--verbose", "--timings", "--recursive", "--help"},
       {"--sensor", "--out", "--format", "--gt", "--max-points", "--backend", "--device", "--batch",
-       "--topic", "--report", "--chunks", "--read-threads"},
+       "--topic", "--report", "--chunks", "--read-threads", "--threads"},
       {"--set"});
   if (args.Has("--help")) {
     std::fputs(HelpText(kHelp).c_str(), stdout);
@@ -654,6 +660,10 @@ int RunSegment(int argc, char** argv) {
     report = std::make_unique<FrameReport>(a.report, BackendName(segmenter), DeviceName(segmenter));
   const std::string on =
       segmenter.backend() == Backend::kVulkan ? segmenter.backend_note() : "the CPU reference";
+  const std::string threads = segmenter.backend() == Backend::kVulkan
+                                  ? ""
+                                  : " (" + std::to_string(segmenter.threads()) + " thread" +
+                                        (segmenter.threads() == 1 ? ")" : "s)");
   // "30 files", "3 messages of /points in D", "30 files and 2 drives"
   std::string what;
   if (single) {
@@ -664,9 +674,9 @@ int RunSegment(int argc, char** argv) {
     if (a.drives) what += (what.empty() ? "" : " and ") + Count(a.drives, "drive");
   }
   if (a.verbose)
-    std::printf("segmenting %s%s with sensor '%s' on %s\n",
+    std::printf("segmenting %s%s with sensor '%s' on %s%s\n",
                 single ? (std::to_string(source->count()) + " ").c_str() : "", what.c_str(),
-                segmenter.sensor().name.c_str(), on.c_str());
+                segmenter.sensor().name.c_str(), on.c_str(), threads.c_str());
   const auto start = std::chrono::steady_clock::now();
   SegmentRun run(a, segmenter, report.get());
   size_t failures = 0;

@@ -7,31 +7,48 @@
 #include <utility>
 
 #include "reference_cpu/exact.h"
+#include "reference_cpu/frame.h"
 
 namespace lpir {
+
+namespace {
+
+// Adds point i's reason, if it has one, to r.
+void CountPoint(const Cloud& cloud, const Params& p, bool has_ring, size_t i, InvalidReasons& r) {
+  const float x = exact::Ftz0(cloud.x(i)), y = exact::Ftz0(cloud.y(i));
+  const float z = exact::Ftz0(cloud.z(i));
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+    ++r.not_finite;
+    return;
+  }
+  if (x == 0.0f && y == 0.0f && z == 0.0f) {
+    ++r.at_origin;
+    return;
+  }
+  const float r2 = exact::Ftz0(x * x) + exact::Ftz0(y * y);
+  const float zz = exact::Ftz0(z * z);
+  if (!(r2 >= p.min_range2 && r2 <= p.max_range2 && zz <= p.max_range2)) {
+    ++r.out_of_range;
+    return;
+  }
+  if (has_ring && !(cloud.ring[i] >= 0 && cloud.ring[i] < int32_t(p.beams))) ++r.bad_ring;
+}
+
+}  // namespace
 
 InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read) {
   InvalidReasons r;
   const bool has_ring = rings_read && !cloud.ring.empty();
-  for (size_t i = 0; i < cloud.size(); ++i) {
-    const float x = exact::Ftz0(cloud.x(i)), y = exact::Ftz0(cloud.y(i));
-    const float z = exact::Ftz0(cloud.z(i));
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
-      ++r.not_finite;
-      continue;
-    }
-    if (x == 0.0f && y == 0.0f && z == 0.0f) {
-      ++r.at_origin;
-      continue;
-    }
-    const float r2 = exact::Ftz0(x * x) + exact::Ftz0(y * y);
-    const float zz = exact::Ftz0(z * z);
-    if (!(r2 >= p.min_range2 && r2 <= p.max_range2 && zz <= p.max_range2)) {
-      ++r.out_of_range;
-      continue;
-    }
-    if (has_ring && !(cloud.ring[i] >= 0 && cloud.ring[i] < int32_t(p.beams))) ++r.bad_ring;
-  }
+  for (size_t i = 0; i < cloud.size(); ++i) CountPoint(cloud, p, has_ring, i, r);
+  return r;
+}
+
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read,
+                                   const std::vector<uint8_t>& why) {
+  InvalidReasons r;
+  const bool has_ring = rings_read && !cloud.ring.empty();
+  for (size_t i = 0; i < cloud.size() && i < why.size(); ++i)
+    if (why[i] == kWhyInvalid) CountPoint(cloud, p, has_ring, i, r);
   return r;
 }
 

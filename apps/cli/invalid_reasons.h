@@ -3,7 +3,9 @@
 // kWhyInvalid. Each invalid point counts once, under the first reason it meets in this order.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "reference_cpu/cloud.h"
 #include "reference_cpu/params.h"
@@ -21,6 +23,10 @@ struct InvalidReasons {
 // The invalid points of `cloud` under `p`, by reason; `rings_read`: the profile reads the ring
 // field (pattern spinning), else a ring is never a reason.
 InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read);
+// The same from a segmented frame's `why` (one a point): only the points it labels kWhyInvalid
+// are looked at, so a frame of a few invalid points costs a few tests, not one a point.
+InvalidReasons CountInvalidReasons(const Cloud& cloud, const Params& p, bool rings_read,
+                                   const std::vector<uint8_t>& why);
 
 // "3 NaN/Inf, 2 at the origin, 1 out of range, 4 ring outside the beams", naming the reasons with
 // a count (in that order; "" when there are none).

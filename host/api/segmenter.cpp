@@ -34,6 +34,7 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
   if (options.batch == 0) throw std::invalid_argument("batch is 0");
   if (uint64_t(options.frames_in_flight) * options.batch > 4096)
     throw std::invalid_argument("frames_in_flight * batch is over 4096");
+  if (options.threads > 1024) throw std::invalid_argument("threads is over 1024");
   slots_ = options.frames_in_flight * options.batch;
 
   if (options.backend != Backend::kCpu) {
@@ -59,7 +60,11 @@ Segmenter::Segmenter(const SensorProfile& sensor, const SegmenterOptions& option
   } else {
     backend_note_ = "CPU reference (asked for)";
   }
-  if (!pipeline_) pipeline_ = std::make_unique<CpuPipeline>(params_, tables_, slots_);
+  options_.threads = 1;
+  if (!pipeline_) {
+    options_.threads = options.threads ? options.threads : AvailableCores();
+    pipeline_ = std::make_unique<CpuPipeline>(params_, tables_, slots_, options_.threads);
+  }
   batch_ = pipeline_->batch();
   mount_.mount = MountOf(params_);
   slot_mounts_.assign(slots_, mount_);

@@ -52,6 +52,11 @@ struct SegmenterOptions {
   // why; on Vulkan read back from the frame's slot when it is collected.
   bool all_buffers = false;
   bool validation = false;  // Vulkan validation layer (messages go to stderr)
+  // CPU backend: the threads its frames share (host/api/cpu_pipeline.h); 0: every core this process
+  // may run on (AvailableCores()), 1: each frame on the calling thread when it is collected, as
+  // the reference always ran. A frame collected alone runs on all of them; frames in flight run
+  // side by side, threads / (frames_in_flight * batch) each. Never changes a byte of the result.
+  uint32_t threads = 0;
 
   static SegmenterOptions For(Backend backend) {
     SegmenterOptions options;
@@ -113,6 +118,8 @@ class Segmenter {
   const Tables& tables() const { return tables_; }
   const SensorProfile& sensor() const { return sensor_; }
   size_t max_points() const { return options_.max_points; }  // DefaultMaxPoints resolved
+  // The CPU backend's threads, 0 resolved to AvailableCores() (1 on Vulkan).
+  uint32_t threads() const { return options_.threads; }
 
  private:
   void CheckCloud(const Cloud& cloud) const;  // the one check of every cloud, before Stage

@@ -39,6 +39,7 @@ class Segmenter:
         batch: int = 1,
         validation: bool = False,
         params: Optional[Mapping[str, Union[float, int, str]]] = None,
+        threads: Optional[int] = None,
     ) -> None: ...
     @overload
     def segment(
@@ -78,6 +79,8 @@ class Segmenter:
     def max_points(self) -> int: ...
     @property
     def frames_in_flight(self) -> int: ...
+    @property
+    def threads(self) -> int: ...
     @property
     def on_cpu_driver(self) -> bool: ...
     @property

@@ -71,9 +71,11 @@ def _worker_segmenter(config: SegmenterConfig) -> lpir_gseg.Segmenter:
                 Path(sensor).write_text(config.profile_text)
             # A worker started with LPIR_GSEG_DEVICE set uses that device (one worker a GPU).
             device = os.environ.get("LPIR_GSEG_DEVICE") or config.device
+            # One thread: the cluster's processes share the cores out (docs/fleet.md, Threads or
+            # processes); a segmenter of every core in each of them would oversubscribe them.
             _segmenter = lpir_gseg.Segmenter(sensor, backend=config.backend, device=device,
                                              max_points=config.max_points,
-                                             params=dict(config.params))
+                                             params=dict(config.params), threads=1)
             _segmenter_config = config
             _segmenters_made += 1
         return _segmenter

@@ -89,7 +89,7 @@ class PySegmenter {
  public:
   PySegmenter(py::handle sensor, const std::string& backend, py::handle device,
               py::handle max_points, uint32_t frames_in_flight, uint32_t batch, bool validation,
-              py::handle params) {
+              py::handle params, py::handle threads) {
     SegmenterOptions options;
     options.backend = ParseBackend(backend);
     if (!device.is_none()) {
@@ -113,6 +113,14 @@ class PySegmenter {
     options.frames_in_flight = frames_in_flight;
     options.batch = batch;
     options.validation = validation;
+    if (!threads.is_none()) {
+      if (py::isinstance<py::bool_>(threads) || !py::isinstance<py::int_>(threads))
+        throw py::type_error("threads must be an int or None");
+      const long long value = threads.cast<long long>();
+      if (value < 1 || value > 1024)
+        throw py::value_error("threads must be from 1 to 1024, not " + std::to_string(value));
+      options.threads = uint32_t(value);
+    }
     const std::string name_or_path = PathArg(sensor);
     const std::string sensors_dir = SensorsDir();
     const std::vector<std::pair<std::string, std::string>> settings = SettingsArg(params);
@@ -218,6 +226,7 @@ class PySegmenter {
   const std::string& sensor() const { return segmenter_->sensor().name; }
   size_t max_points() const { return segmenter_->max_points(); }
   size_t frames_in_flight() const { return segmenter_->frames_in_flight(); }
+  uint32_t threads() const { return segmenter_->threads(); }
   bool on_cpu_driver() const { return segmenter_->on_cpu_driver(); }
   py::dict mount() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -255,7 +264,7 @@ class PySegmenter {
 };
 
 const char kSegmenterDoc[] =
-    R"doc(Segmenter(sensor="hdl64e", backend="auto", device=None, max_points=None, frames_in_flight=2, batch=1, validation=False, params=None)
+    R"doc(Segmenter(sensor="hdl64e", backend="auto", device=None, max_points=None, frames_in_flight=2, batch=1, validation=False, params=None, threads=None)
 
 Labels LiDAR scans ground or non-ground, one sensor's scans.
 
@@ -278,6 +287,10 @@ Args:
         sensor_height, min_range, max_range, k_xz, k_yz, ring_zero_is_top, max_points, mount
         ("fixed" or "per_frame"), or a parameter of reference_cpu/params.cpp; each value is
         checked as the profile line `NAME VALUE` or `param NAME VALUE` would be.
+    threads: the CPU backend's threads (1 to 1024); None: every core this process may run on
+        (its affinity). A scan segmented alone runs on all of them; segment_batch's frames in
+        flight run side by side, threads / frames_in_flight each. The labels are the same at any
+        count; 1 runs the reference on the calling thread. Ignored on Vulkan.
 
 Raises:
     ValueError: an unknown sensor name, backend or bad option; in params an unknown name (the
@@ -344,14 +357,15 @@ Raises:
 void BindSegmenter(py::module_& m) {
   py::class_<PySegmenter>(m, "Segmenter", kSegmenterDoc)
       .def(py::init<py::handle, const std::string&, py::handle, py::handle, uint32_t, uint32_t,
-                    bool, py::handle>(),
+                    bool, py::handle, py::handle>(),
            "__init__(self, sensor=\"hdl64e\", backend=\"auto\", device=None, max_points=None, "
-           "frames_in_flight=2, batch=1, validation=False, params=None)\n--\n\nSee the class's "
+           "frames_in_flight=2, batch=1, validation=False, params=None, threads=None)\n--\n\nSee "
+           "the class's "
            "docstring.",
            py::arg("sensor") = "hdl64e", py::arg("backend") = "auto",
            py::arg("device") = py::none(), py::arg("max_points") = py::none(),
            py::arg("frames_in_flight") = 2, py::arg("batch") = 1, py::arg("validation") = false,
-           py::arg("params") = py::none())
+           py::arg("params") = py::none(), py::arg("threads") = py::none())
       .def("segment", &PySegmenter::Segment, kSegmentDoc, py::arg("points"), py::kw_only(),
            py::arg("intensity") = py::none(), py::arg("ring") = py::none(), py::arg("why") = false)
       .def("segment_batch", &PySegmenter::SegmentBatch, kSegmentBatchDoc, py::arg("clouds"),
@@ -369,6 +383,9 @@ void BindSegmenter(py::module_& m) {
       .def_property_readonly("frames_in_flight", &PySegmenter::frames_in_flight,
                              "The most frames segment_batch keeps pending (frames_in_flight x "
                              "batch as constructed).")
+      .def_property_readonly("threads", &PySegmenter::threads,
+                             "The CPU backend's threads (None resolved to the cores this process "
+                             "may run on); 1 on Vulkan.")
       .def_property_readonly("on_cpu_driver", &PySegmenter::on_cpu_driver,
                              "True when the Vulkan device is a CPU driver (lavapipe).")
       .def_property_readonly(

@@ -87,6 +87,27 @@ def test_batch_equals_one_by_one(cpu):
         assert why.shape == labels.shape
 
 
+def test_cpu_threads_never_change_a_label():
+    clouds = [lpir_gseg.simulate("hdl64e", seed)[0] for seed in range(3)]
+    one = lpir_gseg.Segmenter("hdl64e", backend="cpu", threads=1)
+    assert one.threads == 1
+    expected = [one.segment(c, why=True) for c in clouds]
+    for threads in (2, 3, 8):
+        many = lpir_gseg.Segmenter("hdl64e", backend="cpu", threads=threads)
+        assert many.threads == threads
+        for (labels, why), cloud in zip(expected, clouds):
+            got_labels, got_why = many.segment(cloud, why=True)
+            np.testing.assert_array_equal(got_labels, labels)
+            np.testing.assert_array_equal(got_why, why)
+        for (labels, _), got in zip(expected, many.segment_batch(clouds)):
+            np.testing.assert_array_equal(got, labels)
+    assert lpir_gseg.Segmenter("hdl64e", backend="cpu").threads == len(os.sched_getaffinity(0))
+    with pytest.raises(ValueError, match="threads must be from 1 to 1024, not 0"):
+        lpir_gseg.Segmenter("hdl64e", backend="cpu", threads=0)
+    with pytest.raises(TypeError, match="threads must be an int or None"):
+        lpir_gseg.Segmenter("hdl64e", backend="cpu", threads=2.0)
+
+
 def test_threads_share_a_segmenter(cpu):
     clouds = [lpir_gseg.simulate("hdl64e", seed)[0] for seed in range(4)]
     expected = [cpu.segment(c) for c in clouds]
