@@ -137,11 +137,25 @@ class StageHarness {
   std::optional<Stage> stage_;
 };
 
+// The bytes ExpectSameStage compares for one frame: the stage's device buffers, n points under p.
+template <class Stage>
+uint64_t StageBytes(uint32_t n, const Params& p) {
+  uint64_t bytes = 0;
+  Frame f;
+  ForEachBuffer(
+      [&](const BufferInfo& info, const auto& v) {
+        if (info.on_device && std::string(info.stage) == StageOf<Stage>::kName)
+          bytes += ItemsOf(info.per, n, p) * info.stride * sizeof(v[0]);
+      },
+      f);
+  return bytes;
+}
+
 // Runs the reference stage on a copy of `in` and the kernel (through `h`) from `in`, and compares
-// every device buffer the stage writes byte for byte (a mismatch names the buffer, the element,
-// both values and its point, pixel or cell). Prints a line; returns the bytes compared (0 and a
-// failure when the kernel could not run). `cloud`: the points (prepare, project, coarse_segment
-// read them).
+// every device buffer the stage writes byte for byte, each whole (a mismatch names the buffer, the
+// element, both values and its point, pixel or cell). Prints a line; returns the bytes compared
+// (0 and a failure when the kernel could not run). `cloud`: the points (prepare, project and
+// coarse_segment read them), `t`: the tables (project, grid_reduce, coarse_segment).
 template <class Stage>
 uint64_t ExpectSameStage(StageHarness<Stage>& h, const Params& p, const Tables* t,
                          const Cloud* cloud, const Frame& in, const std::string& what) {
@@ -163,6 +177,7 @@ uint64_t ExpectSameStage(StageHarness<Stage>& h, const Params& p, const Tables* 
           bytes += ExpectSameBuffer(stage, info.name, info.per, info.stride, a, b, p, cloud, what);
       },
       cpu, gpu);
+  EXPECT_EQ(bytes, StageBytes<Stage>(gpu.n, p)) << what << ": bytes compared";
   std::printf("[%s] %s: %u points, %ux%u pixels: %llu bytes compared, GPU %.3f ms\n", stage,
               what.c_str(), cpu.n, p.beams, p.width, static_cast<unsigned long long>(bytes),
               gpu_ns / 1e6);
@@ -175,20 +190,6 @@ uint64_t ExpectSameStage(const vk::Device& device, const Params& p, const Tables
                          const Cloud* cloud, const Frame& in, const std::string& what) {
   StageHarness<Stage> h(device, FrameLimits::Of(cloud ? uint32_t(cloud->size()) : in.n, p), t);
   return ExpectSameStage(h, p, t, cloud, in, what);
-}
-
-// The bytes ExpectSameStage compares for one frame: the stage's buffers, n points under p.
-template <class Stage>
-uint64_t StageBytes(uint32_t n, const Params& p) {
-  uint64_t bytes = 0;
-  Frame f;
-  ForEachBuffer(
-      [&](const BufferInfo& info, const auto& v) {
-        if (info.on_device && std::string(info.stage) == StageOf<Stage>::kName)
-          bytes += ItemsOf(info.per, n, p) * info.stride * sizeof(v[0]);
-      },
-      f);
-  return bytes;
 }
 
 }  // namespace lpir::test
