@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -89,46 +88,6 @@ void ExpectSameBackProjectVariants(const vk::Device& device, const Params& p, co
   }
 }
 
-// A random street-like cloud with many points sharing pixels (lost points), invalid and noise
-// points.
-Cloud RandomCloud(size_t n, float sensor_height, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  Cloud cloud;
-  for (size_t i = 0; i < n; ++i) {
-    const float az = unit(rng) * 6.2831853f, r = 3.0f + 50.0f * unit(rng) * unit(rng);
-    float x = r * std::cos(az), y = r * std::sin(az), z = -sensor_height + 0.05f * unit(rng);
-    float in = unit(rng) * 0.9f;
-    switch (rng() % 12) {
-      case 0:
-      case 1:
-      case 2:
-        z = -sensor_height + 3.0f * unit(rng);
-        break;
-      case 3:
-        z += 0.1f * r * unit(rng);
-        break;
-      case 4:
-        if (rng() % 4 == 0) x = 0.0f, y = 0.0f, z = 0.0f;  // invalid
-        break;
-      case 5:
-        if (rng() % 4 == 0) z = -sensor_height - 1.0f, in = 0.0f;  // reflection noise
-        break;
-      case 6:
-        if (i > 0) {  // a second return next to the previous point: a lost point, near its winner
-          x = cloud.x(i - 1) * (1.0f + 0.002f * unit(rng));
-          y = cloud.y(i - 1) * (1.0f + 0.002f * unit(rng));
-          z = cloud.z(i - 1) + 0.3f * (unit(rng) - 0.5f);
-        }
-        break;
-      default:
-        break;
-    }
-    cloud.Push(x, y, z, in);
-  }
-  return cloud;
-}
-
 class BackProjectVk : public test::VkTest {};
 
 TEST_F(BackProjectVk, RandomCloudsSmallSensor) {
@@ -136,7 +95,7 @@ TEST_F(BackProjectVk, RandomCloudsSmallSensor) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   for (uint32_t seed : {1u, 2u, 3u}) {
-    const Cloud cloud = RandomCloud(1 + 4000 * seed, s.sensor_height, seed);
+    const Cloud cloud = test::StreetWithSecondReturns(1 + 4000 * seed, s.sensor_height, seed);
     Frame f;
     RunReference(cloud, p, t, f);
     ExpectSameBackProjectVariants(device(), p, f, &cloud,
@@ -149,7 +108,7 @@ TEST_F(BackProjectVk, RandomCloudsHdl64) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   for (uint32_t seed : {7u, 8u}) {
-    const Cloud cloud = RandomCloud(150001, s.sensor_height, seed);
+    const Cloud cloud = test::StreetWithSecondReturns(150001, s.sensor_height, seed);
     Frame f;
     RunReference(cloud, p, t, f);
     ExpectSameBackProjectVariants(device(), p, f, &cloud,
