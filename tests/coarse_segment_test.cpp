@@ -304,11 +304,10 @@ TEST(CoarseSegment, CollinearSeedsFallBackToTheHorizontalPlane) {
   for (uint32_t i = 0; i < f.n; ++i) EXPECT_EQ(f.coarse[i], 1u) << "point " << i;
 }
 
-// FINDING (disabled until stage 4 honours it): a straight line of seeds climbing along one ray is
-// collinear up to the mm rounding, but the rounding leaves the x-z moments of rank 2 with yy = 0,
-// so the adjugate is not zero and the fit returns the vertical plane y = const (normal (0,1,0),
-// threshold -1): the whole cell loses its ground instead of getting the contract's horizontal
-// fallback. Fails today for 136 of 168 (spacing, grade, offset) combinations tried.
+// A straight line of seeds climbing along one ray is collinear up to the mm rounding, which leaves
+// the x-z moments of rank 2 with yy = 0: the fit must still take it as collinear and give the
+// horizontal fallback through the seed mean (threshold >= 0), not the vertical plane y = const
+// (threshold -1), which would take the cell's ground away.
 TEST(CoarseSegment, CollinearSlopedSeedsFallBackToTheHorizontalPlane) {
   const Small s;
   // Any plane through the line fits it; the contract picks the horizontal one through the mean.
