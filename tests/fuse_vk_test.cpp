@@ -54,28 +54,20 @@ void ExpectSameFuseVariants(const vk::Device& device, const Params& p, const Fra
 
 class FuseVk : public test::VkTest {
  protected:
-  // Clouds of base + per_seed * seed points.
-  void RandomClouds(const SensorProfile& s, std::vector<uint32_t> seeds, size_t base,
-                    size_t per_seed) {
-    const Params p = ParamsForSensor(s);
-    const Tables t = MakeTables(s, p);
-    for (uint32_t seed : seeds) {
-      const Cloud cloud =
-          test::StreetWithSecondReturns(base + per_seed * seed, s.sensor_height, seed);
-      Frame f;
-      RunReference(cloud, p, t, f);
-      ExpectSameFuseVariants(device(), p, f, s.name + ", random cloud " + std::to_string(seed));
-    }
-  }
   void Images(const std::vector<test::FuseVerdicts>& images) {
     for (const test::FuseVerdicts& c : images) ExpectSameFuse(device(), c.im.p, c.im.f, c.what);
   }
 };
 
-TEST_F(FuseVk, RandomCloudsSmallSensor) { RandomClouds(test::SmallSensor(), {1, 2, 3}, 500, 3000); }
+TEST_F(FuseVk, RandomCloudsSmallSensor) {
+  for (const test::RandomStreet& s : test::RandomStreets(test::SmallSensor(), {1, 2, 3}, 500, 3000))
+    ExpectSameFuseVariants(device(), s.p, s.frame, s.what);
+}
 
 TEST_F(FuseVk, RandomCloudsHdl64) {
-  RandomClouds(LoadSensorProfile("hdl64e", test::SensorsDir()), {7, 8}, 120000, 0);
+  const SensorProfile hdl64e = LoadSensorProfile("hdl64e", test::SensorsDir());
+  for (const test::RandomStreet& s : test::RandomStreets(hdl64e, {7, 8}, 120000, 0))
+    ExpectSameFuseVariants(device(), s.p, s.frame, s.what);
 }
 
 TEST_F(FuseVk, EmptyCloud) {

@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/sim/scene.h"
 #include "host/io/cloud_file.h"
 #include "host/io/sensor_profile.h"
 #include "reference_cpu/pipeline.h"
+#include "tests/stage_test_util.h"
 #include "tests/test_util.h"
 #include "tests/vk_test_util.h"
 
@@ -79,6 +81,29 @@ class StageScene : public VkTest, public ::testing::WithParamInterface<SceneCase
   Frame frame;  // every buffer of the reference's run
   std::string what;
 };
+
+// The reference's frame of a random street (StreetWithSecondReturns) of base + per_seed * seed
+// points for each seed, under `sensor`'s parameters.
+struct RandomStreet {
+  Cloud cloud;
+  Params p;
+  Frame frame;
+  std::string what;
+};
+inline std::vector<RandomStreet> RandomStreets(const SensorProfile& sensor,
+                                               const std::vector<uint32_t>& seeds, size_t base,
+                                               size_t per_seed) {
+  std::vector<RandomStreet> out;
+  for (uint32_t seed : seeds) {
+    RandomStreet s{StreetWithSecondReturns(base + per_seed * seed, sensor.sensor_height, seed),
+                   ParamsForSensor(sensor),
+                   {},
+                   sensor.name + ", random street " + std::to_string(seed)};
+    RunReference(s.cloud, s.p, MakeTables(sensor, s.p), s.frame);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
 
 }  // namespace lpir::test
 
