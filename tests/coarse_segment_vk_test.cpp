@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "reference_cpu/exact.h"
+#include "tests/coarse_segment_inputs.h"
 #include "tests/stage_harness.h"
 #include "tests/stage_scenes.h"
 #include "tests/stage_test_util.h"
@@ -28,60 +29,7 @@ void ExpectSameCoarse(const vk::Device& device, const Cloud& cloud, const Params
   test::ExpectSameStage<vk::CoarseSegmentStage>(device, p, &t, &cloud, in, what);
 }
 
-void ExpectSameOnCloud(const vk::Device& device, const Cloud& cloud, const SensorProfile& s,
-                       const std::string& what) {
-  const Params p = ParamsForSensor(s);
-  const Tables t = MakeTables(s, p);
-  Frame f;
-  RunReference(cloud, p, t, f);
-  ExpectSameCoarse(device, cloud, p, t, f, what);
-}
-
-// ---- hand-made stage 1-3 inputs (as tests/coarse_segment_test.cpp builds them) ----------------
-
-uint32_t CellOf(const Params& p, const Tables& t, float x, float y) {
-  const uint32_t rings = p.rings_near + p.rings_far;
-  const uint32_t ring = RingOf(x * x + y * y, t.ring_bound2.data(), rings);
-  if (ring >= rings) return kNone;
-  const uint32_t u = ColumnOf(x, y, t.column_dir.data(), p.width);
-  return ring < p.rings_near
-             ? ring * p.sectors_near + u / (p.width / p.sectors_near)
-             : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
-                   u / (p.width / p.sectors_far);
-}
-
-Frame Inputs(const Cloud& c, const Params& p, const Tables& t) {
-  Frame f;
-  f.n = uint32_t(c.size());
-  f.flags.assign(f.n, kPointValid);
-  f.zt.resize(f.n);
-  f.r2.resize(f.n);
-  f.point_cell.resize(f.n);
-  const uint32_t cells = CellCount(p);
-  f.cell_zmin.assign(cells, kNone);
-  f.cell_zmax.assign(cells, 0u);
-  f.cell_count.assign(cells, 0u);
-  for (uint32_t i = 0; i < f.n; ++i) {
-    f.zt[i] = c.z(i);
-    f.r2[i] = c.x(i) * c.x(i) + c.y(i) * c.y(i);
-    const uint32_t cell = CellOf(p, t, c.x(i), c.y(i));
-    f.point_cell[i] = cell;
-    if (cell == kNone) continue;
-    f.cell_zmin[cell] = std::min(f.cell_zmin[cell], exact::Key(f.zt[i]));
-    f.cell_zmax[cell] = std::max(f.cell_zmax[cell], exact::Key(f.zt[i]));
-    f.cell_count[cell] += 1;
-  }
-  return f;
-}
-
-void AddPlane(Cloud* c, float x0, float x1, float y0, float y1, float step, float z0, float gx,
-              float gy, float amp, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> noise(-amp, amp);
-  for (float x = x0; x <= x1; x += step)
-    for (float y = y0; y <= y1; y += step)
-      c->Push(x, y, z0 + gx * x + gy * y + (amp > 0 ? noise(rng) : 0.0f), 0.3f);
-}
+using test::AddPlane;
 
 // A random scene: ground with a random grade and noise over the whole grid, boxes and walls on
 // it, scattered clutter, dense clusters, a few invalid points.
@@ -126,7 +74,11 @@ TEST_F(CoarseSegmentVk, RandomScenesMatchTheReference) {
   for (uint32_t seed = 1; seed <= 6; ++seed) {
     const size_t n = seed == 1 ? 1 : seed == 2 ? 100 : seed == 3 ? 5000 : 60000 * (seed - 3);
     const Cloud cloud = RandomScene(n, s.sensor_height, seed);
-    ExpectSameOnCloud(device(), cloud, s, "random " + std::to_string(n));
+    const Params p = ParamsForSensor(s);
+    const Tables t = MakeTables(s, p);
+    Frame f;
+    RunReference(cloud, p, t, f);
+    ExpectSameCoarse(device(), cloud, p, t, f, "random " + std::to_string(n));
   }
 }
 
@@ -137,7 +89,7 @@ TEST_F(CoarseSegmentVk, RandomHandMadeInputsMatchTheReference) {
   const Tables t = MakeTables(s, p);
   for (uint32_t seed = 11; seed <= 14; ++seed) {
     const Cloud cloud = RandomScene(40000, p.sensor_height, seed);
-    ExpectSameCoarse(device(), cloud, p, t, Inputs(cloud, p, t), "random hand-made");
+    ExpectSameCoarse(device(), cloud, p, t, test::CoarseInputs(cloud, p, t), "random hand-made");
   }
 }
 
@@ -162,56 +114,12 @@ class CoarseSegmentVkDegenerate : public test::VkTest {
   Params p = ParamsForSensor(s);
   Tables t = MakeTables(s, p);
   void Check(const Cloud& c, const char* what) {
-    ExpectSameCoarse(device(), c, p, t, Inputs(c, p, t), what);
+    ExpectSameCoarse(device(), c, p, t, test::CoarseInputs(c, p, t), what);
   }
 };
 
-// A height near `base` from which `delta` above is exactly `delta` in float: (h + delta) - h ==
-// delta, so a point there lies exactly on a threshold of eq. 5.
-float ExactBase(float base, float delta) {
-  float h = base;
-  for (int k = 0; k < 100000; ++k, h = std::nextafter(h, -1e9f)) {
-    const float top = h + delta;
-    if (top - h == delta) return h;
-  }
-  return base;
-}
-
-// Points exactly on the thresholds of eq. 5, in cells far enough apart not to be neighbours:
-// h_max - h_nmin == h_athr (whole cell), z_t - h_min == lambda (seed), and h_min - h_nmin ==
-// lambda + rise_margin (a cell raised exactly to the limit above its neighbour).
 TEST_F(CoarseSegmentVkDegenerate, PointsExactlyOnTheSeedThresholds) {
-  // Thresholds on a coarse binary grid, so that heights near the road reach them exactly.
-  p.h_athr = 0.125f;
-  p.seed_margin = 0.25f;
-  p.slope_max = 0.0625f;
-  p.rise_margin = 0.25f;
-  const float road = -p.sensor_height;
-  const float lambda = p.ring_res_near * p.slope_max + p.seed_margin;
-  const float rise = lambda + p.rise_margin;
-  Cloud c;
-  const float a = ExactBase(road, p.h_athr);  // whole cell by <=, lowest points by <
-  ASSERT_EQ((a + p.h_athr) - a, p.h_athr);
-  for (int k = 0; k < 20; ++k) {
-    c.Push(5.0f + 0.05f * k, 0.1f + 0.01f * (k % 5), a, 0.3f);
-    c.Push(5.02f + 0.05f * k, 0.12f + 0.01f * (k % 3), a + p.h_athr, 0.3f);
-    c.Push(5.03f + 0.05f * k, 0.14f, a + 0.5f * p.h_athr, 0.3f);
-  }
-  const float b = ExactBase(road, lambda);  // seeds exactly at lambda
-  ASSERT_EQ((b + lambda) - b, lambda);
-  for (int k = 0; k < 20; ++k) {
-    c.Push(-5.0f - 0.05f * k, 0.1f + 0.01f * (k % 5), b, 0.3f);
-    c.Push(-5.02f - 0.05f * k, 0.12f + 0.01f * (k % 3), b + lambda, 0.3f);
-    c.Push(-5.03f - 0.05f * k, 0.14f, b + lambda + p.h_athr + 0.2f, 0.3f);
-  }
-  const float d = ExactBase(road, rise);  // ring 3 raised exactly by lambda + rise_margin
-  ASSERT_EQ((d + rise) - d, rise);
-  for (float x = 4.1f; x <= 9.9f; x += 0.1f)
-    for (float y = 5.0f; y <= 5.6f; y += 0.1f) {
-      const float r = std::hypot(x, y);
-      c.Push(x, y, r >= 8.0f && r < 10.0f ? d + rise : d, 0.3f);
-    }
-  Check(c, "points on the seed thresholds");
+  Check(test::SeedThresholdCloud(&p), "points on the seed thresholds");
 }
 
 TEST_F(CoarseSegmentVkDegenerate, EmptyCloud) { Check(Cloud(), "empty"); }
