@@ -57,11 +57,13 @@ struct FuseImage {
 // An image of threshold columns: on row `row`, each (column, vetoed) of `expect` must come out
 // kPixVetoed when vetoed, else kPixGround; `spares` whether some column is spared at all.
 struct FuseVerdicts {
+  FuseVerdicts(std::string name, uint32_t width, uint32_t beams, uint32_t v, bool spare = true)
+      : what(std::move(name)), im(width, beams), row(v), spares(spare) {}
   std::string what;
   FuseImage im;
   uint32_t row;
   std::vector<std::pair<uint32_t, bool>> expect;
-  bool spares = true;
+  bool spares;
 };
 
 // The veto's reach of a pixel of class `cls` at range r, and its top at height z.
@@ -82,11 +84,9 @@ inline std::vector<FuseVerdicts> VetoThresholdImages() {
   for (uint32_t cls : {kPixGround, kPixUnknown})
     for (uint32_t occ_rows : {1u, 2u, 3u}) {
       const uint32_t v = 5;
-      FuseVerdicts c{"veto thresholds, class " + std::to_string(cls) + ", occ_rows " +
+      FuseVerdicts c("veto thresholds, class " + std::to_string(cls) + ", occ_rows " +
                          std::to_string(occ_rows),
-                     FuseImage(64, 8),
-                     v,
-                     {}};
+                     64, 8, v);
       FuseImage& im = c.im;
       im.p.occ_rows = occ_rows;
       uint32_t u = 0;
@@ -143,11 +143,9 @@ inline std::vector<FuseVerdicts> StepSpareThresholdImages() {
   for (uint32_t cls : {kPixGround, kPixUnknown})
     for (uint32_t step_rows : {2u, 3u, 10u}) {
       const uint32_t v = 6;
-      FuseVerdicts c{"step thresholds, class " + std::to_string(cls) + ", step rows " +
+      FuseVerdicts c("step thresholds, class " + std::to_string(cls) + ", step rows " +
                          std::to_string(step_rows),
-                     FuseImage(64, 8),
-                     v,
-                     {}};
+                     64, 8, v);
       FuseImage& im = c.im;
       im.p.occ_step_rows = step_rows;
       im.p.occ_pass = 1000.0f;  // the occluder is nearer: no pixel here is passed under
@@ -205,12 +203,9 @@ inline std::vector<FuseVerdicts> PassedUnderThresholdImages() {
   for (float occ_pass : {0.15f, 0.0f})
     for (uint32_t cls : {kPixGround, kPixUnknown}) {
       const uint32_t v = 3;
-      FuseVerdicts c{
+      FuseVerdicts c(
           "passed under, class " + std::to_string(cls) + ", occ_pass " + std::to_string(occ_pass),
-          FuseImage(64, 4),
-          v,
-          {},
-          cls == kPixGround};
+          64, 4, v, cls == kPixGround);
       FuseImage& im = c.im;
       im.p.occ_pass = occ_pass;
       uint32_t u = 0;

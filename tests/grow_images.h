@@ -48,25 +48,35 @@ inline void SeedShare(std::mt19937& rng, Params& p) {
   p.comp_seed_min = rng() % 8;
 }
 
-// A random label image as grow_test's (heights near a step's allowance, rare seeds), up to
-// max_width x max_beams, min_component and the seed share drawn too.
-inline GrowImage RandomGrowImage(uint32_t seed, float grow_grade, uint32_t max_width,
-                                 uint32_t max_beams) {
+// A random label image, min_width..max_width x min_beams..max_beams: heights spread over about
+// twice a typical step allowance, so that many steps sit near it, and ranges falling row by row;
+// seeds are rare, so growth has to travel. With `every_rule`, min_component (0-15) and the seed
+// share are drawn and vetoed pixels and a class the stages never give (7) appear too; without,
+// min_component is 0 and the classes are those fuse gives but the veto.
+struct GrowSizes {
+  uint32_t min_width, max_width, min_beams, max_beams;
+};
+inline GrowImage RandomGrowImage(uint32_t seed, float grow_grade, const GrowSizes& sizes,
+                                 bool every_rule) {
   std::mt19937 rng(seed);
-  std::uniform_int_distribution<uint32_t> width_pick(1, max_width), beams_pick(1, max_beams);
+  std::uniform_int_distribution<uint32_t> width_pick(sizes.min_width, sizes.max_width),
+      beams_pick(sizes.min_beams, sizes.max_beams);
   GrowImage im(width_pick(rng), beams_pick(rng));
-  im.p.min_component = rng() % 16;
+  im.p.min_component = every_rule ? rng() % 16 : 0;
   im.p.grow_grade = grow_grade;
-  SeedShare(rng, im.p);
-  // ground, non-ground, unknown, empty, vetoed, 7, unknown off the coarse ground
-  std::discrete_distribution<int> cls({3, 2, 8, 1, 2, 0.2, 4});
+  if (every_rule) SeedShare(rng, im.p);
+  // ground, non-ground, unknown, empty, vetoed, 7, unknown off the coarse ground (a class of
+  // weight 0 never comes, and the others come as they would without it)
+  std::discrete_distribution<int> cls =
+      every_rule ? std::discrete_distribution<int>({3, 2, 8, 1, 2, 0.2, 4})
+                 : std::discrete_distribution<int>({3, 2, 8, 1, 0, 0, 4});
   std::uniform_real_distribution<float> uni(0.0f, 1.0f);
   const uint32_t classes[7] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixVetoed,
                                7u,         kPixUnknownOff};
   const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
   for (uint32_t v = 0; v < im.p.beams; ++v)
     for (uint32_t u = 0; u < im.p.width; ++u) {
-      const uint32_t pix = v * im.p.width + u;
+      const uint32_t pix = im.Pix(v, u);
       im.f.pixel_fused[pix] = classes[cls(rng)];
       im.f.f_height[pix] = -1.7f + 2.0f * typical * uni(rng);
       im.f.f_range[pix] = 30.0f - 1.5f * float(v) + 2.0f * uni(rng);

@@ -218,30 +218,9 @@ std::vector<uint32_t> JacobiGrow(const Params& p, const Frame& f) {
   return cur;
 }
 
-// A random label image: random heights and ranges near a step's allowance.
+// A random label image of the classes fuse gives (tests/grow_images.h).
 Image RandomImage(uint32_t seed, float grow_grade) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<uint32_t> width_pick(8, 48), beams_pick(2, 16);
-  Image im(width_pick(rng), beams_pick(rng));
-  im.p.min_component = 0;
-  im.p.grow_grade = grow_grade;
-  // ground, non-ground, unknown, empty, unknown off the coarse ground
-  std::discrete_distribution<int> cls({3, 2, 8, 1, 4});
-  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-  const uint32_t classes[5] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixUnknownOff};
-  // Heights spread over about twice a typical step allowance, so that many steps sit near it.
-  const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
-  for (uint32_t v = 0; v < im.p.beams; ++v)
-    for (uint32_t u = 0; u < im.p.width; ++u) {
-      const uint32_t pix = im.Pix(v, u);
-      im.f.pixel_fused[pix] = classes[cls(rng)];
-      im.f.f_height[pix] = -1.7f + 2.0f * typical * uni(rng);
-      im.f.f_range[pix] = 30.0f - 1.5f * float(v) + 2.0f * uni(rng);
-    }
-  // Seeds are rare: growth has to travel.
-  for (uint32_t& c : im.f.pixel_fused)
-    if (c == kPixGround && uni(rng) < 0.7f) c = kPixUnknown;
-  return im;
+  return test::RandomGrowImage(seed, grow_grade, {8, 48, 2, 16}, false);
 }
 
 TEST(Grow, EqualsTheJacobiFixedPointOnRandomImages) {

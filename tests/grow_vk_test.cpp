@@ -32,7 +32,7 @@ TEST_F(GrowVk, ThousandRandomImages) {
   size_t lifted = 0, kept_vetoed = 0;  // vetoed pixels the reference lifted / left non-ground
   for (uint32_t k = 0; k < 1000; ++k) {
     const test::GrowImage im =
-        k < 30 ? test::RandomGrowImage(k, k % 2 ? 0.05f : 0.0f, 48, 16)
+        k < 30 ? test::RandomGrowImage(k, k % 2 ? 0.05f : 0.0f, {1, 48, 1, 16}, true)
                : test::MixedGrowImage(rng, k % 10 == 0 ? 700 : 96, k % 10 == 0 ? 70 : 24);
     test::ExpectSameStage(h, im.p, nullptr, nullptr, im.f, "random image " + std::to_string(k));
     if (HasFailure()) break;
