@@ -5,6 +5,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,9 @@ struct SceneCase {
   const char* file;    // a real scan under ../shared/data; nullptr: simulated with `sim`
   SimOptions sim;
 };
+
+// gtest prints a scene by its name (the test's name shows it, not the struct's bytes).
+inline void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
 
 inline SimOptions Street(uint32_t seed, SceneKind kind, float pitch_deg, bool rings) {
   SimOptions o;
