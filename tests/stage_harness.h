@@ -49,13 +49,14 @@ class FrameBench {
 
   const vk::FrameBuffers& buffers() const { return buffers_; }
   const vk::Device& device() const { return device_; }
-  // The first error of the set-up, or of the last Fill or Read.
+  // The first error of the set-up (Fill, Read and Bytes return theirs).
   const vk::Status& status() const { return status_; }
 
   // Uploads p (has_ring from the cloud, as RunReference sets it), the cloud's points and rings,
   // and every non-empty buffer of `in` that a stage before `stage` writes (an error names a buffer
-  // not of the table's size); fills the rest of the frame's buffers with 0xEE bytes, so that a
-  // word the kernel should write and does not shows. Returns the frame's size.
+  // not of the table's size); fills the frame's other LPIR_BUFFER buffers with 0xEE bytes, so that
+  // a word the kernel should write and does not shows (scratch is the kernel's own). Returns the
+  // frame's size.
   vk::Result<vk::FrameSize> Fill(const char* stage, const Params& p, const Cloud* cloud,
                                  const Frame& in);
   // Downloads `stage`'s device buffers of a frame of `size` into out's (n from size) and empties
