@@ -541,7 +541,7 @@ TEST(CliDriveMessages, AMessageWithoutXIsNamedAndTheOthersLabelledAsTheBinFiles)
       << log;
   EXPECT_NE(log.find("'x'"), std::string::npos) << log;
   EXPECT_NE(log.find(path + ": 1 problem (damaged parts"), std::string::npos) << log;
-  if (test::RunCommand("python3 -c 'import json'") != 0) return;
+  LPIR_REQUIRE_PYTHON_JSON();
   const std::string script =
       "import json,sys\n"
       "for f in json.load(open(sys.argv[1]))['frames']:\n"

@@ -219,10 +219,10 @@ TEST(CliReport, PerFrameMountsAreReportedAndSummed) {
   test::ScopedDir dir;
   WriteInputs(dir.path);
   std::string log;
-  ASSERT_EQ(test::RunCommand(SegmentCommand(dir.path, "--set mount=per_frame --report " +
-                                                          dir.path + "/r.csv"),
-                             &log),
-            1)
+  ASSERT_EQ(
+      test::RunCommand(
+          SegmentCommand(dir.path, "--set mount=per_frame --report " + dir.path + "/r.csv"), &log),
+      1)
       << log;
   const std::vector<std::string> lines = Lines(test::ReadFileBytes(dir.path + "/r.csv"));
   ASSERT_EQ(lines.size(), 4u);
@@ -234,7 +234,7 @@ TEST(CliReport, PerFrameMountsAreReportedAndSummed) {
 }
 
 TEST(CliReport, JsonParsesAndHoldsTheSameFigures) {
-  if (test::RunCommand("python3 -c 'import json'") != 0) GTEST_SKIP() << "python3 not found";
+  LPIR_REQUIRE_PYTHON_JSON();
   test::ScopedDir dir;
   WriteInputs(dir.path);
   const std::string json = dir.path + "/r.json";
@@ -340,7 +340,7 @@ TEST(CliReport, NamesWithCommasAndQuotesSurviveBothFormats) {
   const std::vector<std::string> row = CsvFields(lines[1]);
   ASSERT_EQ(row.size(), 20u) << lines[1];
   EXPECT_EQ(row[0], name);
-  if (test::RunCommand("python3 -c 'import json'") != 0) return;
+  LPIR_REQUIRE_PYTHON_JSON();
   std::ofstream(dir.path + "/check.py")
       << "import json,sys\nprint(json.load(open(sys.argv[1]))['frames'][0]['input'])\n";
   std::string parsed;
@@ -351,7 +351,7 @@ TEST(CliReport, NamesWithCommasAndQuotesSurviveBothFormats) {
 }
 
 TEST(CliReport, JsonOfANameThatIsNotUtf8StillParses) {
-  if (test::RunCommand("python3 -c 'import json'") != 0) GTEST_SKIP() << "python3 not found";
+  LPIR_REQUIRE_PYTHON_JSON();
   test::ScopedDir dir;
   const std::string name = dir.path + "/caf\xc3\xa9 \xff\xc3.bin";  // UTF-8, then two bad bytes
   WriteKittiBin(name, Road(400));

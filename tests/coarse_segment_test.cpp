@@ -14,6 +14,7 @@
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
+#include "tests/coarse_segment_inputs.h"
 #include "tests/stage_test_util.h"
 
 namespace lpir {
@@ -27,44 +28,8 @@ struct Small {
   Tables t = MakeTables(sensor, p);
 };
 
-// The cell of a planar position as stage 3 defines it (eq. 4 rings, sector from the column).
-uint32_t CellOf(const Params& p, const Tables& t, float x, float y) {
-  const uint32_t rings = p.rings_near + p.rings_far;
-  const uint32_t ring = RingOf(x * x + y * y, t.ring_bound2.data(), rings);
-  if (ring >= rings) return kNone;
-  const uint32_t u = ColumnOf(x, y, t.column_dir.data(), p.width);
-  return ring < p.rings_near
-             ? ring * p.sectors_near + u / (p.width / p.sectors_near)
-             : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
-                   u / (p.width / p.sectors_far);
-}
-
-// Stage 4's inputs by hand: every point valid, z_t = z (no tilt), r^2, its cell, and per cell
-// the ordered keys of min / max z_t and the count.
-Frame Inputs(const Cloud& c, const Small& s) {
-  const Params& p = s.p;
-  Frame f;
-  f.n = uint32_t(c.size());
-  f.flags.assign(f.n, kPointValid);
-  f.zt.resize(f.n);
-  f.r2.resize(f.n);
-  f.point_cell.resize(f.n);
-  const uint32_t cells = CellCount(p);
-  f.cell_zmin.assign(cells, kNone);
-  f.cell_zmax.assign(cells, 0u);
-  f.cell_count.assign(cells, 0u);
-  for (uint32_t i = 0; i < f.n; ++i) {
-    f.zt[i] = c.z(i);
-    f.r2[i] = c.x(i) * c.x(i) + c.y(i) * c.y(i);
-    const uint32_t cell = CellOf(p, s.t, c.x(i), c.y(i));
-    f.point_cell[i] = cell;
-    if (cell == kNone) continue;
-    f.cell_zmin[cell] = std::min(f.cell_zmin[cell], exact::Key(f.zt[i]));
-    f.cell_zmax[cell] = std::max(f.cell_zmax[cell], exact::Key(f.zt[i]));
-    f.cell_count[cell] += 1;
-  }
-  return f;
-}
+// Stage 4's inputs by hand (tests/coarse_segment_inputs.h).
+Frame Inputs(const Cloud& c, const Small& s) { return test::CoarseInputs(c, s.p, s.t); }
 
 Frame Coarse(const Cloud& c, const Small& s) {
   Frame f = Inputs(c, s);
@@ -82,15 +47,7 @@ std::vector<uint32_t> BusyCells(const Frame& f, uint32_t min_points) {
   return out;
 }
 
-// A grid of points on z = z0 + gx * x + gy * y (+ uniform noise of +- amp) over x0..x1, y0..y1.
-void AddPlane(Cloud* c, float x0, float x1, float y0, float y1, float step, float z0, float gx,
-              float gy, float amp, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> noise(-amp, amp);
-  for (float x = x0; x <= x1; x += step)
-    for (float y = y0; y <= y1; y += step)
-      c->Push(x, y, z0 + gx * x + gy * y + (amp > 0 ? noise(rng) : 0.0f), 0.3f);
-}
+using test::AddPlane;
 
 // The mean in mm and the least-squares normal (double precision, Eigen, oriented up) of all the
 // cell's points: the reference for the stage's integer fit where every point is a seed.
@@ -304,11 +261,10 @@ TEST(CoarseSegment, CollinearSeedsFallBackToTheHorizontalPlane) {
   for (uint32_t i = 0; i < f.n; ++i) EXPECT_EQ(f.coarse[i], 1u) << "point " << i;
 }
 
-// FINDING (disabled until stage 4 honours it): a straight line of seeds climbing along one ray is
-// collinear up to the mm rounding, but the rounding leaves the x-z moments of rank 2 with yy = 0,
-// so the adjugate is not zero and the fit returns the vertical plane y = const (normal (0,1,0),
-// threshold -1): the whole cell loses its ground instead of getting the contract's horizontal
-// fallback. Fails today for 136 of 168 (spacing, grade, offset) combinations tried.
+// A straight line of seeds climbing along one ray is collinear up to the mm rounding, which leaves
+// the x-z moments of rank 2 with yy = 0: the fit must still take it as collinear and give the
+// horizontal fallback through the seed mean (threshold >= 0), not the vertical plane y = const
+// (threshold -1), which would take the cell's ground away.
 TEST(CoarseSegment, CollinearSlopedSeedsFallBackToTheHorizontalPlane) {
   const Small s;
   // Any plane through the line fits it; the contract picks the horizontal one through the mean.
@@ -371,6 +327,30 @@ TEST(CoarseSegment, PointOrderDoesNotChangeThePlanes) {
   EXPECT_GT(modes[2], 0u);
   EXPECT_GT(ground, 0u);
   EXPECT_LT(ground, a.n);
+}
+
+// Points exactly on the thresholds of eq. 5 (tests/coarse_segment_inputs.h; the kernel runs on them
+// in coarse_segment_vk_test.cpp): each comparison includes its bound. A cell whose spread equals
+// h_athr is whole, seeds exactly lambda above the lowest point are seeds, and a cell raised
+// exactly lambda + rise_margin above its neighbours keeps its seeds.
+TEST(CoarseSegment, PointsExactlyOnTheSeedThresholdsCountAsInside) {
+  Small s;
+  const Cloud c = test::SeedThresholdCloud(&s.p);
+  const Frame f = Coarse(c, s);
+  const uint32_t whole = f.point_cell[0], lowest = f.point_cell[60];
+  for (uint32_t i = 0; i < 60; ++i) ASSERT_EQ(f.point_cell[i], whole) << "point " << i;
+  for (uint32_t i = 60; i < 120; ++i) ASSERT_EQ(f.point_cell[i], lowest) << "point " << i;
+  EXPECT_EQ(f.cell_seed_mode[whole], 2u);
+  EXPECT_EQ(f.cell_seed_mode[lowest], 1u);
+  EXPECT_EQ(Plane(f, lowest)[7], 40);  // the points at the lowest and exactly lambda above it
+  size_t raised = 0;
+  for (uint32_t i = 120; i < f.n; ++i) {
+    const float r = std::hypot(c.x(i), c.y(i));
+    if (r < 8.0f || r >= 10.0f) continue;
+    ++raised;
+    EXPECT_NE(f.cell_seed_mode[f.point_cell[i]], 0u) << "raised point " << i;
+  }
+  EXPECT_GT(raised, 50u);
 }
 
 }  // namespace

@@ -1,215 +1,35 @@
 // Stage 4, coarse segment, on Vulkan (shaders/coarse_segment.comp) against the CPU reference
 // (reference_cpu/coarse_segment.cpp): cell_seed_mode, cell_plane and coarse byte for byte.
 // Inputs: the reference's stages 1-3 (RunReference) on random clouds (flat and sloped ground with
-// noise, objects, walls, dense clusters), the simulated street with an HDL-64E profile, both real
-// KITTI scans when ../shared/data is present, and hand-made stage 1-3 buffers for the degenerate
-// cases of tests/coarse_segment_test.cpp (collinear seeds, fewer than 16 seeds, walls, raised
-// cells, cells above the slope prior, a sloped line of seeds).
+// noise, objects, walls, dense clusters) and the scenes of tests/stage_scenes.h, and hand-made
+// stage 1-3 buffers for the degenerate cases of tests/coarse_segment_test.cpp (collinear seeds,
+// fewer than 16 seeds, walls, raised cells, cells above the slope prior, a sloped line of seeds).
+// tests/stage_harness.h runs and compares.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "apps/sim/scene.h"
-#include "host/gpu/coarse_segment.h"
-#include "host/io/kitti_bin.h"
-#include "host/io/sensor_profile.h"
 #include "reference_cpu/exact.h"
-#include "reference_cpu/pipeline.h"
-#include "reference_cpu/stages.h"
+#include "tests/coarse_segment_inputs.h"
 #include "tests/stage_harness.h"
+#include "tests/stage_scenes.h"
 #include "tests/stage_test_util.h"
-#include "tests/test_util.h"
-#include "tests/vk_test_util.h"
 
 namespace lpir {
 namespace {
 
-std::string FloatText(float f) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.9g (0x%08x)", double(f), exact::Bits(f));
-  return text;
-}
-std::string ValueText(uint32_t u) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%u = %d (0x%08x)", u, int32_t(u), u);
-  return text;
-}
-
-std::string CellText(const Params& p, const Frame& f, size_t c) {
-  const size_t near = size_t(p.rings_near) * p.sectors_near;
-  std::string s = c < near ? "cell " + std::to_string(c) + " (ring " +
-                                 std::to_string(c / p.sectors_near) + ", sector " +
-                                 std::to_string(c % p.sectors_near) + ")"
-                           : "cell " + std::to_string(c) + " (ring " +
-                                 std::to_string(p.rings_near + (c - near) / p.sectors_far) +
-                                 ", sector " + std::to_string((c - near) % p.sectors_far) + ")";
-  if (c < f.cell_count.size())
-    s += ": count " + std::to_string(f.cell_count[c]) + ", zmin " +
-         FloatText(exact::FromKey(f.cell_zmin[c])) + ", zmax " +
-         FloatText(exact::FromKey(f.cell_zmax[c]));
-  return s;
-}
-
-std::string PointText(const Params& p, const Frame& f, const Cloud& cloud, size_t i) {
-  std::string s = "point " + std::to_string(i) + ": x " + FloatText(cloud.x(i)) + ", y " +
-                  FloatText(cloud.y(i)) + ", zt " + FloatText(f.zt[i]);
-  if (f.point_cell[i] != kNone) s += ", " + CellText(p, f, f.point_cell[i]);
-  return s;
-}
-
-// Byte equality of one 32-bit buffer; on a mismatch the first differing element, both values in
-// decimal and hex, and what the element is (`describe`).
-template <class T, class Describe>
-::testing::AssertionResult SameBytes(const char* buffer, const std::vector<T>& cpu,
-                                     const std::vector<T>& gpu, Describe describe) {
-  static_assert(sizeof(T) == 4, "32-bit elements");
-  if (cpu.size() != gpu.size())
-    return ::testing::AssertionFailure()
-           << "coarse_segment: buffer " << buffer << " has " << gpu.size()
-           << " elements on the GPU, " << cpu.size() << " on the CPU";
-  if (cpu.empty() || std::memcmp(cpu.data(), gpu.data(), cpu.size() * 4) == 0)
-    return ::testing::AssertionSuccess();
-  size_t first = cpu.size(), count = 0;
-  for (size_t i = 0; i < cpu.size(); ++i)
-    if (cpu[i] != gpu[i]) {
-      if (first == cpu.size()) first = i;
-      ++count;
-    }
-  return ::testing::AssertionFailure()
-         << "coarse_segment: buffer " << buffer << " differs at element " << first << " (" << count
-         << " of " << cpu.size() << " differ): CPU " << ValueText(uint32_t(cpu[first])) << ", GPU "
-         << ValueText(uint32_t(gpu[first])) << "; " << describe(first);
-}
-
-struct Summary {
-  uint32_t modes[3] = {0, 0, 0};
-  uint32_t ground = 0, fallback = 0, steep = 0;
-};
-
-// Stage 4 on the GPU, as lpir::CoarseSegment(cloud, p, t, f): reads cloud.xyzi, f.zt and
-// f.point_cell (f.n each) and the stage 3 cells, fills f.cell_seed_mode, f.cell_plane, f.coarse.
-vk::Status CoarseSegmentOnGpu(const vk::Device& device, const Cloud& cloud, const Params& p,
-                              const Tables& t, Frame& f, double* gpu_ns) {
-  const uint32_t n = f.n, cells = CellCount(p);
-  test::StageHarness h(device, "coarse_segment");
-  vk::CoarseSegmentBuffers b;
-  b.params = h.Uniform(p);
-  b.xyzi = h.In("xyzi", cloud.xyzi, 4 * size_t(n));
-  b.zt = h.In("zt", f.zt, n);
-  b.point_cell = h.In("point_cell", f.point_cell, n);
-  b.cell_zmin = h.In("cell_zmin", f.cell_zmin, cells);
-  b.cell_zmax = h.In("cell_zmax", f.cell_zmax, cells);
-  b.cell_count = h.In("cell_count", f.cell_count, cells);
-  b.ring_inner = h.In("ring_inner", t.ring_inner, p.rings_near + p.rings_far);
-  b.cell_seed_mode = h.Out(&f.cell_seed_mode, cells);
-  b.cell_plane = h.Out(&f.cell_plane, 8 * size_t(cells));
-  b.coarse = h.Out(&f.coarse, n);
-  b.coarse_scratch = h.Scratch(vk::CoarseSegmentStage::ScratchBytes(cells));
-  return h.Run<vk::CoarseSegmentStage>(
-      b,
-      [&](const vk::CoarseSegmentStage& s, vk::CommandBuffer& cmd) {
-        return s.Record(cmd, n, cells);
-      },
-      gpu_ns);
-}
-
 // `in` holds stages 1-3 (anything of stage 4 in it is ignored); runs stage 4 on both sides.
-Summary ExpectSameCoarse(const vk::Context& context, const Cloud& cloud, const Params& p,
-                         const Tables& t, const Frame& in, const char* what) {
-  Frame cpu = in, gpu = in;
-  cpu.cell_seed_mode.clear(), cpu.cell_plane.clear(), cpu.coarse.clear();
-  gpu.cell_seed_mode.clear(), gpu.cell_plane.clear(), gpu.coarse.clear();
-  CoarseSegment(cloud, p, t, cpu);
-  double gpu_ns = 0;
-  const vk::Status status = CoarseSegmentOnGpu(context.device(), cloud, p, t, gpu, &gpu_ns);
-  EXPECT_TRUE(status.ok()) << status.message();
-  Summary s;
-  if (!status.ok()) return s;
-  auto cell = [&](size_t c) { return CellText(p, in, c); };
-  auto plane = [&](size_t k) {
-    return "cell_plane[" + std::to_string(k % 8) + "] of " + CellText(p, in, k / 8);
-  };
-  auto point = [&](size_t i) { return PointText(p, in, cloud, i); };
-  EXPECT_TRUE(SameBytes("cell_seed_mode", cpu.cell_seed_mode, gpu.cell_seed_mode, cell)) << what;
-  EXPECT_TRUE(SameBytes("cell_plane", cpu.cell_plane, gpu.cell_plane, plane)) << what;
-  EXPECT_TRUE(SameBytes("coarse", cpu.coarse, gpu.coarse, point)) << what;
-  for (size_t c = 0; c < cpu.cell_seed_mode.size(); ++c) {
-    if (!in.cell_count[c]) continue;
-    ++s.modes[cpu.cell_seed_mode[c] % 3];
-    const int32_t* pl = &cpu.cell_plane[8 * c];
-    if (cpu.cell_seed_mode[c] && pl[7] > 0 && pl[0] == 0 && pl[1] == 0 && pl[2] == 16384)
-      ++s.fallback;
-    if (cpu.cell_seed_mode[c] && pl[6] == -1) ++s.steep;
-  }
-  for (uint32_t l : cpu.coarse) s.ground += l;
-  std::printf(
-      "[coarse_segment] %s: %u points, %u ground; cells: %u no seeds, %u lowest, %u whole; %u "
-      "horizontal planes, %u too steep; GPU %.3f ms\n",
-      what, in.n, s.ground, s.modes[0], s.modes[1], s.modes[2], s.fallback, s.steep, gpu_ns / 1e6);
-  return s;
+void ExpectSameCoarse(const vk::Device& device, const Cloud& cloud, const Params& p,
+                      const Tables& t, const Frame& in, const std::string& what) {
+  test::ExpectSameStage<vk::CoarseSegmentStage>(device, p, &t, &cloud, in, what);
 }
 
-Summary ExpectSameOnCloud(const vk::Context& context, const Cloud& cloud, const SensorProfile& s,
-                          const char* what) {
-  const Params p = ParamsForSensor(s);
-  const Tables t = MakeTables(s, p);
-  Frame f;
-  RunReference(cloud, p, t, f);
-  return ExpectSameCoarse(context, cloud, p, t, f, what);
-}
-
-// ---- hand-made stage 1-3 inputs (as tests/coarse_segment_test.cpp builds them) ----------------
-
-uint32_t CellOf(const Params& p, const Tables& t, float x, float y) {
-  const uint32_t rings = p.rings_near + p.rings_far;
-  const uint32_t ring = RingOf(x * x + y * y, t.ring_bound2.data(), rings);
-  if (ring >= rings) return kNone;
-  const uint32_t u = ColumnOf(x, y, t.column_dir.data(), p.width);
-  return ring < p.rings_near
-             ? ring * p.sectors_near + u / (p.width / p.sectors_near)
-             : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far +
-                   u / (p.width / p.sectors_far);
-}
-
-Frame Inputs(const Cloud& c, const Params& p, const Tables& t) {
-  Frame f;
-  f.n = uint32_t(c.size());
-  f.flags.assign(f.n, kPointValid);
-  f.zt.resize(f.n);
-  f.r2.resize(f.n);
-  f.point_cell.resize(f.n);
-  const uint32_t cells = CellCount(p);
-  f.cell_zmin.assign(cells, kNone);
-  f.cell_zmax.assign(cells, 0u);
-  f.cell_count.assign(cells, 0u);
-  for (uint32_t i = 0; i < f.n; ++i) {
-    f.zt[i] = c.z(i);
-    f.r2[i] = c.x(i) * c.x(i) + c.y(i) * c.y(i);
-    const uint32_t cell = CellOf(p, t, c.x(i), c.y(i));
-    f.point_cell[i] = cell;
-    if (cell == kNone) continue;
-    f.cell_zmin[cell] = std::min(f.cell_zmin[cell], exact::Key(f.zt[i]));
-    f.cell_zmax[cell] = std::max(f.cell_zmax[cell], exact::Key(f.zt[i]));
-    f.cell_count[cell] += 1;
-  }
-  return f;
-}
-
-void AddPlane(Cloud* c, float x0, float x1, float y0, float y1, float step, float z0, float gx,
-              float gy, float amp, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> noise(-amp, amp);
-  for (float x = x0; x <= x1; x += step)
-    for (float y = y0; y <= y1; y += step)
-      c->Push(x, y, z0 + gx * x + gy * y + (amp > 0 ? noise(rng) : 0.0f), 0.3f);
-}
+using test::AddPlane;
 
 // A random scene: ground with a random grade and noise over the whole grid, boxes and walls on
 // it, scattered clutter, dense clusters, a few invalid points.
@@ -254,7 +74,11 @@ TEST_F(CoarseSegmentVk, RandomScenesMatchTheReference) {
   for (uint32_t seed = 1; seed <= 6; ++seed) {
     const size_t n = seed == 1 ? 1 : seed == 2 ? 100 : seed == 3 ? 5000 : 60000 * (seed - 3);
     const Cloud cloud = RandomScene(n, s.sensor_height, seed);
-    ExpectSameOnCloud(context(), cloud, s, ("random " + std::to_string(n)).c_str());
+    const Params p = ParamsForSensor(s);
+    const Tables t = MakeTables(s, p);
+    Frame f;
+    RunReference(cloud, p, t, f);
+    ExpectSameCoarse(device(), cloud, p, t, f, "random " + std::to_string(n));
   }
 }
 
@@ -265,41 +89,23 @@ TEST_F(CoarseSegmentVk, RandomHandMadeInputsMatchTheReference) {
   const Tables t = MakeTables(s, p);
   for (uint32_t seed = 11; seed <= 14; ++seed) {
     const Cloud cloud = RandomScene(40000, p.sensor_height, seed);
-    ExpectSameCoarse(context(), cloud, p, t, Inputs(cloud, p, t), "random hand-made");
+    ExpectSameCoarse(device(), cloud, p, t, test::CoarseInputs(cloud, p, t), "random hand-made");
   }
 }
 
-SimOptions Scene(uint32_t seed, float pitch, bool rings) {
-  SimOptions o;
-  o.seed = seed;
-  o.pitch_deg = pitch;
-  o.emit_rings = rings;
-  return o;
+class CoarseSegmentVkScene : public test::StageScene {};
+
+TEST_P(CoarseSegmentVkScene, MatchesTheReference) {
+  ExpectSameCoarse(device(), cloud, p, t, frame, what);
+  size_t lowest = 0, ground = 0;
+  for (size_t c = 0; c < frame.cell_seed_mode.size(); ++c)
+    lowest += frame.cell_count[c] && frame.cell_seed_mode[c] == 1;
+  for (uint32_t l : frame.coarse) ground += l;
+  EXPECT_GT(lowest, 0u) << "no cell seeded from its lowest points";
+  EXPECT_GT(ground, 0u) << "no coarse ground";
 }
 
-TEST_F(CoarseSegmentVk, SimulatedStreetHdl64e) {
-  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
-  for (const SimOptions& o : {Scene(1, 0.0f, false), Scene(2, 1.5f, true), Scene(13, 0.0f, true)}) {
-    const SimScan scan = Simulate(s, o);
-    const Summary sum = ExpectSameOnCloud(context(), scan.cloud, s, "simulated street");
-    EXPECT_GT(sum.modes[1], 0u);
-    EXPECT_GT(sum.ground, 0u);
-  }
-}
-
-TEST_F(CoarseSegmentVk, Kitti07Frame964) {
-  LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
-  const Cloud cloud = ReadKittiBin(test::DataFile("kitti/07/velodyne/000964.bin"));
-  ExpectSameOnCloud(context(), cloud, LoadSensorProfile("hdl64e", test::SensorsDir()),
-                    "kitti 07/000964");
-}
-
-TEST_F(CoarseSegmentVk, KittiUnknownFrame56) {
-  LPIR_REQUIRE_DATA("kitti/unknown/velodyne/000056.bin");
-  const Cloud cloud = ReadKittiBin(test::DataFile("kitti/unknown/velodyne/000056.bin"));
-  ExpectSameOnCloud(context(), cloud, LoadSensorProfile("hdl64e", test::SensorsDir()),
-                    "kitti unknown/000056");
-}
+LPIR_STAGE_SCENES(CoarseSegmentVkScene);
 
 // The degenerate cases of tests/coarse_segment_test.cpp, in one frame each.
 class CoarseSegmentVkDegenerate : public test::VkTest {
@@ -308,56 +114,12 @@ class CoarseSegmentVkDegenerate : public test::VkTest {
   Params p = ParamsForSensor(s);
   Tables t = MakeTables(s, p);
   void Check(const Cloud& c, const char* what) {
-    ExpectSameCoarse(context(), c, p, t, Inputs(c, p, t), what);
+    ExpectSameCoarse(device(), c, p, t, test::CoarseInputs(c, p, t), what);
   }
 };
 
-// A height near `base` from which `delta` above is exactly `delta` in float: (h + delta) - h ==
-// delta, so a point there lies exactly on a threshold of eq. 5.
-float ExactBase(float base, float delta) {
-  float h = base;
-  for (int k = 0; k < 100000; ++k, h = std::nextafter(h, -1e9f)) {
-    const float top = h + delta;
-    if (top - h == delta) return h;
-  }
-  return base;
-}
-
-// Points exactly on the thresholds of eq. 5, in cells far enough apart not to be neighbours:
-// h_max - h_nmin == h_athr (whole cell), z_t - h_min == lambda (seed), and h_min - h_nmin ==
-// lambda + rise_margin (a cell raised exactly to the limit above its neighbour).
 TEST_F(CoarseSegmentVkDegenerate, PointsExactlyOnTheSeedThresholds) {
-  // Thresholds on a coarse binary grid, so that heights near the road reach them exactly.
-  p.h_athr = 0.125f;
-  p.seed_margin = 0.25f;
-  p.slope_max = 0.0625f;
-  p.rise_margin = 0.25f;
-  const float road = -p.sensor_height;
-  const float lambda = p.ring_res_near * p.slope_max + p.seed_margin;
-  const float rise = lambda + p.rise_margin;
-  Cloud c;
-  const float a = ExactBase(road, p.h_athr);  // whole cell by <=, lowest points by <
-  ASSERT_EQ((a + p.h_athr) - a, p.h_athr);
-  for (int k = 0; k < 20; ++k) {
-    c.Push(5.0f + 0.05f * k, 0.1f + 0.01f * (k % 5), a, 0.3f);
-    c.Push(5.02f + 0.05f * k, 0.12f + 0.01f * (k % 3), a + p.h_athr, 0.3f);
-    c.Push(5.03f + 0.05f * k, 0.14f, a + 0.5f * p.h_athr, 0.3f);
-  }
-  const float b = ExactBase(road, lambda);  // seeds exactly at lambda
-  ASSERT_EQ((b + lambda) - b, lambda);
-  for (int k = 0; k < 20; ++k) {
-    c.Push(-5.0f - 0.05f * k, 0.1f + 0.01f * (k % 5), b, 0.3f);
-    c.Push(-5.02f - 0.05f * k, 0.12f + 0.01f * (k % 3), b + lambda, 0.3f);
-    c.Push(-5.03f - 0.05f * k, 0.14f, b + lambda + p.h_athr + 0.2f, 0.3f);
-  }
-  const float d = ExactBase(road, rise);  // ring 3 raised exactly by lambda + rise_margin
-  ASSERT_EQ((d + rise) - d, rise);
-  for (float x = 4.1f; x <= 9.9f; x += 0.1f)
-    for (float y = 5.0f; y <= 5.6f; y += 0.1f) {
-      const float r = std::hypot(x, y);
-      c.Push(x, y, r >= 8.0f && r < 10.0f ? d + rise : d, 0.3f);
-    }
-  Check(c, "points on the seed thresholds");
+  Check(test::SeedThresholdCloud(&p), "points on the seed thresholds");
 }
 
 TEST_F(CoarseSegmentVkDegenerate, EmptyCloud) { Check(Cloud(), "empty"); }

@@ -9,6 +9,7 @@
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
+#include "tests/feature_maps_images.h"
 
 namespace lpir {
 namespace {
@@ -287,6 +288,20 @@ TEST(FeatureMaps, IsolatedPixelHasZeroVariance) {
   EXPECT_EQ(im.f.f_slope[im.Pix(1, 4)], -1.0f);
   EXPECT_EQ(im.f.f_edge_l[im.Pix(1, 4)], 0.0f);
   EXPECT_EQ(im.f.f_edge_r[im.Pix(1, 4)], 0.0f);
+}
+
+// Holes between neighbours whose ranges differ by hole_gap give or take a few ulps of r2
+// (tests/feature_maps_images.h; the kernel runs on the same image in feature_maps_vk_test.cpp):
+// both sides of the bound occur, some filled and some left empty.
+TEST(FeatureMaps, HolesAroundTheHoleGapFallOnBothSides) {
+  const Params p = test::SmallImage(1024, 16);
+  std::vector<uint32_t> holes;
+  Frame f = test::HoleGapImage(p, &holes);
+  FeatureMaps(p, f);
+  size_t filled = 0;
+  for (uint32_t pix : holes) filled += f.pixel_filled[pix] == 2u;
+  EXPECT_GT(filled, 0u);
+  EXPECT_LT(filled, holes.size());
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "reference_cpu/stages.h"
+#include "tests/fuse_images.h"
 
 namespace lpir {
 namespace {
@@ -29,42 +31,23 @@ const char* Name(uint32_t c) {
   }
 }
 
-// An image of `beams` x `width` pixels, every pixel empty; Measure() gives a pixel a point.
-struct Image {
-  Params p = DefaultParams();
-  Frame f;
-  Image(uint32_t width, uint32_t beams) {
-    p.width = width;
-    p.beams = beams;
-    const size_t pixels = size_t(width) * beams;
-    f.pixel_class.assign(pixels, kPixEmpty);
-    f.pixel_point.assign(pixels, kNone);
-    f.pixel_filled.assign(pixels, 0u);
-    f.f_range.assign(pixels, 0.0f);
-    f.f_height.assign(pixels, 0.0f);
+using Image = test::FuseImage;
+
+// The reference's verdict on every threshold column of `images` (tests/fuse_images.h; the
+// kernel runs on the same images in tests/fuse_vk_test.cpp).
+void ExpectVerdicts(std::vector<test::FuseVerdicts> images) {
+  for (test::FuseVerdicts& c : images) {
+    Fuse(c.im.p, c.im.f);
+    size_t vetoes = 0, spared = 0;
+    for (const auto& [col, veto] : c.expect) {
+      EXPECT_EQ(c.im.Fused(c.row, col), veto ? kPixVetoed : kPixGround)
+          << c.what << ", column " << col << ": got " << Name(c.im.Fused(c.row, col));
+      vetoes += veto, spared += !veto;
+    }
+    EXPECT_GT(vetoes, 0u) << c.what;
+    EXPECT_EQ(spared > 0, c.spares) << c.what;
   }
-  uint32_t Pix(uint32_t v, uint32_t u) const { return v * p.width + u; }
-  // A measured pixel with its own point and that point's coarse label.
-  void Measure(uint32_t v, uint32_t u, uint32_t cls, bool coarse_ground, float range = 10.0f,
-               float height = -1.7f) {
-    const uint32_t pix = Pix(v, u);
-    f.pixel_class[pix] = cls;
-    f.pixel_point[pix] = f.n++;
-    f.coarse.push_back(coarse_ground ? 1u : 0u);
-    f.pixel_filled[pix] = 1u;
-    f.f_range[pix] = range;
-    f.f_height[pix] = height;
-  }
-  // A hole-filled pixel: features and a class, no point.
-  void Fill(uint32_t v, uint32_t u, uint32_t cls, float range = 10.0f, float height = -1.7f) {
-    const uint32_t pix = Pix(v, u);
-    f.pixel_class[pix] = cls;
-    f.pixel_filled[pix] = 2u;
-    f.f_range[pix] = range;
-    f.f_height[pix] = height;
-  }
-  uint32_t Fused(uint32_t v, uint32_t u) const { return f.pixel_fused[Pix(v, u)]; }
-};
+}
 
 TEST(Fuse, PixelClassAgainstTheCoarseLabel) {
   // Contract: agreement keeps the class; ground vs non-ground disagreement -> unknown; an unknown
@@ -286,6 +269,16 @@ TEST_F(FuseVeto, TopRowsHaveNothingAboveAndZeroRowsDisablesIt) {
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 1), kPixGround);
 }
+
+// Occluders exactly on the veto's reach and top, one ulp either side, measured or hole filled,
+// and on an empty pixel: only nearer and higher than both bounds vetoes.
+TEST(Fuse, VetoAtItsExactThresholds) { ExpectVerdicts(test::VetoThresholdImages()); }
+
+// A landing and a candidate exactly on the step spare's bound and far limit, one ulp beside.
+TEST(Fuse, StepSpareAtItsExactThresholds) { ExpectVerdicts(test::StepSpareThresholdImages()); }
+
+// Occluders whose clearance is exactly occ_pass or one ulp short: only ground is passed under.
+TEST(Fuse, PassedUnderAtItsExactThresholds) { ExpectVerdicts(test::PassedUnderThresholdImages()); }
 
 }  // namespace
 }  // namespace lpir

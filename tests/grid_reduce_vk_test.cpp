@@ -3,153 +3,40 @@
 // Inputs: the reference's stages 1-2 on random clouds of 1 to 200000 points (invalid points,
 // reflection noise, points on and beyond the ring boundaries, dense clusters that put thousands
 // of points in one cell), hand-made stage 1-2 buffers (every flag value, +-0 and subnormal
-// heights, r2 on every ring boundary), the simulated street with an HDL-64E profile, and the real
-// scans when ../shared/data is present.
+// heights, r2 on every ring boundary), and the scenes of tests/stage_scenes.h
+// (tests/stage_harness.h compares).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "apps/sim/scene.h"
-#include "host/gpu/grid_reduce.h"
-#include "host/io/kitti_bin.h"
-#include "host/io/sensor_profile.h"
 #include "reference_cpu/exact.h"
-#include "reference_cpu/stages.h"
 #include "tests/stage_harness.h"
+#include "tests/stage_scenes.h"
 #include "tests/stage_test_util.h"
-#include "tests/test_util.h"
-#include "tests/vk_test_util.h"
 
 namespace lpir {
 namespace {
 
-std::string FloatText(float f) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.9g (0x%08x)", double(f), exact::Bits(f));
-  return text;
-}
-std::string ValueText(uint32_t u) {
-  char text[48];
-  std::snprintf(text, sizeof(text), "%u (0x%08x)", u, u);
-  return text;
-}
-
-// What a point is: its stage 1-2 inputs (and coordinates when a cloud is at hand).
-std::string PointText(const Frame& f, const Cloud* cloud, const Params& p, size_t i) {
-  std::string s = "point " + std::to_string(i) + ": flags " + std::to_string(f.flags[i]) + ", r2 " +
-                  FloatText(f.r2[i]) + ", zt " + FloatText(f.zt[i]) + ", pixel " +
-                  ValueText(f.point_pixel[i]);
-  if (f.point_pixel[i] != kNone)
-    s += " (row " + std::to_string(f.point_pixel[i] / p.width) + ", column " +
-         std::to_string(f.point_pixel[i] % p.width) + ")";
-  if (cloud && i < cloud->size())
-    s += ", x " + FloatText(cloud->x(i)) + ", y " + FloatText(cloud->y(i)) + ", z " +
-         FloatText(cloud->z(i));
-  return s;
-}
-
-std::string CellText(const Params& p, size_t c) {
-  const size_t near = size_t(p.rings_near) * p.sectors_near;
-  if (c < near)
-    return "cell " + std::to_string(c) + " (near ring " + std::to_string(c / p.sectors_near) +
-           ", sector " + std::to_string(c % p.sectors_near) + ")";
-  return "cell " + std::to_string(c) + " (far ring " + std::to_string((c - near) / p.sectors_far) +
-         " = ring " + std::to_string(p.rings_near + (c - near) / p.sectors_far) + ", sector " +
-         std::to_string((c - near) % p.sectors_far) + ")";
-}
-
-// Byte equality of one buffer; on a mismatch the first differing element, both values in decimal
-// and hex, and what the element is (`describe`).
-template <class Describe>
-::testing::AssertionResult SameBytes(const char* buffer, const std::vector<uint32_t>& cpu,
-                                     const std::vector<uint32_t>& gpu, Describe describe,
-                                     uint64_t* compared) {
-  if (cpu.size() != gpu.size())
-    return ::testing::AssertionFailure()
-           << "grid_reduce: buffer " << buffer << " has " << gpu.size() << " elements on the GPU, "
-           << cpu.size() << " on the CPU";
-  *compared += cpu.size();
-  if (cpu.empty() || std::memcmp(cpu.data(), gpu.data(), cpu.size() * 4) == 0)
-    return ::testing::AssertionSuccess();
-  size_t first = cpu.size(), count = 0;
-  for (size_t i = 0; i < cpu.size(); ++i)
-    if (cpu[i] != gpu[i]) {
-      if (first == cpu.size()) first = i;
-      ++count;
-    }
-  return ::testing::AssertionFailure()
-         << "grid_reduce: buffer " << buffer << " differs at element " << first << " (" << count
-         << " of " << cpu.size() << " differ): CPU " << ValueText(cpu[first]) << ", GPU "
-         << ValueText(gpu[first]) << "; " << describe(first);
-}
-
-// Stage 3 on the GPU, as lpir::GridReduce(p, t, f): reads f.flags, f.r2, f.zt and f.point_pixel
-// (f.n each), fills f.point_cell, f.cell_zmin, f.cell_zmax and f.cell_count.
-vk::Status GridReduceOnGpu(const vk::Device& device, const Params& p, const Tables& t, Frame& f,
-                           double* gpu_ns) {
-  const uint32_t n = f.n, cells = CellCount(p);
-  test::StageHarness h(device, "grid_reduce");
-  vk::GridReduceBuffers b;
-  b.params = h.Uniform(p);
-  b.flags = h.In("flags", f.flags, n);
-  b.r2 = h.In("r2", f.r2, n);
-  b.zt = h.In("zt", f.zt, n);
-  b.point_pixel = h.In("point_pixel", f.point_pixel, n);
-  b.ring_bound2 = h.In("ring_bound2", t.ring_bound2, p.rings_near + p.rings_far);
-  b.point_cell = h.Out(&f.point_cell, n);
-  b.cell_zmin = h.Out(&f.cell_zmin, cells);
-  b.cell_zmax = h.Out(&f.cell_zmax, cells);
-  b.cell_count = h.Out(&f.cell_count, cells);
-  return h.Run<vk::GridReduceStage>(
-      b,
-      [&](const vk::GridReduceStage& s, vk::CommandBuffer& cmd) { return s.Record(cmd, n, cells); },
-      gpu_ns);
-}
-
-// `in` holds the stage 1-2 buffers; runs stage 3 on both sides from them and compares. Returns the
-// number of values compared.
-uint64_t ExpectSameGridReduce(const vk::Context& context, const Params& p, const Tables& t,
-                              const Frame& in, const Cloud* cloud, const char* what) {
-  Frame cpu = in, gpu = in;
-  GridReduce(p, t, cpu);
-  double gpu_ns = 0;
-  const vk::Status status = GridReduceOnGpu(context.device(), p, t, gpu, &gpu_ns);
-  EXPECT_TRUE(status.ok()) << status.message();
-  if (!status.ok()) return 0;
-  uint64_t compared = 0;
-  auto point = [&](size_t i) { return PointText(in, cloud, p, i); };
-  auto cell = [&](size_t c) { return CellText(p, c); };
-  EXPECT_TRUE(SameBytes("point_cell", cpu.point_cell, gpu.point_cell, point, &compared));
-  EXPECT_TRUE(SameBytes("cell_zmin", cpu.cell_zmin, gpu.cell_zmin, cell, &compared));
-  EXPECT_TRUE(SameBytes("cell_zmax", cpu.cell_zmax, gpu.cell_zmax, cell, &compared));
-  EXPECT_TRUE(SameBytes("cell_count", cpu.cell_count, gpu.cell_count, cell, &compared));
-  size_t in_cells = 0, occupied = 0;
-  uint32_t densest = 0;
-  for (uint32_t c : cpu.point_cell) in_cells += c != kNone;
-  for (uint32_t n : cpu.cell_count) occupied += n != 0, densest = std::max(densest, n);
-  std::printf(
-      "[grid_reduce] %s: %u points (%zu in a cell), %zu of %u cells occupied, densest %u: %llu "
-      "values compared, GPU %.3f ms\n",
-      what, in.n, in_cells, occupied, CellCount(p), densest,
-      static_cast<unsigned long long>(compared), gpu_ns / 1e6);
-  return compared;
+// `in` holds the stage 1-2 buffers; runs stage 3 on both sides from them and compares.
+void ExpectSameGridReduce(const vk::Device& device, const Params& p, const Tables& t,
+                          const Frame& in, const Cloud* cloud, const std::string& what) {
+  EXPECT_EQ(test::ExpectSameStage<vk::GridReduceStage>(device, p, &t, cloud, in, what),
+            test::StageBytes<vk::GridReduceStage>(in.n, p));
 }
 
 // Stages 1-2 of the reference on `cloud`, then the comparison.
-uint64_t ExpectSameOnCloud(const vk::Context& context, const Cloud& cloud, const Params& p,
-                           const Tables& t, const char* what) {
+void ExpectSameOnCloud(const vk::Device& device, const Cloud& cloud, const Params& p,
+                       const Tables& t, const std::string& what) {
   Frame f;
   Prepare(cloud, p, f);
   Project(cloud, p, t, f);
-  return ExpectSameGridReduce(context, p, t, f, &cloud, what);
+  ExpectSameGridReduce(device, p, t, f, &cloud, what);
 }
 
 // A 16-beam sensor seeing to 140 m, beyond the grid's last ring (120 m), slightly tilted.
@@ -221,7 +108,7 @@ TEST_P(GridReduceVk, RandomCloudMatchesTheReference) {
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);
   const Cloud cloud = RandomCloud(c.points, c.ring, p, t, uint32_t(c.points * 2 + c.ring + 7));
-  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "random"), c.points + 3ull * CellCount(p));
+  ExpectSameOnCloud(device(), cloud, p, t, "random");
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -287,49 +174,17 @@ TEST_F(GridReduceVkFrame, HandMadeBuffersMatchTheReference) {
       f.zt[i] = (rng() % 3 == 0) ? specials_z[rng() % 11] : (unit(rng) - 0.5f) * 8.0f;
       f.point_pixel[i] = i < pixels ? i : rng() % pixels;  // every pixel, so every column
     }
-    EXPECT_EQ(ExpectSameGridReduce(context(), p, t, f, nullptr, "hand-made"),
-              n + 3ull * CellCount(p));
+    ExpectSameGridReduce(device(), p, t, f, nullptr, "hand-made");
   }
 }
 
-SimOptions Scene(uint32_t seed, float pitch, bool rings) {
-  SimOptions o;
-  o.seed = seed;
-  o.pitch_deg = pitch;
-  o.emit_rings = rings;
-  return o;
+class GridReduceVkScene : public test::StageScene {};
+
+TEST_P(GridReduceVkScene, MatchesTheReference) {
+  ExpectSameGridReduce(device(), p, t, frame, &cloud, what);
 }
 
-TEST_F(GridReduceVkFrame, SimulatedStreetHdl64e) {
-  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
-  const Params p = ParamsForSensor(s);
-  const Tables t = MakeTables(s, p);
-  for (const SimOptions& o : {Scene(1, 0.0f, false), Scene(2, 1.5f, true)}) {
-    const SimScan scan = Simulate(s, o);
-    EXPECT_EQ(ExpectSameOnCloud(context(), scan.cloud, p, t, "simulated street"),
-              scan.cloud.size() + 3ull * CellCount(p));
-  }
-}
-
-TEST_F(GridReduceVkFrame, Kitti07Frame964) {
-  LPIR_REQUIRE_DATA("kitti/07/velodyne/000964.bin");
-  const Cloud cloud = ReadKittiBin(test::DataFile("kitti/07/velodyne/000964.bin"));
-  const SensorProfile s = LoadSensorProfile("hdl64e", test::SensorsDir());
-  const Params p = ParamsForSensor(s);
-  const Tables t = MakeTables(s, p);
-  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "kitti 07/000964"),
-            cloud.size() + 3ull * CellCount(p));
-}
-
-TEST_F(GridReduceVkFrame, Rellis3dOuster) {
-  LPIR_REQUIRE_DATA("rellis3d/os1/000104.bin");
-  const Cloud cloud = ReadKittiBin(test::DataFile("rellis3d/os1/000104.bin"));
-  const SensorProfile s = LoadSensorProfile("os1-64", test::SensorsDir());
-  const Params p = ParamsForSensor(s);
-  const Tables t = MakeTables(s, p);
-  EXPECT_EQ(ExpectSameOnCloud(context(), cloud, p, t, "rellis3d os1/000104"),
-            cloud.size() + 3ull * CellCount(p));
-}
+LPIR_STAGE_SCENES(GridReduceVkScene);
 
 }  // namespace
 }  // namespace lpir

@@ -10,32 +10,12 @@
 #include <vector>
 
 #include "reference_cpu/stages.h"
+#include "tests/grow_images.h"
 
 namespace lpir {
 namespace {
 
-struct Image {
-  Params p = DefaultParams();
-  Frame f;
-  Image(uint32_t width, uint32_t beams, uint32_t fill = kPixEmpty) {
-    p.width = width;
-    p.beams = beams;
-    p.column_arc = float(2.0 * 3.14159265358979323846 / double(width));
-    const size_t pixels = size_t(width) * beams;
-    f.pixel_fused.assign(pixels, fill);
-    f.f_range.assign(pixels, 10.0f);
-    f.f_height.assign(pixels, -1.7f);
-  }
-  uint32_t Pix(uint32_t v, uint32_t u) const { return v * p.width + u; }
-  void Set(uint32_t v, uint32_t u, uint32_t cls, float height, float range = 10.0f) {
-    const uint32_t pix = Pix(v, u);
-    f.pixel_fused[pix] = cls;
-    f.f_height[pix] = height;
-    f.f_range[pix] = range;
-  }
-  void Run() { Grow(p, f); }
-  uint32_t Grown(uint32_t v, uint32_t u) const { return f.pixel_grown[Pix(v, u)]; }
-};
+using Image = test::GrowImage;
 
 // The height change one step between neighbours q and r may make (contract: grow_dz +
 // grow_grade * (|dr| + min(r_q, r_r) * column_arc when the column changes): symmetric).
@@ -238,30 +218,9 @@ std::vector<uint32_t> JacobiGrow(const Params& p, const Frame& f) {
   return cur;
 }
 
-// A random label image: random heights and ranges near a step's allowance.
+// A random label image of the classes fuse gives (tests/grow_images.h).
 Image RandomImage(uint32_t seed, float grow_grade) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<uint32_t> width_pick(8, 48), beams_pick(2, 16);
-  Image im(width_pick(rng), beams_pick(rng));
-  im.p.min_component = 0;
-  im.p.grow_grade = grow_grade;
-  // ground, non-ground, unknown, empty, unknown off the coarse ground
-  std::discrete_distribution<int> cls({3, 2, 8, 1, 4});
-  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-  const uint32_t classes[5] = {kPixGround, kPixNonGround, kPixUnknown, kPixEmpty, kPixUnknownOff};
-  // Heights spread over about twice a typical step allowance, so that many steps sit near it.
-  const float typical = im.p.grow_dz + grow_grade * (1.0f + 20.0f * im.p.column_arc);
-  for (uint32_t v = 0; v < im.p.beams; ++v)
-    for (uint32_t u = 0; u < im.p.width; ++u) {
-      const uint32_t pix = im.Pix(v, u);
-      im.f.pixel_fused[pix] = classes[cls(rng)];
-      im.f.f_height[pix] = -1.7f + 2.0f * typical * uni(rng);
-      im.f.f_range[pix] = 30.0f - 1.5f * float(v) + 2.0f * uni(rng);
-    }
-  // Seeds are rare: growth has to travel.
-  for (uint32_t& c : im.f.pixel_fused)
-    if (c == kPixGround && uni(rng) < 0.7f) c = kPixUnknown;
-  return im;
+  return test::RandomGrowImage(seed, grow_grade, {8, 48, 2, 16}, false);
 }
 
 TEST(Grow, EqualsTheJacobiFixedPointOnRandomImages) {
@@ -462,6 +421,25 @@ TEST(Grow, AVetoedPixelIsLiftedWhereTheGroundGoesOnAroundIt) {
       EXPECT_EQ(im.f.pixel_grown[pix], kPixVetoed) << "pixel " << pix;
       EXPECT_EQ(im.f.pixel_comp[pix], kNone) << "pixel " << pix;
     }
+}
+
+// The adversarial images (tests/grow_images.h; the kernel runs on them in tests/grow_vk_test.cpp):
+// nothing grows without a seed, a serpentine corridor grows whole, and a bank's column climbed
+// from its seed grows alone.
+TEST(Grow, AdversarialImagesGrowAsTheirShapesSay) {
+  for (test::SeededAdversary& a : test::SeededAdversaries()) {
+    ASSERT_FALSE(a.unknown.empty()) << a.name;
+    a.im.Run();
+    size_t grown = 0;
+    for (uint32_t pix : a.unknown) grown += a.im.f.pixel_grown[pix] == kPixGround;
+    if (!a.seeded) {
+      EXPECT_EQ(grown, 0u) << a.name << ": nothing grows without a seed";
+    } else if (a.name.rfind("serpentine", 0) == 0) {
+      EXPECT_EQ(grown, a.unknown.size()) << a.name << ": the whole corridor grows";
+    } else if (a.name.rfind("banks", 0) == 0) {
+      EXPECT_EQ(grown, 200u) << a.name << ": the seed's column, and only it, grows";
+    }
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// KITTI .bin and nuScenes .pcd.bin: round trips, malformed files, the real scans.
+// KITTI .bin and nuScenes .pcd.bin: round trips, malformed files, the real scans (absent, empty
+// and cut files: tests/io_truncation_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -54,31 +55,11 @@ TEST(IoKittiBin, NuScenesWriteWithoutRingIsAnError) {
       {"ring"}));
 }
 
-TEST(IoKittiBin, MissingFile) {
-  const std::string path = test::TempDir() + "/absent.bin";
-  EXPECT_TRUE(ThrowsIoError([&] { ReadKittiBin(path); }, path, {"no such file"}));
-}
-
-TEST(IoKittiBin, EmptyFile) {
-  const std::string path = test::TempDir() + "/empty.bin";
-  WriteRaw(path, "");
-  EXPECT_TRUE(ThrowsIoError([&] { ReadKittiBin(path); }, path, {"empty file"}));
-}
-
 TEST(IoKittiBin, SizeNotAWholeNumberOfPoints) {
   const std::string path = test::TempDir() + "/odd.bin";
   WriteRaw(path, std::string(1001, '\0'));
   EXPECT_TRUE(ThrowsIoError([&] { ReadKittiBin(path); }, path,
                             {"size 1001 bytes", "not a whole number of 16-byte points"}));
-}
-
-TEST(IoKittiBin, TruncatedFileIsNotAWholeNumberOfPoints) {
-  const std::string dir = test::TempDir();
-  WriteKittiBin(dir + "/full.bin", test::SampleCloud(5, false));
-  const std::string bytes = test::ReadRaw(dir + "/full.bin");
-  const std::string path = dir + "/cut.bin";
-  WriteRaw(path, bytes.substr(0, bytes.size() - 3));
-  EXPECT_TRUE(ThrowsIoError([&] { ReadKittiBin(path); }, path, {"77 bytes", "16-byte"}));
 }
 
 TEST(IoKittiBin, NuScenesSizeMustBeWhole20BytePoints) {

@@ -184,18 +184,11 @@ TEST(PipelineScenes, CarParkedBesideTheSensorIsNotGround) {
   EXPECT_GE(ScoreCounts(st.dg).precision, kUrbanPrecisionFloor);
 }
 
-// FINDING (disabled until fixed): seeds 13 and 18 also park a car beside the sensor, and its roof
-// still becomes ground (1932 of 24539 and 110 of 38359 car points at the re-tuned defaults). The
-// entry (seed 13): a ring-1 cell (2-4 m) whose 10 mode-1 seeds, 1.4 m beyond the car, fit a plane
-// tilted by about 25 degrees (Q14 normal (307, -6895, 14858), n_z^2 = 0.82: accepted, since
-// normal_min_z2 = 0.7 allows 33 degrees, far beyond slope_max); the roof, 1 m above the road, lies
-// 0.29 m from that plane, within plane_dist_floor: coarse ground, and stage 8 grows it over the
-// whole roof.
-// Streets where a car is parked right beside the sensor: a plane fitted to the few seeds under its
-// body once tilted 25 degrees and put its roof on the ground (1932 points, seed 13). Near the
-// sensor no car body point may be ground (a wheel's contact with the road may: CarBody); far away
-// a lone body point in a 4 m cell can still pass (seed 13: one point at 68 m, 0.5 m above the
-// road), so overall the bound is 0.1 %.
+// Streets where a car is parked right beside the sensor (seeds 13 and 18): a plane fitted to the
+// few seeds under its body may tilt by 25 degrees (seed 13) and must not put the roof, 0.29 m from
+// it, on the ground. Near the sensor no car body point may be ground (a wheel's contact with the
+// road may: CarBody); far away a lone body point in a 4 m cell can still pass (seed 13: one point
+// at 68 m, 0.5 m above the road), so overall the bound is 0.1 %.
 TEST(PipelineScenes, CarRoofIsNotGroundNextToATiltedCellPlane) {
   Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   for (uint32_t seed : {13u, 18u}) {

@@ -63,4 +63,45 @@ inline Cloud StreetLikeCloud(size_t n, uint32_t seed) {
   return cloud;
 }
 
+// A random street-like cloud around a sensor `sensor_height` above the ground: objects standing
+// on it, slopes, invalid and noise points, and second returns beside the point before, so that
+// many points share a pixel with a winner near them (fuse's occluders, back_project's lost points).
+inline Cloud StreetWithSecondReturns(size_t n, float sensor_height, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  Cloud cloud;
+  for (size_t i = 0; i < n; ++i) {
+    const float az = unit(rng) * 6.2831853f, r = 3.0f + 50.0f * unit(rng) * unit(rng);
+    float x = r * std::cos(az), y = r * std::sin(az), z = -sensor_height + 0.05f * unit(rng);
+    float in = unit(rng) * 0.9f;
+    switch (rng() % 12) {
+      case 0:
+      case 1:
+      case 2:
+        z = -sensor_height + 3.0f * unit(rng);
+        break;
+      case 3:
+        z += 0.1f * r * unit(rng);
+        break;
+      case 4:
+        if (rng() % 4 == 0) x = 0.0f, y = 0.0f, z = 0.0f;  // invalid
+        break;
+      case 5:
+        if (rng() % 4 == 0) z = -sensor_height - 1.0f, in = 0.0f;  // reflection noise
+        break;
+      case 6:
+        if (i > 0) {  // a second return next to the previous point: a lost point, near its winner
+          x = cloud.x(i - 1) * (1.0f + 0.002f * unit(rng));
+          y = cloud.y(i - 1) * (1.0f + 0.002f * unit(rng));
+          z = cloud.z(i - 1) + 0.3f * (unit(rng) - 0.5f);
+        }
+        break;
+      default:
+        break;
+    }
+    cloud.Push(x, y, z, in);
+  }
+  return cloud;
+}
+
 }  // namespace lpir::test

@@ -44,6 +44,14 @@ bool HasVulkanDevice();
                       "install mesa-vulkan-drivers for lavapipe";                          \
   } while (0)
 
+// For tests that parse a JSON report with Python: skip, saying why, without python3 or its json.
+#define LPIR_REQUIRE_PYTHON_JSON()                                                      \
+  do {                                                                                  \
+    if (::lpir::test::RunCommand("python3 -c 'import json'") != 0)                      \
+      GTEST_SKIP() << "python3 with its json module not found: the JSON report is not " \
+                      "parsed";                                                         \
+  } while (0)
+
 #define LPIR_REQUIRE_DATA(path)                                           \
   do {                                                                    \
     if (::lpir::test::DataFile(path).empty())                             \
