@@ -74,18 +74,18 @@ class FrameBench {
   vk::Status status_;
 };
 
-// Calls a reference stage with the arguments its parameter list takes (one of the four lists of
-// reference_cpu/stage_table.def).
+// Calls a reference stage, on one thread, with the arguments its parameter list takes (one of the
+// four lists of reference_cpu/stage_table.def, each with the threads last).
 template <class Fn>
 void CallReference(Fn fn, const Cloud& c, const Params& p, const Tables& t, Frame& f) {
-  if constexpr (std::is_invocable_v<Fn, const Cloud&, const Params&, Frame&>)
-    fn(c, p, f);
-  else if constexpr (std::is_invocable_v<Fn, const Params&, Frame&>)
-    fn(p, f);
-  else if constexpr (std::is_invocable_v<Fn, const Params&, const Tables&, Frame&>)
-    fn(p, t, f);
+  if constexpr (std::is_invocable_v<Fn, const Cloud&, const Params&, Frame&, Threads>)
+    fn(c, p, f, Threads());
+  else if constexpr (std::is_invocable_v<Fn, const Params&, Frame&, Threads>)
+    fn(p, f, Threads());
+  else if constexpr (std::is_invocable_v<Fn, const Params&, const Tables&, Frame&, Threads>)
+    fn(p, t, f, Threads());
   else
-    fn(c, p, t, f);
+    fn(c, p, t, f, Threads());
 }
 
 // The stage table's name and reference function of vk::<Type>Stage.
