@@ -1,4 +1,4 @@
-// Stage 9, back-project (paper III-D.2, last step).
+// back_project (paper III-D.2, last step).
 // In: flags, point_pixel, pixel_point, pixel_label, f_range, f_height, r2, zt, coarse.
 // Out per point: label (1 ground, 0 non-ground), why (kWhy*), label_why (both in one byte,
 // PackLabelWhy).

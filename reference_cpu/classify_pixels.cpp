@@ -1,4 +1,4 @@
-// Stage 6, classify pixels (paper eqs. 8-12).
+// classify_pixels (paper eqs. 8-12).
 // In: pixel_filled, f_edge_l/r, f_slope, f_varz. Out: pixel_class (kPix*).
 // f_edge = edge_l >= t_edge || edge_r >= t_edge (eq. 8); f_slope, f_stdz in {-1, 0, 1} by their
 // low/high thresholds (eqs. 9-10; an undefined slope, -1, votes 0). Eq. 11's intensity vote is
@@ -9,7 +9,7 @@
 //   edge 0: s < 0 ground, s > 0 non-ground, s = 0 unknown;  edge 1: s > 0 non-ground, else unknown.
 // A non-ground pixel is a bank (kPixBank, our addition) when f_slope < bank_slope and f_varz <
 // bank_rough: a smooth surface rising at up to ~39 degrees (a grassed embankment) that eq. 9's
-// slope vote calls an object; stage 7 decides it with the coarse label (docs/decisions/grow.md,
+// slope vote calls an object; fuse decides it with the coarse label (docs/decisions/grow.md,
 // Banks). Empty pixels are kPixEmpty. Comparisons only.
 #include "reference_cpu/stages.h"
 

@@ -1,4 +1,4 @@
-// Stage 4, coarse segment (paper eqs. 5-7): seeds by the adaptive height threshold, one plane per
+// coarse_segment (paper eqs. 5-7): seeds by the adaptive height threshold, one plane per
 // cell from its seeds, ground = within the cell's point-to-plane threshold.
 // In: cloud xy, zt, flags, point_cell, cell_zmin/zmax/count; tables.ring_inner.
 // Out: cell_seed_mode, cell_plane (8 ints per cell), coarse (per point).
@@ -187,7 +187,7 @@ bool PlaneNormal(const int64_t m[6], int64_t n[3]) {
 
 // Per cell, what a point needs to decide whether it is a seed, as one test: seed iff
 // z_t - h <= lambda. Mode 1: h = h_min and the cell's lambda; mode 2 (every point): h = +inf, so
-// z_t - h = -inf <= 0; mode 0 (none): h = -inf, so z_t - h = +inf > 0 (z_t is finite: stage 1
+// z_t - h = -inf <= 0; mode 0 (none): h = -inf, so z_t - h = +inf > 0 (z_t is finite: prepare
 // keeps only finite points, and its conversion to mm needs it anyway). `slot` is the compact
 // index of the cell's seed sums and plane; 0 for mode 0 cells (no seeds, no plane).
 struct SeedTest {

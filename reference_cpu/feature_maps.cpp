@@ -1,4 +1,4 @@
-// Stage 5, feature maps (paper III-D.1, Fig. 6 and 10).
+// feature_maps (paper III-D.1, Fig. 6 and 10).
 // In: pixel_point, r2, zt. Out per pixel: pixel_filled, f_range, f_height, f_slope, f_edge_l,
 // f_edge_r, f_varz.
 // Measured pixel (its winning point): range = Sqrt(r2) (planar, d_i of eq. 1), height z_t.

@@ -1,4 +1,4 @@
-// Stage 7, fuse (paper III-D.2, first step of the fine segmentation).
+// fuse (paper III-D.2, first step of the fine segmentation).
 // In: pixel_class, pixel_point, coarse, pixel_filled, f_range, f_height. Out: pixel_fused.
 // Where the coarse label of the pixel's winning point and the pixel class disagree (ground vs
 // non-ground), the pixel becomes unknown. Where the pixel class is unknown (an edge, or no vote),
@@ -13,7 +13,7 @@
 // Occlusion veto (our addition): a pixel with an occluder among the occ_rows pixels above it in its
 // column (nearer than its range + occ_margin and higher by more than occ_rise) is vetoed
 // (kPixVetoed) where the rule below would make it ground or unknown: it is the foot of an object
-// or lies under an overhang (a hedge, a car body), and never grows; stage 8 lifts it to ground only
+// or lies under an overhang (a hedge, a car body), and never grows; grow lifts it to ground only
 // where the ground goes on around it (reference_cpu/grow.cpp). The reach is
 // range + occ_margin + occ_grade * range^2 (flat ground's step between beams grows with range^2),
 // and at most range + occ_front for a pixel whose own class is ground: an object standing farther

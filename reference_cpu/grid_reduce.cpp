@@ -1,4 +1,4 @@
-// Stage 3, grid reduce (paper eq. 4, V-C.1): the concentric zone model.
+// grid_reduce (paper eq. 4, V-C.1): the concentric zone model.
 // In: flags, r2, zt, point_pixel; tables.ring_bound2. Out: point_cell; per cell cell_zmin,
 // cell_zmax (ordered keys of z_t), cell_count. Invalid and noise points have no cell.
 // Ring: the first ring whose squared outer radius exceeds r2 (binary search; points beyond the

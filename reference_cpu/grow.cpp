@@ -1,4 +1,4 @@
-// Stage 8, grow (paper Alg. 1 and the ground connectivity constraint of IV-A).
+// grow (paper Alg. 1 and the ground connectivity constraint of IV-A).
 // In: pixel_fused, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
 // Growing: ground pixels are the seeds; an unknown pixel becomes ground when one of its 8
 // neighbours (columns wrap around) is ground and the step between them is allowed: height

@@ -98,8 +98,9 @@ Params ParamsForSensor(const SensorProfile& s) {
   const uint64_t rings = uint64_t(p.rings_near) + p.rings_far;
   if (rings == 0 || !(p.ring_res_near > 0) || !(p.ring_res_far > 0))
     throw std::invalid_argument("sensor profile '" + s.name + "': the grid needs rings");
-  // Bounds that keep every index and fixed-point value of stages 3-5 inside its integer type (the
-  // profile reader enforces the same for k and max_range; these hold for profiles built in code).
+  // Bounds that keep every index and fixed-point value of grid_reduce, coarse_segment and
+  // feature_maps inside its integer type (the profile reader enforces the same for k and max_range;
+  // these hold for profiles built in code).
   const uint64_t cells =
       uint64_t(p.rings_near) * p.sectors_near + uint64_t(p.rings_far) * p.sectors_far;
   if (rings > 4096 || cells > (uint64_t(1) << 22))

@@ -55,7 +55,7 @@ struct Tables {
   std::vector<float> column_dir;
   // Ring boundaries: squared outer radius of every ring, ascending, rings_near + rings_far entries.
   std::vector<float> ring_bound2;
-  // Inner radius of every ring, m (the slope prior of stage 4 reads it).
+  // Inner radius of every ring, m (the slope prior of coarse_segment reads it).
   std::vector<float> ring_inner;
 };
 

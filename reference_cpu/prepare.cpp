@@ -1,4 +1,4 @@
-// Stage 1, prepare (paper III-B.1, eq. 3).
+// prepare (paper III-B.1, eq. 3).
 // In: cloud xyz (+ ring); the intensity is not read (docs/decisions/intensity.md). Out per point:
 // flags (kPointValid, kPointNoise), zt, r2.
 // Valid: x, y, z finite; not exactly (0, 0, 0); min_range2 <= r2 <= max_range2; z^2 <=

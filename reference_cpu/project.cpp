@@ -1,4 +1,4 @@
-// Stage 2, project (paper eq. 1) without trigonometry.
+// project (paper eq. 1) without trigonometry.
 // In: cloud xyz (+ ring), flags, r2; tables.column_dir, tables.beam_bound.
 // Out: point_pixel (v * width + u, kNone when invalid), pixel_key, pixel_point.
 // Column: u = #{k in 1..width-1 : phi_k > theta}, theta = atan2(y, x), phi_k = pi - 2 pi k / width:

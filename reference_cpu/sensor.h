@@ -7,8 +7,9 @@
 
 namespace lpir {
 
-// Bounds on a profile that keep every valid point inside the fixed-point ranges of stages 4 and 5
-// (mm in int32, 0.1 mm moments in int64); ParamsForSensor and the profile reader enforce them.
+// Bounds on a profile that keep every valid point inside the fixed-point ranges of coarse_segment
+// and feature_maps (mm in int32, 0.1 mm moments in int64); ParamsForSensor and the profile reader
+// enforce them.
 constexpr float kMaxProfileRange = 1000.0f;   // m, the largest max_range
 constexpr float kMaxProfileTiltSlope = 1.0f;  // |k_xz|, |k_yz|: a mount tilt of at most 45 degrees
 
@@ -28,7 +29,7 @@ enum class MountSource {
 };
 
 struct SensorProfile {
-  std::string name;       // e.g. "hdl64e"
+  std::string name;  // e.g. "hdl64e"
   ScanPattern pattern = ScanPattern::kSpinning;
   MountSource mount = MountSource::kFixed;
   unsigned beams = 64;    // image rows: beams, or elevation bins of a non-repetitive pattern

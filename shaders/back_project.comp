@@ -1,4 +1,4 @@
-// Stage 9, back-project (paper III-D.2): the GPU twin of reference_cpu/back_project.cpp, same
+// back_project (paper III-D.2): the GPU twin of reference_cpu/back_project.cpp, same
 // values. One invocation per four points 4j .. 4j + 3 (n, the points, a push constant), read as
 // vectors (docs/decisions/back_project.md), the last n % 4 one by one, and written as one word.
 // In: binding 0 Params (uniform), 1 flags, 2 point_pixel, 3 pixel_point, 4 pixel_label (per

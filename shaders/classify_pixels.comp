@@ -1,4 +1,4 @@
-// Stage 6, classify pixels (paper eqs. 8-12): the GPU twin of reference_cpu/classify_pixels.cpp,
+// classify_pixels (paper eqs. 8-12): the GPU twin of reference_cpu/classify_pixels.cpp,
 // same bytes. Two passes (specialization constant kPass): 0, one invocation per quad of pixels
 // 4q .. 4q + 3 < pixels (push constant), read and written as vec4 / uvec4
 // (docs/decisions/classify_pixels.md); 1, one invocation per pixel of the last pixels % 4.

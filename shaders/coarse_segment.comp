@@ -1,4 +1,4 @@
-// Stage 4, coarse segment (paper eqs. 5-7): the GPU twin of reference_cpu/coarse_segment.cpp,
+// coarse_segment (paper eqs. 5-7): the GPU twin of reference_cpu/coarse_segment.cpp,
 // same bytes (cell_seed_mode, cell_plane, coarse). Six passes of this one shader, chosen by the
 // specialization constant kPass (one pipeline each), with a compute -> compute barrier between
 // each two (CoarseSegmentStage::Record records them all):

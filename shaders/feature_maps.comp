@@ -1,4 +1,4 @@
-// Stage 5, feature maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
+// feature_maps (paper III-D.1, Fig. 6 and 10): the GPU twin of
 // reference_cpu/feature_maps.cpp, same bytes. Two dispatches of this one shader, the pass chosen
 // by the specialization constant kPass (one pipeline each), with a compute -> compute barrier
 // between them. First, measure and fill: pass 0 one invocation per pixel < pixels (push

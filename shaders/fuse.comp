@@ -1,4 +1,4 @@
-// Stage 7, fuse (paper III-D.2): the GPU twin of reference_cpu/fuse.cpp, same bytes.
+// fuse (paper III-D.2): the GPU twin of reference_cpu/fuse.cpp, same bytes.
 // One dispatch, of one of two passes (specialization constant kPass): pass 0, any width, one
 // invocation per pixel < pixels (push constant), pass 1's code on component x; or instead, for a
 // width that is a multiple of 4, pass 1, one invocation per quad of pixels 4q .. 4q + 3, every

@@ -1,4 +1,4 @@
-// Stage 3, grid reduce (paper eq. 4, V-C.1): the GPU twin of reference_cpu/grid_reduce.cpp, same
+// grid_reduce (paper eq. 4, V-C.1): the GPU twin of reference_cpu/grid_reduce.cpp, same
 // bytes. Two passes of this one shader, chosen by the specialization constant kPass, with a
 // compute -> compute barrier between them (GridReduceStage::Record records both):
 //   pass 0, one invocation per cell c < count: cell_zmin = kNone, cell_zmax = 0, cell_count = 0.

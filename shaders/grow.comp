@@ -1,13 +1,14 @@
-// Stage 8, grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
+// grow (Alg. 1, IV-A): the GPU twin of reference_cpu/grow.cpp, same bytes.
 // In: pixel_fused, f_height, f_range. Out: pixel_grown, pixel_comp, pixel_label.
-// Growing is connected-component labelling (docs/spec.md, Readings of the paper): with the symmetric step tests below, the
-// unknown pixels that grow are those whose component of the allowed-step graph (nodes: ground
-// and unknown pixels; edges: 8-neighbours, columns wrapping, whose step is allowed) holds a
-// ground pixel. Two union-finds with lowest-index roots (parents only decrease: links and path
-// halving by atomicMin), each correct in any schedule: `grow_reach` over the allowed-step graph, in
-// which every ground pixel starts under the virtual node 0 (node x + 1 is pixel x), so a
-// component holds a seed exactly when its root is 0; `comp` (pixel_comp) over the 8-connected
-// ground pixels after growing, whose roots are the components' lowest pixels.
+// Growing is connected-component labelling (docs/spec.md, Readings of the paper): with the
+// symmetric step tests below, the unknown pixels that grow are those whose component of the
+// allowed-step graph (nodes: ground and unknown pixels; edges: 8-neighbours, columns wrapping,
+// whose step is allowed) holds a ground pixel. Two union-finds with lowest-index roots (parents
+// only decrease: links and path halving by atomicMin), each correct in any schedule: `grow_reach`
+// over the allowed-step graph, in which every ground pixel starts under the virtual node 0 (node
+// x + 1 is pixel x), so a component holds a seed exactly when its root is 0; `comp` (pixel_comp)
+// over the 8-connected ground pixels after growing, whose roots are the components' lowest
+// pixels.
 // Five passes, one pixel an invocation, chosen by the specialization constant kPass, one
 // pipeline each, recorded in this order with a compute-to-compute barrier between them
 // (host/gpu/grow.cpp):

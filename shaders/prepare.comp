@@ -1,4 +1,4 @@
-// Stage 1, prepare (paper III-B.1, eq. 3): the GPU twin of reference_cpu/prepare.cpp, same bytes.
+// prepare (paper III-B.1, eq. 3): the GPU twin of reference_cpu/prepare.cpp, same bytes.
 // One invocation per point i < n (push constant).
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
 //     1 xyzi (vec4 per point: x, y, z m, raw intensity, which is not read), 2 ring (int per

@@ -1,10 +1,10 @@
-// Stage 2, project (paper eq. 1): the GPU twin of reference_cpu/project.cpp, same bytes.
+// project (paper eq. 1): the GPU twin of reference_cpu/project.cpp, same bytes.
 // Three passes of this shader (specialization constant kPass) in the order 0, 1, 2, with barriers
 // between them, pixel_key and pixel_point cleared to kNone and the exact list's header to
 // (0, 1, 1, 0) before the first (vkCmdFillBuffer, vkCmdUpdateBuffer).
 // In: binding 0 Params (uniform; has_ring says whether binding 2 holds one ring per point),
 //     1 xyzi (vec4 per point, the raw cloud), 2 ring (int per point, or a dummy), 3 flags and
-//     4 r2 (stage 1's outputs), 5 column_dir (width (cos, sin) pairs), 6 beam_bound and
+//     4 r2 (prepare's outputs), 5 column_dir (width (cos, sin) pairs), 6 beam_bound and
 //     7 beam_origin (beams - 1 floats each): the host Tables, the same bytes as the reference's.
 // Out: 8 point_pixel (per point: v * width + u, kNone when invalid), 9 pixel_key (per pixel:
 //     exact_Key of the smallest r2 among its valid non-noise points, kNone when none), 10

@@ -1,4 +1,4 @@
-// Stage 9, back-project (III-D.2): every point's final label and why, from its pixel's label,
+// back_project (III-D.2): every point's final label and why, from its pixel's label,
 // the winner gates and its own coarse label. Inputs by hand.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@ namespace lpir {
 namespace {
 
 // Pixels on one row; AddPoint() appends a point, Win() makes it its pixel's winner and gives the
-// pixel its features (range = Sqrt(r2), height = z_t, as stage 5 does).
+// pixel its features (range = Sqrt(r2), height = z_t, as feature_maps does).
 struct Scene {
   Params p = DefaultParams();
   Frame f;

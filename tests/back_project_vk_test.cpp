@@ -1,4 +1,4 @@
-// Stage 9, back-project, on Vulkan (shaders/back_project.comp) against the CPU reference
+// back_project, on Vulkan (shaders/back_project.comp) against the CPU reference
 // (reference_cpu/back_project.cpp): label and why of every point. The GPU writes one byte per
 // point, label | why << 1, four points a word; the test compares those bytes with the
 // reference's label_why byte for byte (the last word's padding must be 0), then the unpacked
@@ -25,7 +25,7 @@
 namespace lpir {
 namespace {
 
-// Stage 9 on both sides (tests/stage_harness.h compares label_why), then what the harness does
+// back_project on both sides (tests/stage_harness.h compares label_why), then what the harness does
 // not: the padding of label_why's last word is 0 (the harness fills it with 0xEE before), and the
 // reference's label and why pack into its label_why (the GPU unpacks them from those bytes).
 void ExpectSameBackProject(const vk::Device& device, const Params& p, const Frame& in,

@@ -1,4 +1,4 @@
-// Stage 0, calibrate (host/eval/calibrate.h, paper III-B.3): simulated HDL-64E scans of flat
+// calibrate (host/eval/calibrate.h, paper III-B.3): simulated HDL-64E scans of flat
 // ground tilted by known pitch and roll (apps/sim, the same sign convention) read back as
 // themselves; noise, objects beside the ground and several scans; the refusals; and the payoff:
 // segmenting a tilted street with the calibrated profile scores as the level street does.

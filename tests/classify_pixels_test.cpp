@@ -1,4 +1,4 @@
-// Stage 6, classify pixels (eqs. 8-12): every combination of the edge flag and the two votes
+// classify_pixels (eqs. 8-12): every combination of the edge flag and the two votes
 // against eq. 12 as completed in docs/spec.md, Readings of the paper (eq. 11's intensity vote taken
 // as -1), with feature values derived from the Params thresholds.
 #include <gtest/gtest.h>

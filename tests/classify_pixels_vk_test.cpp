@@ -1,10 +1,10 @@
-// Stage 6, classify pixels, on Vulkan (shaders/classify_pixels.comp) against the CPU reference
+// classify_pixels, on Vulkan (shaders/classify_pixels.comp) against the CPU reference
 // (reference_cpu/classify_pixels.cpp): pixel_class byte for byte. Inputs: hand-made feature images
 // whose values sit exactly on, one ulp below and one ulp above every threshold of eqs. 8-11 in
 // every combination (with the default thresholds and with thresholds at 0, -0 and subnormal, where
-// a device that flushes subnormals would compare differently), and the reference's stages 1-5 on
-// random clouds of 1 to 200000 points and the scenes of tests/stage_scenes.h
-// (tests/stage_harness.h compares).
+// a device that flushes subnormals would compare differently), and the reference's prepare,
+// project, grid_reduce, coarse_segment and feature_maps on random clouds of 1 to 200000 points and
+// the scenes of tests/stage_scenes.h (tests/stage_harness.h compares).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,7 +23,8 @@
 namespace lpir {
 namespace {
 
-// `in` holds the stage 5 buffers; runs stage 6 on both sides from them and compares pixel_class.
+// `in` holds the feature_maps buffers; runs classify_pixels on both sides from them and compares
+// pixel_class.
 void ExpectSameClassify(const vk::Device& device, const Params& p, const Frame& in,
                         const std::string& what) {
   EXPECT_EQ(test::ExpectSameStage<vk::ClassifyPixelsStage>(device, p, nullptr, nullptr, in, what),
@@ -73,7 +74,7 @@ Frame HandMadeImage(const Params& p, uint32_t seed, size_t* combinations) {
   f.pixel_filled.resize(pixels);
   f.f_edge_l.resize(pixels), f.f_edge_r.resize(pixels), f.f_slope.resize(pixels);
   f.f_varz.resize(pixels);
-  f.f_range.assign(pixels, 0.0f);  // not read by stage 6
+  f.f_range.assign(pixels, 0.0f);  // not read by classify_pixels
   std::mt19937 rng(seed);
   for (uint32_t pix = 0; pix < pixels; ++pix) {
     size_t k = pix < combos ? pix : size_t(rng()) % combos;
@@ -136,8 +137,8 @@ TEST_F(ClassifyPixelsVkHand, ZeroAndSubnormalThresholds) {
 
 TEST_F(ClassifyPixelsVkHand, PixelCountsThatAreNotMultiplesOfFour) {
   // The shader reads and writes four pixels at a time, then the last pixels % 4 one by one:
-  // images cut from the hand-made one (stage 6 looks at no neighbour) with 1, 3, 35, 39 and 6141
-  // pixels, and one of 4 and 8 (no tail).
+  // images cut from the hand-made one (classify_pixels looks at no neighbour) with 1, 3, 35, 39 and
+  // 6141 pixels, and one of 4 and 8 (no tail).
   const Params big = BigImage(DefaultParams());
   size_t combos = 0;
   const Frame f = HandMadeImage(big, 3, &combos);
@@ -154,7 +155,8 @@ TEST_F(ClassifyPixelsVkHand, PixelCountsThatAreNotMultiplesOfFour) {
   }
 }
 
-// Stages 1-5 of the reference (RunReference), and stage 6 on both sides from them.
+// prepare, project, grid_reduce, coarse_segment and feature_maps of the reference (RunReference),
+// and classify_pixels on both sides from them.
 void ExpectSameOnCloud(const vk::Device& device, const Cloud& cloud, const Params& p,
                        const Tables& t, const std::string& what) {
   Frame f;

@@ -1,5 +1,5 @@
 // segment --report FILE.csv|.json: a row per frame whose figures agree with the labels written,
-// invalid points counted by reason with stage 1's rule (the reasons sum to the points labelled
+// invalid points counted by reason with prepare's rule (the reasons sum to the points labelled
 // invalid), failed files listed with their error; --quiet prints nothing on success.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
-// Stage 4's inputs made by hand for the coarse segment tests (tests/coarse_segment_test.cpp and
-// tests/coarse_segment_vk_test.cpp): a point's cell as stage 3 defines it, the stage 1-3 buffers
-// of a cloud without stage 1's tilt and noise, and planes of points.
+// coarse_segment's inputs made by hand for the coarse segment tests (tests/coarse_segment_test.cpp
+// and tests/coarse_segment_vk_test.cpp): a point's cell as grid_reduce defines it, the prepare,
+// project and grid_reduce buffers of a cloud without prepare's tilt and noise, and planes of
+// points.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -15,7 +16,7 @@
 
 namespace lpir::test {
 
-// The cell of a planar position as stage 3 defines it (eq. 4 rings, sector from the column).
+// The cell of a planar position as grid_reduce defines it (eq. 4 rings, sector from the column).
 inline uint32_t CellOf(const Params& p, const Tables& t, float x, float y) {
   const uint32_t rings = p.rings_near + p.rings_far;
   const uint32_t ring = RingOf(x * x + y * y, t.ring_bound2.data(), rings);
@@ -27,8 +28,8 @@ inline uint32_t CellOf(const Params& p, const Tables& t, float x, float y) {
                    u / (p.width / p.sectors_far);
 }
 
-// Stage 4's inputs by hand: every point valid, z_t = z (no tilt), r^2, its cell, and per cell
-// the ordered keys of min / max z_t and the count.
+// coarse_segment's inputs by hand: every point valid, z_t = z (no tilt), r^2, its cell, and per
+// cell the ordered keys of min / max z_t and the count.
 inline Frame CoarseInputs(const Cloud& c, const Params& p, const Tables& t) {
   Frame f;
   f.n = uint32_t(c.size());

@@ -1,6 +1,7 @@
-// Stage 4, coarse segment (eqs. 5-7): seeds, the per-cell integer plane fit, the point-to-plane
-// threshold and the coarse label. Inputs are built by hand (stage 1 and 3 buffers from the cloud,
-// following those stages' contracts), so only stage 4 is under test. Thresholds come from Params.
+// coarse_segment (eqs. 5-7): seeds, the per-cell integer plane fit, the point-to-plane
+// threshold and the coarse label. Inputs are built by hand (prepare and grid_reduce buffers from
+// the cloud, following those stages' contracts), so only coarse_segment is under test. Thresholds
+// come from Params.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -28,7 +29,7 @@ struct Small {
   Tables t = MakeTables(sensor, p);
 };
 
-// Stage 4's inputs by hand (tests/coarse_segment_inputs.h).
+// coarse_segment's inputs by hand (tests/coarse_segment_inputs.h).
 Frame Inputs(const Cloud& c, const Small& s) { return test::CoarseInputs(c, s.p, s.t); }
 
 Frame Coarse(const Cloud& c, const Small& s) {

@@ -1,10 +1,11 @@
-// Stage 4, coarse segment, on Vulkan (shaders/coarse_segment.comp) against the CPU reference
+// coarse_segment, on Vulkan (shaders/coarse_segment.comp) against the CPU reference
 // (reference_cpu/coarse_segment.cpp): cell_seed_mode, cell_plane and coarse byte for byte.
-// Inputs: the reference's stages 1-3 (RunReference) on random clouds (flat and sloped ground with
-// noise, objects, walls, dense clusters) and the scenes of tests/stage_scenes.h, and hand-made
-// stage 1-3 buffers for the degenerate cases of tests/coarse_segment_test.cpp (collinear seeds,
-// fewer than 16 seeds, walls, raised cells, cells above the slope prior, a sloped line of seeds).
-// tests/stage_harness.h runs and compares.
+// Inputs: the reference's prepare, project and grid_reduce (RunReference) on random clouds (flat
+// and sloped ground with noise, objects, walls, dense clusters) and the scenes of
+// tests/stage_scenes.h, and hand-made prepare, project and grid_reduce buffers for the degenerate
+// cases of tests/coarse_segment_test.cpp (collinear seeds, fewer than 16 seeds, walls, raised
+// cells, cells above the slope prior, a sloped line of seeds). tests/stage_harness.h runs and
+// compares.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,7 +24,8 @@
 namespace lpir {
 namespace {
 
-// `in` holds stages 1-3 (anything of stage 4 in it is ignored); runs stage 4 on both sides.
+// `in` holds prepare, project and grid_reduce (anything of coarse_segment in it is ignored); runs
+// coarse_segment on both sides.
 void ExpectSameCoarse(const vk::Device& device, const Cloud& cloud, const Params& p,
                       const Tables& t, const Frame& in, const std::string& what) {
   test::ExpectSameStage<vk::CoarseSegmentStage>(device, p, &t, &cloud, in, what);
@@ -83,7 +85,7 @@ TEST_F(CoarseSegmentVk, RandomScenesMatchTheReference) {
 }
 
 TEST_F(CoarseSegmentVk, RandomHandMadeInputsMatchTheReference) {
-  // The small sensor and stage 3 by hand: z_t = z, no noise filtering, every point in a cell.
+  // The small sensor and grid_reduce by hand: z_t = z, no noise filtering, every point in a cell.
   const SensorProfile s = test::SmallSensor();
   const Params p = ParamsForSensor(s);
   const Tables t = MakeTables(s, p);

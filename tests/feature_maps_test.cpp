@@ -1,5 +1,5 @@
-// Stage 5, feature maps (III-D.1, Fig. 6 and 10): hand-made pixel images (pixel_point and the
-// per-point r2, zt of stages 1-2) against hand-checked feature values.
+// feature_maps (III-D.1, Fig. 6 and 10): hand-made pixel images (pixel_point and the
+// per-point r2, zt of prepare and project) against hand-checked feature values.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,10 +1,10 @@
-// Stage 5, feature maps, on Vulkan (shaders/feature_maps.comp) against the CPU reference
+// feature_maps, on Vulkan (shaders/feature_maps.comp) against the CPU reference
 // (reference_cpu/feature_maps.cpp): pixel_filled and the six feature maps byte for byte.
 // Inputs: hand-made images (tests/feature_maps_images.h: holes at the column wrap, holes whose
 // neighbours' ranges sit exactly on, one ulp under and one ulp over hole_gap, equal ranges down a
 // column (undefined slope), large and negative heights, images 1 and 2 pixels wide or 1 row high),
-// and the reference's stages 1-4 on random clouds of 1 to 200000 points and the scenes of
-// tests/stage_scenes.h (tests/stage_harness.h runs and compares).
+// and the reference's prepare, project, grid_reduce and coarse_segment on random clouds of 1 to
+// 200000 points and the scenes of tests/stage_scenes.h (tests/stage_harness.h runs and compares).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -19,7 +19,8 @@
 namespace lpir {
 namespace {
 
-// `in` holds the stage 1-4 buffers; runs stage 5 on both sides from them and compares.
+// `in` holds the prepare, project, grid_reduce and coarse_segment buffers; runs feature_maps on
+// both sides from them and compares.
 void ExpectSameFeatures(const vk::Device& device, const Params& p, const Frame& in,
                         const std::string& what) {
   test::ExpectSameStage<vk::FeatureMapsStage>(device, p, nullptr, nullptr, in, what);

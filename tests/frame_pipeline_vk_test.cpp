@@ -1,4 +1,5 @@
-// The whole frame on Vulkan (host/gpu/frame_pipeline.h: one command buffer, upload, stages 1-9,
+// The whole frame on Vulkan (host/gpu/frame_pipeline.h: one command buffer, upload, prepare,
+// project, grid_reduce, coarse_segment, feature_maps, classify_pixels, fuse, grow and back_project,
 // download) against the CPU reference (RunReference): every buffer of every stage byte for byte
 // (tests/frame_compare.h), on random clouds from 0 points to the pipeline's maximum, simulated
 // scenes of several sensors (with and without ring fields), and every real scan in

@@ -1,4 +1,4 @@
-// Stage 7, fuse (III-D.2): the pixel class against the winning point's coarse label, hole-filled
+// fuse (III-D.2): the pixel class against the winning point's coarse label, hole-filled
 // pixels, and the occlusion veto (our addition, see reference_cpu/fuse.cpp). Inputs by hand.
 #include <gtest/gtest.h>
 
@@ -224,7 +224,7 @@ TEST_F(FuseVeto, VetoOverridesAnUnknownCoarseGroundSeed) {
 }
 
 // The veto takes only what the vote would make ground or unknown: a pixel that class and coarse
-// label both call non-ground stays non-ground under an occluder (stage 8 never lifts it).
+// label both call non-ground stays non-ground under an occluder (grow never lifts it).
 TEST_F(FuseVeto, AnOccludedNonGroundVoteStaysNonGround) {
   im.Measure(v, 0, kPixNonGround, false, r, z);
   im.Measure(v - 1, 0, kPixNonGround, false, r, z + 1.0f);

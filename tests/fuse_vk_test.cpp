@@ -1,4 +1,4 @@
-// Stage 7, fuse, on Vulkan (shaders/fuse.comp) against the CPU reference
+// fuse, on Vulkan (shaders/fuse.comp) against the CPU reference
 // (reference_cpu/fuse.cpp): pixel_fused byte for byte (tests/stage_harness.h runs and compares).
 // Inputs from the whole CPU pipeline (RunReference) on random clouds and the scenes of
 // tests/stage_scenes.h, each also under other veto parameters; and hand-made images: occluders

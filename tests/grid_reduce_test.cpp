@@ -1,4 +1,4 @@
-// Stage 3, grid reduce: ring and sector of eq. 4 and the per-cell min / max / count.
+// grid_reduce: ring and sector of eq. 4 and the per-cell min / max / count.
 #include <gtest/gtest.h>
 
 #include "reference_cpu/exact.h"

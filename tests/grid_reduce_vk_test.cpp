@@ -1,9 +1,9 @@
-// Stage 3, grid reduce, on Vulkan (shaders/grid_reduce.comp) against the CPU reference
+// grid_reduce, on Vulkan (shaders/grid_reduce.comp) against the CPU reference
 // (reference_cpu/grid_reduce.cpp): point_cell, cell_zmin, cell_zmax and cell_count byte for byte.
-// Inputs: the reference's stages 1-2 on random clouds of 1 to 200000 points (invalid points,
-// reflection noise, points on and beyond the ring boundaries, dense clusters that put thousands
-// of points in one cell), hand-made stage 1-2 buffers (every flag value, +-0 and subnormal
-// heights, r2 on every ring boundary), and the scenes of tests/stage_scenes.h
+// Inputs: the reference's prepare and project on random clouds of 1 to 200000 points (invalid
+// points, reflection noise, points on and beyond the ring boundaries, dense clusters that put
+// thousands of points in one cell), hand-made prepare and project buffers (every flag value, +-0
+// and subnormal heights, r2 on every ring boundary), and the scenes of tests/stage_scenes.h
 // (tests/stage_harness.h compares).
 #include <gtest/gtest.h>
 
@@ -23,14 +23,15 @@
 namespace lpir {
 namespace {
 
-// `in` holds the stage 1-2 buffers; runs stage 3 on both sides from them and compares.
+// `in` holds the prepare and project buffers; runs grid_reduce on both sides from them and
+// compares.
 void ExpectSameGridReduce(const vk::Device& device, const Params& p, const Tables& t,
                           const Frame& in, const Cloud* cloud, const std::string& what) {
   EXPECT_EQ(test::ExpectSameStage<vk::GridReduceStage>(device, p, &t, cloud, in, what),
             test::StageBytes<vk::GridReduceStage>(in.n, p));
 }
 
-// Stages 1-2 of the reference on `cloud`, then the comparison.
+// prepare and project of the reference on `cloud`, then the comparison.
 void ExpectSameOnCloud(const vk::Device& device, const Cloud& cloud, const Params& p,
                        const Tables& t, const std::string& what) {
   Frame f;
@@ -123,10 +124,10 @@ INSTANTIATE_TEST_SUITE_P(
 
 class GridReduceVkFrame : public test::VkTest {};
 
-// Stage 1-2 buffers made by hand: every flag value (only exactly kPointValid gets a cell), r2 on,
-// just below and just above every ring boundary, heights with +-0, subnormals, infinities and
-// huge values, every pixel of the image. The reference never sees most of these from stage 1,
-// but its stage 3 is defined on them all.
+// prepare and project buffers made by hand: every flag value (only exactly kPointValid gets a
+// cell), r2 on, just below and just above every ring boundary, heights with +-0, subnormals,
+// infinities and huge values, every pixel of the image. The reference never sees most of these from
+// prepare, but its grid_reduce is defined on them all.
 TEST_F(GridReduceVkFrame, HandMadeBuffersMatchTheReference) {
   const SensorProfile s = WideSensor();
   const Params p = ParamsForSensor(s);

@@ -1,4 +1,4 @@
-// Stage 8, grow (Alg. 1, IV-A): region growing from ground seeds through unknown pixels, its
+// grow (Alg. 1, IV-A): region growing from ground seeds through unknown pixels, its
 // schedule independence against an independent Jacobi fixed point, and the connectivity
 // constraint. Inputs (pixel_fused and the feature maps) by hand.
 #include <gtest/gtest.h>

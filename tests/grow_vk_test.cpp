@@ -1,4 +1,4 @@
-// Stage 8, grow, on Vulkan (shaders/grow.comp) against the CPU reference
+// grow, on Vulkan (shaders/grow.comp) against the CPU reference
 // (reference_cpu/grow.cpp): pixel_grown, pixel_comp and pixel_label byte for byte
 // (tests/stage_harness.h runs and compares). Inputs: over a thousand random label images and the
 // adversarial ones of tests/grow_images.h, all through one stage bound once (its buffers keep the

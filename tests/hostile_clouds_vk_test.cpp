@@ -5,7 +5,7 @@
 // the last beam, and a cloud larger than the configured maximum. Each must give a defined result,
 // the same bytes in all 28 buffers on both backends (tests/frame_compare.h): a label for every
 // point, ground (1) exactly when why is kWhyGround, and non-ground with why kWhyInvalid exactly
-// for the points stage 1 must reject (a non-finite coordinate, the origin, a ring past the beams, a
+// for the points prepare must reject (a non-finite coordinate, the origin, a ring past the beams, a
 // planar range or |z| outside the profile's range), decided here independently of the pipeline.
 // The subnormal cases (heights of about 1e-38 m, heights whose differences are subnormal,
 // subnormal coordinates) put the float arithmetic of every stage in the range where a device may
@@ -118,7 +118,7 @@ Cloud HugeCoordinates() {
 }
 
 // The street with intensities no sensor writes: negative, huge, the largest float, NaN, infinite,
-// subnormal, negative zero. Stage 1 does not read them, so no point becomes invalid.
+// subnormal, negative zero. prepare does not read them, so no point becomes invalid.
 Cloud WildIntensities() {
   const float wild[] = {-1.0f, 1e30f, kMaxFloat, kNan, -kInf, 1e-40f, 256.0f, -0.0f, -kMaxFloat};
   Cloud cloud = Street();
@@ -142,7 +142,7 @@ bool Subnormal(float f) { return f != 0.0f && std::fabs(f) < std::numeric_limits
 // The street with rings (rows from the ring index, not from the elevation, which heights of
 // 1e-38 m would make 0 everywhere) and every height scaled by 1e-38: ground at about -1.7e-38,
 // obstacles up to about 3e-38, normal floats, and those below 1.18e-38 in magnitude subnormal
-// (stage 1 flushes them). Neighbouring heights differ by subnormal amounts.
+// (prepare flushes them). Neighbouring heights differ by subnormal amounts.
 Cloud TinyHeights() {
   SimOptions options;
   options.seed = 6;
@@ -169,7 +169,7 @@ Cloud SubnormalHeightSteps() {
 }
 
 // The street with a subnormal or tiny coordinate in every 23rd point: x or y of +-1e-40 or
-// +-3e-39 (subnormal: stage 1 flushes it, stage 2 reads it raw for the column), x or y of
+// +-3e-39 (subnormal: prepare flushes it, project reads it raw for the column), x or y of
 // +-1e-20 (its square, 1e-40, is subnormal inside r2 = x*x + y*y); and every 50th point's z
 // +-1e-40 (flushed: a height of 0, 1.7 m above the road, so only a few). It labels no ground: the
 // street's ground (about 320 pixels) breaks up below min_component (300); pixel_grown still holds
@@ -186,7 +186,7 @@ Cloud SubnormalCoordinates() {
 
 // The street with rings, holes in every column u with u % 4 == 2, and heights of
 // +1.3e-38 where (u / 2) % 2, else -1.25e-38: a hole's two neighbours have opposite signs, and
-// the filled value, their sum times 0.5, is subnormal (stage 5's hole filling).
+// the filled value, their sum times 0.5, is subnormal (feature_maps's hole filling).
 Cloud FillOppositeSigns() {
   SimOptions options;
   options.seed = 6;
@@ -206,7 +206,7 @@ Cloud FillOppositeSigns() {
 }
 
 // TinyHeights with every 3rd point's x 1e-37 (y moved to 5 m where it was nearer than 2 m): with
-// a tilt k_xz of 0.01 (TiltedSensor), stage 1's k_xz * x is subnormal, and so z minus it.
+// a tilt k_xz of 0.01 (TiltedSensor), prepare's k_xz * x is subnormal, and so z minus it.
 Cloud TinyXTinyHeights() {
   Cloud cloud = TinyHeights();
   for (size_t i = 0; i < cloud.size(); i += 3) {
@@ -232,7 +232,7 @@ SensorProfile ZeroThresholdsSensor() {
   return s;
 }
 
-// Whether stage 1 must reject the point, decided in double precision from the contract of
+// Whether prepare must reject the point, decided in double precision from the contract of
 // reference_cpu/prepare.cpp (the cases keep clear of the range limits, where float and double
 // could disagree).
 bool MustBeInvalid(const Cloud& cloud, size_t i, const SensorProfile& s) {
@@ -367,7 +367,7 @@ TEST(HostileClouds, CasesHoldWhatTheyClaim) {
 
 // The subnormal cases exercise what they claim: in the reference's frame, horizontally
 // neighbouring measured pixels whose heights (f_height) differ by a subnormal amount, the
-// difference that the edge features compute (stage 5). Prints how many subnormal values each
+// difference that the edge features compute (feature_maps). Prints how many subnormal values each
 // float buffer of the reference holds.
 TEST_F(HostileVk, SubnormalHeightsReachTheStages) {
   for (Cloud (*make)() : {TinyHeights, SubnormalHeightSteps}) {
@@ -413,7 +413,7 @@ struct FlushCase {
 };
 
 // Horizontally neighbouring measured pixels whose heights differ by a subnormal amount: the edges
-// (stage 5) and growing steps (stage 8) subtract them.
+// (feature_maps) and growing steps (grow) subtract them.
 size_t SubnormalNeighbourSteps(const Params& p, const Frame& f) {
   size_t n = 0;
   for (uint32_t v = 0; v < p.beams; ++v)

@@ -1,7 +1,7 @@
 // Regression (issue 6, found under UBSan): a sensor profile could give a mount tilt (k_xz, k_yz)
 // or a max_range so large that a valid point's corrected height z_t overflowed the float -> int64
-// conversion of stage 4's fixed point (reference_cpu/exact.h ToFixed), undefined behaviour that
-// the two backends need not agree on. The reader now bounds |k| <= 1 and max_range <= 1000 m;
+// conversion of coarse_segment's fixed point (reference_cpu/exact.h ToFixed), undefined behaviour
+// that the two backends need not agree on. The reader now bounds |k| <= 1 and max_range <= 1000 m;
 // at those bounds the most extreme valid points go through every stage (the sanitizer build
 // aborts on any overflow, so this test is only as strong as that build; the plain build checks
 // the labels' contract).

@@ -165,8 +165,8 @@ TEST(PipelineScenes, UrbanStreets) {
 }
 
 // A car parked right beside the sensor (2-6 m away, seed 3): its roof cells have only roof cells
-// around them (no rise over the 3x3 neighbourhood), so only the slope prior of stage 4 keeps the
-// roof out of the seeds (ground_max_above; 5727 of 29240 car points were ground at 0.6).
+// around them (no rise over the 3x3 neighbourhood), so only the slope prior of coarse_segment keeps
+// the roof out of the seeds (ground_max_above; 5727 of 29240 car points were ground at 0.6).
 TEST(PipelineScenes, CarParkedBesideTheSensorIsNotGround) {
   Segmenter seg(Hdl64(), SegmenterOptions::For(Backend::kCpu));
   const SimScan scan = Scene(kUrban, 3);

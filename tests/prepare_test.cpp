@@ -1,4 +1,4 @@
-// Stage 1, prepare: validity, eq. 3 height correction, reflection-noise flag, r^2.
+// prepare: validity, eq. 3 height correction, reflection-noise flag, r^2.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Stage 1, prepare, on Vulkan (shaders/prepare.comp) against the CPU reference
+// prepare, on Vulkan (shaders/prepare.comp) against the CPU reference
 // (reference_cpu/prepare.cpp): every output buffer byte for byte (tests/stage_harness.h), on
 // random clouds of 1 to 200000 points full of invalid points (NaN, Inf, origin, out of range, bad
 // rings, subnormals) and on the scenes of tests/stage_scenes.h.
@@ -33,7 +33,7 @@ size_t ExpectSamePrepare(const vk::Device& device, const Cloud& cloud, const Par
   return tiny;
 }
 
-// A random cloud: mostly ordinary points, and about a third of every kind of point stage 1 must
+// A random cloud: mostly ordinary points, and about a third of every kind of point prepare must
 // reject or treat with care.
 Cloud RandomCloud(size_t n, bool with_ring, const Params& p, uint32_t seed) {
   std::mt19937 rng(seed);

@@ -1,4 +1,4 @@
-// Stage 2, project: the exact column and row lookups of eq. 1 and the pixel winner rule.
+// project: the exact column and row lookups of eq. 1 and the pixel winner rule.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
-// Stage 2, project, on Vulkan (shaders/project.comp) against the CPU reference
+// project, on Vulkan (shaders/project.comp) against the CPU reference
 // (reference_cpu/project.cpp): point_pixel, pixel_key and pixel_point byte for byte, both sides
-// fed the reference's stage 1 outputs, on random clouds of 1 to 200000 points (invalid and noise
+// fed the reference's prepare outputs, on random clouds of 1 to 200000 points (invalid and noise
 // points, duplicates, points on column boundary directions and on the axes, subnormal
 // coordinates, with and without rings) and on the scenes of tests/stage_scenes.h
 // (tests/stage_harness.h compares).

@@ -31,10 +31,10 @@ const char kUsage[] =
     "semantickitti under the DG protocol (vegetation, unlabeled and outliers are non-ground; PP\n"
     "F1 beside it), rellis3d under the rellis protocol (void not scored). Every wrong point is\n"
     "attributed to the first rule that holds:\n"
-    "  prepare:invalid, prepare:noise   stage 1 marked the point invalid or reflection noise\n"
-    "  back-project   the point's label differs from its pixel's final label (stage 9 gates)\n"
-    "  component      FN: the pixel was grown ground, its component too small (stage 8)\n"
-    "  veto           FN: the occlusion veto made the pixel non-ground (stage 7), not lifted\n"
+    "  prepare:invalid, prepare:noise   prepare marked the point invalid or reflection noise\n"
+    "  back-project   the point's label differs from its pixel's final label (back_project)\n"
+    "  component      FN: the pixel was grown ground, its component too small (grow)\n"
+    "  veto           FN: the occlusion veto made the pixel non-ground (fuse), not lifted\n"
     "  class+coarse   FN: pixel class and coarse label both non-ground\n"
     "  grow:<why>     FN: fuse left the pixel unknown and growing did not reach it; it was\n"
     "                 unknown because: class-ng (class non-ground, coarse ground), coarse-ng\n"
@@ -42,7 +42,7 @@ const char kUsage[] =
     "  seed:both      FP: a seed, class and coarse label both ground\n"
     "  seed:coarse    FP: a seed, class unknown and coarse label ground\n"
     "  grow           FP: an unknown pixel reached by growing\n"
-    "  lift           FP: a vetoed pixel lifted by the ground around it (stage 8)\n"
+    "  lift           FP: a vetoed pixel lifted by the ground around it (grow)\n"
     "--param overrides one parameter of the profile (as a profile's override line would).\n";
 
 struct Args {

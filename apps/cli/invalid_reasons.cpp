@@ -1,4 +1,4 @@
-// Stage 1's validity test, reason by reason (see invalid_reasons.h): the same flushed inputs and
+// prepare's validity test, reason by reason (see invalid_reasons.h): the same flushed inputs and
 // the same float operations as reference_cpu/prepare.cpp, so that a point is invalid here exactly
 // when it is invalid there.
 #include "apps/cli/invalid_reasons.h"

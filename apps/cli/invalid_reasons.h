@@ -1,4 +1,4 @@
-// Why the points of a cloud are invalid, counted on the host by stage 1's rule
+// Why the points of a cloud are invalid, counted on the host by prepare's rule
 // (reference_cpu/prepare.cpp), so that the reasons of a frame sum to its points labelled
 // kWhyInvalid. Each invalid point counts once, under the first reason it meets in this order.
 #pragma once
@@ -14,7 +14,7 @@ namespace lpir {
 
 struct InvalidReasons {
   size_t not_finite = 0;    // x, y or z NaN or infinite
-  size_t at_origin = 0;     // x, y and z all zero (subnormals flushed, as stage 1 does)
+  size_t at_origin = 0;     // x, y and z all zero (subnormals flushed, as prepare does)
   size_t out_of_range = 0;  // planar r2 outside [min_range2, max_range2], or z^2 > max_range2
   size_t bad_ring = 0;      // a ring outside [0, beams)
   size_t total() const { return not_finite + at_origin + out_of_range + bad_ring; }

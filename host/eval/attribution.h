@@ -9,19 +9,20 @@
 namespace lpir {
 
 enum class Decider {
-  kPrepareInvalid,  // the point is invalid (stage 1)
-  kPrepareNoise,    // the point is reflection noise (stage 1)
-  kBackProject,     // its label differs from its pixel's final label (stage 9 gates)
-  kComponent,       // FN: the pixel was grown ground, its component was too small (stage 8)
-  kVeto,            // FN: the occlusion veto made the pixel non-ground (stage 7), not lifted
-  kClassAndCoarse,  // FN: pixel class and coarse label both non-ground (stages 4 and 6)
+  kPrepareInvalid,  // the point is invalid (prepare)
+  kPrepareNoise,    // the point is reflection noise (prepare)
+  kBackProject,     // its label differs from its pixel's final label (back_project gates)
+  kComponent,       // FN: the pixel was grown ground, its component was too small (grow)
+  kVeto,            // FN: the occlusion veto made the pixel non-ground (fuse), not lifted
+  kClassAndCoarse,  // FN: pixel class and coarse label both non-ground (coarse_segment and
+                    // classify_pixels)
   kGrowClassNg,     // FN: unknown (class non-ground, coarse ground) and not grown into
   kGrowCoarseNg,    // FN: unknown (class ground or unknown, coarse non-ground), not grown into
   kGrowHole,        // FN: a hole-filled pixel (no point, no coarse opinion), not grown into
   kSeedBoth,        // FP: a seed whose class and coarse label both said ground
   kSeedCoarse,      // FP: a seed of unknown class that the coarse label made ground
   kGrow,            // FP: an unknown pixel reached by growing
-  kLift,            // FP: a vetoed pixel that the ground around it lifted (stage 8)
+  kLift,            // FP: a vetoed pixel that the ground around it lifted (grow)
 };
 constexpr int kDeciderCount = 13;
 

@@ -1,10 +1,10 @@
-// Stage 0, calibrate (paper III-B.3, eqs. 2-3; contract and sign convention in calibrate.h).
+// calibrate (paper III-B.3, eqs. 2-3; contract and sign convention in calibrate.h).
 // Offline and on the CPU, so outside the bit-exact contract: atan2 and doubles are used freely.
 //
 // How the paper's steps are read (each choice is measured in tests/calibrate_test.cpp):
 //  1. Reflection noise first (III-B.1, Fig. 1: noise is removed before the tilt is estimated): a
 //     point is dropped when z < h_noise, the profile's parameter (ParamsForSensor, so a
-//     `param h_noise` override applies), as stage 1 drops it. z is not corrected yet: the tilt
+//     `param h_noise` override applies), as prepare drops it. z is not corrected yet: the tilt
 //     is what is being measured, and the profile's own k_xz, k_yz are ignored so that a
 //     recalibration never compounds an old one.
 //  2. "Generate a LiDAR depth image ... extract the point cloud from four main directions" and

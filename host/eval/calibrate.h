@@ -1,4 +1,4 @@
-// Stage 0, calibrate (offline, CPU, Eigen; paper III-B.3, eqs. 2-3): the LiDAR's mount tilt from
+// calibrate (offline, CPU, Eigen; paper III-B.3, eqs. 2-3): the LiDAR's mount tilt from
 // scans of flat ground. A pure function: clouds + sensor profile + options in, the fitted lines or
 // a refusal with its reason out. It never reads files or prints (apps/cli/cmd_calibrate.cpp does).
 //

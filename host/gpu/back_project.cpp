@@ -1,4 +1,4 @@
-// Stage 9, back-project, on Vulkan: the kernel's bindings and its recording.
+// back_project, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/back_project.h"
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Stage 9, back-project, on Vulkan: shaders/back_project.comp behind the generic dispatcher.
+// back_project, on Vulkan: shaders/back_project.comp behind the generic dispatcher.
 // BackProjectStage is bound once to the frame's buffers and recorded every frame.
 // The output is one byte per point, label | why << 1 (Frame::label_why), four points a uint32
 // word (the device is created without the 8-bit storage feature): a frame downloads n bytes
@@ -22,7 +22,7 @@ struct BackProjectBuffers {
   const Buffer* flags = nullptr;        // uint32 kPoint* bits per point
   const Buffer* point_pixel = nullptr;  // uint32 pixel per point, kNone when invalid
   const Buffer* pixel_point = nullptr;  // uint32 winning point per pixel
-  const Buffer* pixel_label = nullptr;  // uint32 kPix* per pixel (stage 8)
+  const Buffer* pixel_label = nullptr;  // uint32 kPix* per pixel (grow)
   const Buffer* f_range = nullptr;      // float per pixel
   const Buffer* f_height = nullptr;     // float per pixel
   const Buffer* r2 = nullptr;           // float per point

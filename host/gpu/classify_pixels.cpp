@@ -1,4 +1,4 @@
-// Stage 6, classify pixels, on Vulkan: the kernel's bindings and its recording.
+// classify_pixels, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/classify_pixels.h"
 
 #include <cstdint>

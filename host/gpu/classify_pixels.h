@@ -1,4 +1,4 @@
-// Stage 6, classify pixels, on Vulkan: shaders/classify_pixels.comp behind the generic
+// classify_pixels, on Vulkan: shaders/classify_pixels.comp behind the generic
 // dispatcher. ClassifyPixelsStage is bound once to the frame's buffers and recorded every
 // frame.
 #pragma once
@@ -17,8 +17,8 @@ namespace lpir::vk {
 // width * beams elements.
 struct ClassifyPixelsBuffers {
   const Buffer* params = nullptr;        // one Params (uniform): t_edge, t_slope_*, t_stdz_*
-  const Buffer* pixel_filled = nullptr;  // uint32 (stage 5): 0 empty
-  const Buffer* f_edge_l = nullptr;      // floats (stage 5)
+  const Buffer* pixel_filled = nullptr;  // uint32 (feature_maps): 0 empty
+  const Buffer* f_edge_l = nullptr;      // floats (feature_maps)
   const Buffer* f_edge_r = nullptr;
   const Buffer* f_slope = nullptr;
   const Buffer* f_varz = nullptr;

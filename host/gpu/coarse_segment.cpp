@@ -1,4 +1,4 @@
-// Stage 4, coarse segment, on Vulkan: the kernel's bindings and its recording.
+// coarse_segment, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/coarse_segment.h"
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Stage 4, coarse segment, on Vulkan: shaders/coarse_segment.comp behind the generic dispatcher.
+// coarse_segment, on Vulkan: shaders/coarse_segment.comp behind the generic dispatcher.
 // CoarseSegmentStage is bound once to the frame's buffers and recorded every frame: six passes
 // with a compute -> compute barrier between each two.
 #pragma once
@@ -18,11 +18,11 @@ namespace lpir::vk {
 struct CoarseSegmentBuffers {
   const Buffer* params = nullptr;          // one Params (uniform)
   const Buffer* xyzi = nullptr;            // float x, y, z, intensity per point (the cloud)
-  const Buffer* zt = nullptr;              // float corrected height (stage 1)
-  const Buffer* point_cell = nullptr;      // uint32 cell per point, kNone without one (stage 3)
-  const Buffer* cell_zmin = nullptr;       // uint32 ordered key of min z_t (stage 3)
-  const Buffer* cell_zmax = nullptr;       // uint32 ordered key of max z_t (stage 3)
-  const Buffer* cell_count = nullptr;      // uint32 points per cell (stage 3)
+  const Buffer* zt = nullptr;              // float corrected height (prepare)
+  const Buffer* point_cell = nullptr;      // uint32 cell per point, kNone without one (grid_reduce)
+  const Buffer* cell_zmin = nullptr;       // uint32 ordered key of min z_t (grid_reduce)
+  const Buffer* cell_zmax = nullptr;       // uint32 ordered key of max z_t (grid_reduce)
+  const Buffer* cell_count = nullptr;      // uint32 points per cell (grid_reduce)
   const Buffer* ring_inner = nullptr;      // Tables::ring_inner, rings_near + rings_far floats
   const Buffer* cell_seed_mode = nullptr;  // out: uint32 per cell, 0 / 1 / 2
   const Buffer* cell_plane = nullptr;      // out: int32, 8 per cell

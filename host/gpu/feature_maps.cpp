@@ -1,4 +1,4 @@
-// Stage 5, feature maps, on Vulkan: the kernel's bindings and its recording.
+// feature_maps, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/feature_maps.h"
 
 #include <cstdint>

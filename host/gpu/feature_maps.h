@@ -1,4 +1,4 @@
-// Stage 5, feature maps, on Vulkan: shaders/feature_maps.comp behind the generic dispatcher.
+// feature_maps, on Vulkan: shaders/feature_maps.comp behind the generic dispatcher.
 // FeatureMapsStage is bound once to the frame's buffers and recorded every frame: measure and
 // fill, a barrier, slope, edges and variances.
 #pragma once
@@ -17,9 +17,9 @@ namespace lpir::vk {
 // buffers of at least width * beams elements.
 struct FeatureMapsBuffers {
   const Buffer* params = nullptr;        // one Params (uniform): width, beams, hole_gap
-  const Buffer* pixel_point = nullptr;   // uint32 winning point per pixel, kNone empty (stage 4)
-  const Buffer* r2 = nullptr;            // float squared planar range per point (stage 1)
-  const Buffer* zt = nullptr;            // float corrected height per point (stage 1)
+  const Buffer* pixel_point = nullptr;   // uint32 winning point per pixel, kNone empty (project)
+  const Buffer* r2 = nullptr;            // float squared planar range per point (prepare)
+  const Buffer* zt = nullptr;            // float corrected height per point (prepare)
   const Buffer* pixel_filled = nullptr;  // out: uint32 0 empty, 1 measured, 2 filled
   const Buffer* f_range = nullptr;       // out: floats per pixel
   const Buffer* f_height = nullptr;

@@ -1,4 +1,4 @@
-// Stage 7, fuse, on Vulkan: the kernel's bindings and its recording.
+// fuse, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/fuse.h"
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Stage 7, fuse, on Vulkan: shaders/fuse.comp behind the generic dispatcher. FuseStage is bound
+// fuse, on Vulkan: shaders/fuse.comp behind the generic dispatcher. FuseStage is bound
 // once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>
@@ -15,7 +15,7 @@ namespace lpir::vk {
 // The bindings of shaders/fuse.comp; per-pixel buffers hold at least width * beams elements.
 struct FuseBuffers {
   const Buffer* params = nullptr;        // one Params (uniform)
-  const Buffer* pixel_class = nullptr;   // uint32 kPix* per pixel (stage 6)
+  const Buffer* pixel_class = nullptr;   // uint32 kPix* per pixel (classify_pixels)
   const Buffer* pixel_point = nullptr;   // uint32 winning point per pixel, kNone when none
   const Buffer* coarse = nullptr;        // uint32 per point (any buffer when there are no points)
   const Buffer* pixel_filled = nullptr;  // uint32 0 empty, 1 measured, 2 hole filled

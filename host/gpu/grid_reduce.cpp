@@ -1,4 +1,4 @@
-// Stage 3, grid reduce, on Vulkan: the kernel's bindings and its recording.
+// grid_reduce, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/grid_reduce.h"
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Stage 3, grid reduce, on Vulkan: shaders/grid_reduce.comp behind the generic dispatcher.
+// grid_reduce, on Vulkan: shaders/grid_reduce.comp behind the generic dispatcher.
 // GridReduceStage is bound once to the frame's buffers and recorded every frame: the cell clear,
 // a barrier, the per-point reduction.
 #pragma once
@@ -17,10 +17,10 @@ namespace lpir::vk {
 // buffers of at least CellCount(p) elements.
 struct GridReduceBuffers {
   const Buffer* params = nullptr;       // one Params (uniform)
-  const Buffer* flags = nullptr;        // uint32 kPoint* bits (stage 1)
-  const Buffer* r2 = nullptr;           // float squared planar range (stage 1)
-  const Buffer* zt = nullptr;           // float corrected height (stage 1)
-  const Buffer* point_pixel = nullptr;  // uint32 pixel per point (stage 2)
+  const Buffer* flags = nullptr;        // uint32 kPoint* bits (prepare)
+  const Buffer* r2 = nullptr;           // float squared planar range (prepare)
+  const Buffer* zt = nullptr;           // float corrected height (prepare)
+  const Buffer* point_pixel = nullptr;  // uint32 pixel per point (project)
   const Buffer* ring_bound2 = nullptr;  // Tables::ring_bound2, rings_near + rings_far floats
   const Buffer* point_cell = nullptr;   // out: uint32 cell per point, kNone without one
   const Buffer* cell_zmin = nullptr;    // out: uint32 ordered key of min z_t, kNone when empty

@@ -1,4 +1,4 @@
-// Stage 8, grow, on Vulkan: the kernel's bindings and its five passes.
+// grow, on Vulkan: the kernel's bindings and its five passes.
 #include "host/gpu/grow.h"
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Stage 8, grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is bound
+// grow, on Vulkan: shaders/grow.comp behind the generic dispatcher. GrowStage is bound
 // once to the frame's buffers and recorded every frame: five passes, one pixel an invocation,
 // whatever the data.
 #pragma once
@@ -16,7 +16,7 @@ namespace lpir::vk {
 // The bindings of shaders/grow.comp; per-pixel buffers hold at least width * beams elements.
 struct GrowBuffers {
   const Buffer* params = nullptr;       // one Params (uniform)
-  const Buffer* pixel_fused = nullptr;  // uint32 kPix* per pixel (stage 7)
+  const Buffer* pixel_fused = nullptr;  // uint32 kPix* per pixel (fuse)
   const Buffer* f_height = nullptr;     // float per pixel
   const Buffer* f_range = nullptr;      // float per pixel
   const Buffer* pixel_grown = nullptr;  // out: uint32 kPix* per pixel

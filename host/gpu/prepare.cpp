@@ -1,4 +1,4 @@
-// Stage 1, prepare, on Vulkan: the kernel's bindings and its recording.
+// prepare, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/prepare.h"
 
 #include <cstdint>

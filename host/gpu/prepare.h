@@ -1,4 +1,4 @@
-// Stage 1, prepare, on Vulkan: shaders/prepare.comp behind the generic dispatcher. PrepareStage
+// prepare, on Vulkan: shaders/prepare.comp behind the generic dispatcher. PrepareStage
 // is bound once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Stage 2, project, on Vulkan: the kernel's bindings and its recording.
+// project, on Vulkan: the kernel's bindings and its recording.
 #include "host/gpu/project.h"
 
 #include <cstdint>

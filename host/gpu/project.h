@@ -1,4 +1,4 @@
-// Stage 2, project, on Vulkan: shaders/project.comp behind the generic dispatcher. ProjectStage
+// project, on Vulkan: shaders/project.comp behind the generic dispatcher. ProjectStage
 // is bound once to the frame's buffers and recorded every frame.
 #pragma once
 #include <cstdint>
@@ -17,8 +17,8 @@ struct ProjectBuffers {
   const Buffer* params = nullptr;       // one Params (uniform); has_ring says whether ring is read
   const Buffer* points = nullptr;       // vec4 x, y, z, raw intensity per point (the raw cloud)
   const Buffer* ring = nullptr;         // int32 per point; any buffer when has_ring is 0
-  const Buffer* flags = nullptr;        // uint32 per point, stage 1
-  const Buffer* r2 = nullptr;           // float per point, stage 1
+  const Buffer* flags = nullptr;        // uint32 per point, prepare
+  const Buffer* r2 = nullptr;           // float per point, prepare
   const Buffer* column_dir = nullptr;   // Tables::column_dir, 2 * width floats
   const Buffer* beam_bound = nullptr;   // Tables::beam_bound, beams - 1 floats
   const Buffer* beam_origin = nullptr;  // Tables::beam_origin, beams - 1 floats
@@ -50,7 +50,7 @@ class ProjectStage {
   // Records the clear of pixel_key and pixel_point to kNone and of the exact list's header, the
   // pixel pass 0, the exact pass 1 over the listed points (indirect), and the winner pass 2 over
   // n points, with barriers between them. No barrier before the clear or after the last
-  // dispatch: the caller orders them with the stages around (stage 1's writes must be visible
+  // dispatch: the caller orders them with the stages around (prepare's writes must be visible
   // to compute and the clear must not overtake earlier reads of the pixel buffers).
   Status Record(CommandBuffer& cmd, uint32_t n) const;
   // The same over a frame of `size` (the frame pipeline's call).

@@ -10,7 +10,7 @@ namespace lpir {
 enum class BinLayout { kKitti4, kNuScenes5 };
 
 // IoError (naming the file) when the file is missing, empty, or its size is not a whole number of
-// points. NaN/Inf values are read as they are (stage 1 marks such points invalid). With
+// points. NaN/Inf values are read as they are (prepare marks such points invalid). With
 // kNuScenes5 the fifth float becomes `ring` (must be a whole number >= 0, else IoError).
 Cloud ReadKittiBin(const std::string& path, BinLayout layout = BinLayout::kKitti4);
 void WriteKittiBin(const std::string& path, const Cloud& cloud);

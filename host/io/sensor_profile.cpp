@@ -138,8 +138,8 @@ const Key kKeys[] = {
        if (p.min_range < 0) Fail("min_range must be >= 0");
      }},
     // Bounded so that every valid point's coordinates and corrected height stay inside the
-    // fixed-point ranges of stages 4 and 5 (mm in int32, 0.1 mm moments in int64): a larger one
-    // let a point with z = 1e20 through to an overflowing float -> int64 conversion.
+    // fixed-point ranges of coarse_segment and feature_maps (mm in int32, 0.1 mm moments in int64):
+    // a larger one let a point with z = 1e20 through to an overflowing float -> int64 conversion.
     {"max_range", Shape::kOne, false, true,
      [](auto& p, auto& k, auto& v) {
        p.max_range = ParseFloat(k, v);
