@@ -52,8 +52,7 @@ struct MountEstimate {
 //      its tilts are within kMountMaxTilt and h within [kMountMinHeight, kMountMaxHeight]; else
 //      the fallback is.
 // Tilts under FLT_MIN in magnitude are 0 (no subnormal reaches a Params).
-MountEstimate EstimateMount(const Cloud& cloud, const SensorProfile& sensor,
-                            const Mount& fallback);
+MountEstimate EstimateMount(const Cloud& cloud, const SensorProfile& sensor, const Mount& fallback);
 
 // The mount a frame of `sensor` is segmented with, `params` being ParamsForSensor(sensor):
 // MountOf(params) with `mount fixed`; with `mount per_frame`, EstimateMount's, MountOf(params)

@@ -100,7 +100,7 @@ class FramePipeline {
     std::unique_ptr<Stages> stages;         // after buffers: destroyed first
     bool busy = false, staged = false, has_ring = false;
     uint32_t n = 0;
-    Mount mount{};  // the staged frame's
+    Mount mount{};      // the staged frame's
     uint32_t lead = 0;  // the slot whose command buffer and fence carry this frame
     // As a lead: its fence signals a submission not yet waited for; frames of that submission
     // not yet collected (the slot takes no new frame before they are).
