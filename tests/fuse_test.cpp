@@ -108,11 +108,16 @@ class FuseVeto : public ::testing::Test {
   const uint32_t v = 4;  // the pixel under test sits on row 4
   const float r = 15.0f, z = -1.7f;
   float reach = 0, reach_ground = 0;  // for a pixel of any class; of class ground
+  // Nearer than the pixel by so little that its ray clears that range by half occ_pass: where an
+  // object's foot stands (the pass rule does not spare it).
+  float foot = 0;
   void SetUp() override {
     if (im.p.occ_rows == 0) im.p.occ_rows = 2;  // the default may disable it; test the rule
     ASSERT_LE(im.p.occ_rows, v) << "the image is too short for the veto's reach";
     reach = r + im.p.occ_margin + im.p.occ_grade * r * r;
     reach_ground = std::min(reach, r + im.p.occ_front);
+    foot = r * (1.0f + 0.5f * im.p.occ_pass / z);
+    ASSERT_LT(foot, r);
     ASSERT_LT(reach_ground, reach) << "the defaults no longer shorten a ground pixel's reach";
   }
   // Ground pixel (class and coarse agree) at (v, u).
@@ -121,7 +126,7 @@ class FuseVeto : public ::testing::Test {
 
 TEST_F(FuseVeto, NearerAndHigherPixelJustAboveVetoesGround) {
   Ground(0);
-  im.Measure(v - 1, 0, kPixNonGround, false, r - 1.0f, z + im.p.occ_rise + 0.1f);
+  im.Measure(v - 1, 0, kPixNonGround, false, foot, z + im.p.occ_rise + 0.1f);
   // An occluder occ_rows above, ranged just inside the reach (a ground pixel's shorter one).
   Ground(2);
   im.Measure(v - im.p.occ_rows, 2, kPixNonGround, false, reach_ground - 0.01f,
@@ -180,7 +185,7 @@ TEST_F(FuseVeto, AStepOntoGroundSparesTheFootOfACurb) {
   im.Measure(v - 2, 3, kPixGround, true, r + im.p.occ_step_reach + 0.5f, curb);
   // A class-ground pixel above, but one that rises off a car body nearer than the pixel.
   Ground(4);
-  im.Measure(v - 1, 4, kPixNonGround, false, r - 1.0f, z + 0.6f);
+  im.Measure(v - 1, 4, kPixNonGround, false, foot, z + 0.6f);
   im.Measure(v - 2, 4, kPixGround, true, r + 0.5f, curb);
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(v, 0), kPixGround);
@@ -195,14 +200,13 @@ TEST_F(FuseVeto, AStepOntoGroundSparesTheFootOfACurb) {
 TEST_F(FuseVeto, GroundSeenUnderAnObjectIsNotItsFoot) {
   const float high = z + 1.0f;
   const float passed = r * (1.0f + 1.5f * im.p.occ_pass / z);  // 1.5 x the clearance needed
-  const float grazed = r * (1.0f + 0.5f * im.p.occ_pass / z);  // half of it: the object's foot
   ASSERT_GT(im.p.occ_pass, 0.0f);
   Ground(0);
   im.Measure(v - 1, 0, kPixNonGround, false, passed, high);  // a crown or a raised body
   im.Measure(v, 1, kPixUnknown, true, r, z);                 // a seed, but not of class ground
   im.Measure(v - 1, 1, kPixNonGround, false, passed, high);
   Ground(2);
-  im.Measure(v - 1, 2, kPixNonGround, false, grazed, high);
+  im.Measure(v - 1, 2, kPixNonGround, false, foot, high);
   Ground(3);  // passed under the first occluder, not the second, on its face
   im.Measure(v - 1, 3, kPixNonGround, false, passed, high);
   im.Measure(v - 2, 3, kPixNonGround, false, r, high);
@@ -238,22 +242,22 @@ TEST_F(FuseVeto, AnOccludedNonGroundVoteStaysNonGround) {
 TEST_F(FuseVeto, LowerOrFartherPixelsDoNotVeto) {
   // Not higher by more than occ_rise.
   Ground(0);
-  im.Measure(v - 1, 0, kPixNonGround, false, r - 1.0f, z + im.p.occ_rise * 0.5f);
+  im.Measure(v - 1, 0, kPixNonGround, false, foot, z + im.p.occ_rise * 0.5f);
   // Lower.
   Ground(1);
-  im.Measure(v - 1, 1, kPixNonGround, false, r - 1.0f, z - 0.5f);
+  im.Measure(v - 1, 1, kPixNonGround, false, foot, z - 0.5f);
   // Farther than the reach (flat ground's next beam up lies there).
   Ground(2);
   im.Measure(v - 1, 2, kPixGround, true, reach + 0.05f, z + im.p.occ_rise + 0.5f);
   // Beyond occ_rows above.
   Ground(3);
-  im.Measure(v - im.p.occ_rows - 1, 3, kPixNonGround, false, r - 1.0f, z + 1.0f);
+  im.Measure(v - im.p.occ_rows - 1, 3, kPixNonGround, false, foot, z + 1.0f);
   // Below (rows further down are nearer; they never occlude).
   Ground(4);
-  im.Measure(v + 1, 4, kPixNonGround, false, r - 1.0f, z + 1.0f);
+  im.Measure(v + 1, 4, kPixNonGround, false, foot, z + 1.0f);
   // In the neighbouring column.
   Ground(5);
-  im.Measure(v - 1, 6, kPixNonGround, false, r - 1.0f, z + 1.0f);
+  im.Measure(v - 1, 6, kPixNonGround, false, foot, z + 1.0f);
   Fuse(im.p, im.f);
   for (uint32_t u = 0; u <= 5; ++u) EXPECT_EQ(im.Fused(v, u), kPixGround) << "column " << u;
 }
@@ -261,7 +265,7 @@ TEST_F(FuseVeto, LowerOrFartherPixelsDoNotVeto) {
 TEST_F(FuseVeto, TopRowsHaveNothingAboveAndZeroRowsDisablesIt) {
   im.Measure(0, 0, kPixGround, true, r, z);  // row 0: no rows above
   Ground(1);
-  im.Measure(v - 1, 1, kPixNonGround, false, r - 1.0f, z + 1.0f);  // an occluder ...
+  im.Measure(v - 1, 1, kPixNonGround, false, foot, z + 1.0f);  // an occluder ...
   Fuse(im.p, im.f);
   EXPECT_EQ(im.Fused(0, 0), kPixGround);
   EXPECT_EQ(im.Fused(v, 1), kPixVetoed);
