@@ -25,7 +25,7 @@ namespace {
 const std::map<std::string, double>& F1Floors() {
   static const std::map<std::string, double> floors = {
       {"hdl32e", 0.985},    {"hdl64e", 0.988}, {"mid360", 0.954}, {"mid70", 0.944},
-      {"os1-128", 0.988},   {"os1-64", 0.988}, {"ot128", 0.99},  {"pandar64", 0.985},
+      {"os1-128", 0.988},   {"os1-64", 0.988}, {"ot128", 0.99},   {"pandar64", 0.985},
       {"rs-ruby80", 0.985}, {"vlp16", 0.965},  {"vlp32c", 0.98},
   };
   return floors;
