@@ -182,6 +182,7 @@ void FuseRows(const Params& p, Frame& f, Range rows) {
     const uint32_t step_rows = p.occ_step_rows < v ? p.occ_step_rows : v;
     for (uint32_t u0 = 0; u0 < w; u0 += kPiece) {
       const uint32_t n = w - u0 < kPiece ? w - u0 : kPiece, at = v * w + u0;
+      Opinions(point + at, coarse, n, opinion);
       if (rows_above) {
         Bounds(p, range + at, height + at, cls + at, n, reach, top);
         for (uint32_t k = 1; k <= rows_above; ++k) {
@@ -192,15 +193,22 @@ void FuseRows(const Params& p, Frame& f, Range rows) {
           if (occluded[u] && cls[at + u] == kPixGround)
             occluded[u] =
                 KeepsOccluder(p, filled, range, height, at + u, w, rows_above, reach[u], top[u]);
+        // The mark changes what Decide writes only where the pixel is not empty and its vote is not
+        // non-ground (the vote is non-ground exactly where class and opinion both are): only those
+        // pixels ask whether they are spared; the others' marks stay, unread.
         if (step_rows) {
-          for (uint32_t u = 0; u < n; ++u)
-            if (occluded[u] && SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
+          for (uint32_t u = 0; u < n; ++u) {
+            const uint32_t c = cls[at + u];
+            const bool matters =
+                c != kPixEmpty && !(c == kPixNonGround && opinion[u] == kPixNonGround);
+            if (occluded[u] && matters &&
+                SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
               occluded[u] = 0;
+          }
         }
       } else {
         for (uint32_t u = 0; u < n; ++u) occluded[u] = 0;
       }
-      Opinions(point + at, coarse, n, opinion);
       Decide(cls + at, occluded, opinion, n, fused + at);
     }
   }
