@@ -56,11 +56,12 @@ struct Sums {
 };
 
 // Scratch reused from frame to frame (each thread has its own): the sums of three image rows and
-// the per-pixel moments of the row being summed, an empty row that stands for the ones above the
-// first and below the last, and the two rows just outside a band of rows, measured for it
-// (filled, range, height of each).
+// the quantised values and per-pixel moments of the row being summed, an empty row that stands for
+// the ones above the first and below the last, and the two rows just outside a band of rows,
+// measured for it (filled, range, height of each).
 struct Scratch {
   std::vector<Sums> sums[3], pixel;
+  std::vector<int32_t> qz, qr;
   std::vector<uint32_t> empty_filled;
   std::vector<float> empty_value;
   std::vector<uint32_t> outside_filled[2];
@@ -117,12 +118,19 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
 // Three-column sums of one finished row: each pixel's count and moments of its quantised height
 // and range (in `pixel`), then the sums of each pixel's and its two neighbours' (columns wrap).
 // Empty pixels hold height and range 0, which quantise to 0, so only the count needs their flag.
+// The quantisation runs four pixels at a time in int32 (exact::ToFixed32, in `qz` and `qr`), the
+// contract's int64 ToFixed for the row when a value lies beyond it.
 void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
-             const float* __restrict range, uint32_t w, Sums* __restrict pixel,
-             Sums* __restrict out) {
+             const float* __restrict range, uint32_t w, int32_t* __restrict qz,
+             int32_t* __restrict qr, Sums* __restrict pixel, Sums* __restrict out) {
+  uint32_t bad = 0;
   for (uint32_t u = 0; u < w; ++u) {
-    const int64_t z = exact::ToFixed(height[u], kHeightScale);
-    const int64_t r = exact::ToFixed(range[u], kHeightScale);
+    qz[u] = exact::ToFixed32(height[u], kHeightScale, bad);
+    qr[u] = exact::ToFixed32(range[u], kHeightScale, bad);
+  }
+  for (uint32_t u = 0; u < w; ++u) {
+    const int64_t z = bad ? exact::ToFixed(height[u], kHeightScale) : qz[u];
+    const int64_t r = bad ? exact::ToFixed(range[u], kHeightScale) : qr[u];
     pixel[u] = Sums{z, z * z, int64_t(filled[u] != 0u), r, r * r, r * z};
   }
   auto add = [&](uint32_t u, const Sums& a, const Sums& b, const Sums& c) {
@@ -191,7 +199,7 @@ namespace {
 void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s) {
   const uint32_t w = p.width, h = p.beams;
   for (std::vector<Sums>& row : s.sums) row.resize(w);
-  s.pixel.resize(w);
+  s.pixel.resize(w), s.qz.resize(w), s.qr.resize(w);
   s.empty_filled.assign(w, 0u);
   s.empty_value.assign(w, 0.0f);
   for (int k = 0; k < 2; ++k) {
@@ -224,17 +232,18 @@ void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s
   } else {
     measure(v0 - 1);
     const Row r = row_of(v0 - 1);
-    RowSums(r.filled, r.height, r.range, w, s.pixel.data(), above);
+    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.pixel.data(), above);
   }
   measure(v0);
   {
     const Row r = row_of(v0);
-    RowSums(r.filled, r.height, r.range, w, s.pixel.data(), here);
+    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.pixel.data(), here);
   }
   measure(v0 + 1);
   for (uint32_t v = v0; v < v1; ++v) {
     const Row row = row_of(v), next = row_of(v + 1);
-    RowSums(next.filled, next.height, next.range, w, s.pixel.data(), below);
+    RowSums(next.filled, next.height, next.range, w, s.qz.data(), s.qr.data(), s.pixel.data(),
+            below);
     const size_t o = size_t(v) * w;
     SlopeEdges(row, next, w, f.f_slope.data() + o, f.f_edge_l.data() + o, f.f_edge_r.data() + o);
     const uint32_t* __restrict filled = row.filled;
