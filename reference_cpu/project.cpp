@@ -27,16 +27,15 @@
 namespace lpir {
 namespace {
 
-// True when the point's angle is in the upper half-plane (0, pi]. Bitwise, without branches.
-inline bool Upper(float x, float y) { return (y > 0.0f) | ((y == 0.0f) & (x < 0.0f)); }
+// True when the point's angle is in the upper half-plane (0, pi].
+inline bool Upper(float x, float y) { return y > 0.0f || (y == 0.0f && x < 0.0f); }
 
 // atan2(py, px) < atan2(by, bx), exactly as the shader evaluates it; up and bup are the two
-// angles' half-planes (Upper): bup where they differ, else the sign of the cross product (computed
-// either way, then selected: no branch).
+// angles' half-planes (Upper).
 inline bool AngleBelow(float px, float py, bool up, float bx, float by, bool bup) {
+  if (up != bup) return bup;
   const float a = px * by, b = py * bx;
-  const bool cross = a - b > 0.0f;
-  return up != bup ? bup : cross;
+  return a - b > 0.0f;
 }
 inline bool AngleBelow(float px, float py, float bx, float by) {
   return AngleBelow(px, py, Upper(px, py), bx, by, Upper(bx, by));
