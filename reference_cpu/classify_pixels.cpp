@@ -19,10 +19,17 @@ namespace {
 // Eq. 11's vote for every pixel: uniform intensity.
 constexpr int kIntensityVote = -1;
 
-inline int Vote(float value, float low, float high) {
-  if (value <= low) return -1;
-  if (value >= high) return 1;
-  return 0;
+// -1 at or below low, else 1 at or above high, else 0 (a NaN votes 0). Without branches, as are
+// the selects below: the loop over the pixels has no data-dependent jump.
+inline int32_t Vote(float value, float low, float high) {
+  const int32_t below = value <= low, above = value >= high;
+  return (above & (below ^ 1)) - below;
+}
+
+// c ? a : b, by a mask.
+inline uint32_t Pick(bool c, uint32_t a, uint32_t b) {
+  const uint32_t mask = 0u - uint32_t(c);
+  return (a & mask) | (b & ~mask);
 }
 
 // Pixels [r.begin, r.end).
@@ -37,18 +44,15 @@ void ClassifyRange(const Params& p, Frame& f, Range r) {
   const Params q = p;  // thresholds in registers
   for (uint32_t pix = r.begin; pix < r.end; ++pix) {
     const bool edge = (edge_l[pix] >= q.t_edge) | (edge_r[pix] >= q.t_edge);  // eq. 8
-    const float slope = slope_map[pix];
-    const int s = (slope < 0.0f ? 0 : Vote(slope, q.t_slope_low, q.t_slope_high)) +  // eq. 9
-                  Vote(varz[pix], q.t_stdz_low, q.t_stdz_high) +                     // eq. 10
-                  kIntensityVote;                                                    // eq. 11
-    uint32_t c;                                                                      // eq. 12
-    if (s > 0)
-      c = slope < q.bank_slope && varz[pix] < q.bank_rough ? kPixBank : kPixNonGround;
-    else if (!edge && s < 0)
-      c = kPixGround;
-    else
-      c = kPixUnknown;
-    out[pix] = filled[pix] ? c : kPixEmpty;
+    const float slope = slope_map[pix], z = varz[pix];
+    // Eq. 9 (an undefined slope, -1, votes 0), eq. 10, eq. 11.
+    const int32_t f_slope = Vote(slope, q.t_slope_low, q.t_slope_high) * int32_t(!(slope < 0.0f));
+    const int32_t s = f_slope + Vote(z, q.t_stdz_low, q.t_stdz_high) + kIntensityVote;
+    // Eq. 12: s > 0 non-ground (a bank where smooth), s < 0 off an edge ground, else unknown.
+    const bool bank = (slope < q.bank_slope) & (z < q.bank_rough);
+    const uint32_t objects = Pick(bank, kPixBank, kPixNonGround);
+    const uint32_t c = Pick(s > 0, objects, Pick(!edge & (s < 0), kPixGround, kPixUnknown));
+    out[pix] = Pick(filled[pix] != 0u, c, kPixEmpty);
   }
 }
 

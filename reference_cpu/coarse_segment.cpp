@@ -27,11 +27,11 @@
 // Coarse label: 1 when the point's cell has seeds and |distance| <= thr, else 0.
 // The float results compared with a threshold (lambda, base, prior, rise, spread, the seed test's
 // z_t - h) go through exact::Ftz0, so that a device that flushes subnormals agrees.
-// CPU layout (same integers, fewer passes): coordinates go to mm four at a time in int32 (the
-// contract's int64 path when one exceeds 2^30 mm); the centred moments come from raw sums modulo
-// 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept over runs of one cell.
-// Threads (reference_cpu/threads.h): pieces of points, each summing into its own slots and cells,
-// merged by integer addition; pieces of slots fit the planes.
+// CPU layout (same integers, fewer passes): coordinates go to mm four at a time in int32
+// (exact::ToFixed32; the contract's int64 path when one exceeds 2^30 mm); the centred moments come
+// from raw sums modulo 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept
+// over runs of one cell. Threads (reference_cpu/threads.h): pieces of points, each summing into its
+// own slots and cells, merged by integer addition; pieces of slots fit the planes.
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
@@ -241,19 +241,6 @@ int64_t Centred(uint64_t sab, int64_t sa, int64_t sb, int64_t ma, int64_t mb, in
 // v with its bits cleared where keep is 0 (a select the vectoriser can use).
 inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v) & keep); }
 
-// int32_t(exact::ToFixed(v, kMm)) when |v * kMm + 0.5| <= 2^30, with int32 conversions (four
-// per SSE instruction): the truncation is the same integer, and it converts back to the same
-// float. Larger (or non-finite) values give 0 and set `bad`.
-inline int32_t ToMm(float v, uint32_t& bad) {
-  float y = v * kMm;
-  y = y + 0.5f;
-  const uint32_t ok = uint32_t(y >= -1073741824.0f) & uint32_t(y <= 1073741824.0f);
-  bad |= ok ^ 1u;
-  y = Keep(y, 0u - ok);
-  const int32_t t = int32_t(y);
-  return t - int32_t(float(t) > y);
-}
-
 // The passes of CoarseSegment, in the contract's order. Each is kept out of line (noinline), so
 // that its loop over the points has the registers to itself.
 
@@ -299,9 +286,9 @@ inline int32_t ToMm(float v, uint32_t& bad) {
   uint32_t bad = 0;
   for (uint32_t i = points.begin; i < points.end; ++i) {
     const uint32_t keep = 0u - uint32_t(point_cell[i] != kNone);
-    qx[i] = ToMm(Keep(xyzi[4 * size_t(i)], keep), bad);
-    qy[i] = ToMm(Keep(xyzi[4 * size_t(i) + 1], keep), bad);
-    qz[i] = ToMm(Keep(zt[i], keep), bad);
+    qx[i] = exact::ToFixed32(Keep(xyzi[4 * size_t(i)], keep), kMm, bad);
+    qy[i] = exact::ToFixed32(Keep(xyzi[4 * size_t(i) + 1], keep), kMm, bad);
+    qz[i] = exact::ToFixed32(Keep(zt[i], keep), kMm, bad);
   }
   for (uint32_t i = points.begin; bad && i < points.end; ++i) {
     if (point_cell[i] == kNone) continue;

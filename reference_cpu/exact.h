@@ -73,6 +73,20 @@ inline int64_t ToFixed(float x, float scale) {
   return FloorToInt(y);
 }
 
+// ToFixed(x, scale) as an int32 when |x * scale + 0.5| <= 2^30, in int32 conversions (four per SSE
+// instruction, so loops over it become vector code; the CPU's alone: the shaders use ToFixed): the
+// truncation is the same integer, and it converts back to the same float. Larger (or non-finite)
+// values give 0 and set `bad`, for the caller to take ToFixed's int64 path.
+inline int32_t ToFixed32(float x, float scale, uint32_t& bad) {
+  float y = x * scale;
+  y = y + 0.5f;
+  const uint32_t ok = uint32_t(y >= -1073741824.0f) & uint32_t(y <= 1073741824.0f);
+  bad |= ok ^ 1u;
+  y = FromBits(Bits(y) & (0u - ok));
+  const int32_t t = int32_t(y);
+  return t - int32_t(float(t) > y);
+}
+
 // floor(sqrt(v)) for v >= 0, exact (bit by bit, no float).
 inline uint64_t Isqrt(uint64_t v) {
   uint64_t result = 0;

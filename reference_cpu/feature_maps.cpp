@@ -55,11 +55,13 @@ struct Sums {
   int64_t z, zz, n, r, rr, rz;
 };
 
-// Scratch reused from frame to frame (each thread has its own): the sums of three image rows, an
-// empty row that stands for the ones above the first and below the last, and the two rows just
-// outside a band of rows, measured for it (filled, range, height of each).
+// Scratch reused from frame to frame (each thread has its own): the sums of three image rows and
+// the quantised values and per-pixel moments of the row being summed, an empty row that stands for
+// the ones above the first and below the last, and the two rows just outside a band of rows,
+// measured for it (filled, range, height of each).
 struct Scratch {
-  std::vector<Sums> sums[3];
+  std::vector<Sums> sums[3], pixel;
+  std::vector<int32_t> qz, qr;
   std::vector<uint32_t> empty_filled;
   std::vector<float> empty_value;
   std::vector<uint32_t> outside_filled[2];
@@ -113,49 +115,32 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
   if (w > 1) fill(w - 1, w - 2, 0);
 }
 
-// Three-column sums of one finished row: count, height moments, then range moments (two passes
-// keep the sliding values in registers). Empty pixels hold height and range 0, which quantise to
-// 0, so only the count needs their flag.
+// Three-column sums of one finished row: each pixel's count and moments of its quantised height
+// and range (in `pixel`), then the sums of each pixel's and its two neighbours' (columns wrap).
+// Empty pixels hold height and range 0, which quantise to 0, so only the count needs their flag.
+// The quantisation runs four pixels at a time in int32 (exact::ToFixed32, in `qz` and `qr`), the
+// contract's int64 ToFixed for the row when a value lies beyond it.
 void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
-             const float* __restrict range, uint32_t w, Sums* __restrict out) {
-  {
-    auto load = [&](uint32_t u, int64_t& n, int64_t& q, int64_t& qq) {
-      n = filled[u] != 0u;
-      q = exact::ToFixed(height[u], kHeightScale);
-      qq = q * q;
-    };
-    int64_t n0, q0, qq0, n1, q1, qq1, n2, q2, qq2;  // columns u - 1, u, u + 1
-    load(w - 1, n0, q0, qq0);
-    load(0, n1, q1, qq1);
-    const int64_t nf = n1, qf = q1, qqf = qq1;
-    for (uint32_t u = 0; u < w; ++u) {
-      if (u + 1 < w)
-        load(u + 1, n2, q2, qq2);
-      else
-        n2 = nf, q2 = qf, qq2 = qqf;
-      out[u].n = n0 + n1 + n2, out[u].z = q0 + q1 + q2, out[u].zz = qq0 + qq1 + qq2;
-      n0 = n1, q0 = q1, qq0 = qq1, n1 = n2, q1 = q2, qq1 = qq2;
-    }
+             const float* __restrict range, uint32_t w, int32_t* __restrict qz,
+             int32_t* __restrict qr, Sums* __restrict pixel, Sums* __restrict out) {
+  uint32_t bad = 0;
+  for (uint32_t u = 0; u < w; ++u) {
+    qz[u] = exact::ToFixed32(height[u], kHeightScale, bad);
+    qr[u] = exact::ToFixed32(range[u], kHeightScale, bad);
   }
-  {
-    auto load = [&](uint32_t u, int64_t& q, int64_t& qq, int64_t& qz) {
-      q = exact::ToFixed(range[u], kHeightScale);
-      qq = q * q;
-      qz = q * exact::ToFixed(height[u], kHeightScale);
-    };
-    int64_t q0, qq0, qz0, q1, qq1, qz1, q2, qq2, qz2;
-    load(w - 1, q0, qq0, qz0);
-    load(0, q1, qq1, qz1);
-    const int64_t qf = q1, qqf = qq1, qzf = qz1;
-    for (uint32_t u = 0; u < w; ++u) {
-      if (u + 1 < w)
-        load(u + 1, q2, qq2, qz2);
-      else
-        q2 = qf, qq2 = qqf, qz2 = qzf;
-      out[u].r = q0 + q1 + q2, out[u].rr = qq0 + qq1 + qq2, out[u].rz = qz0 + qz1 + qz2;
-      q0 = q1, qq0 = qq1, qz0 = qz1, q1 = q2, qq1 = qq2, qz1 = qz2;
-    }
+  for (uint32_t u = 0; u < w; ++u) {
+    const int64_t z = bad ? exact::ToFixed(height[u], kHeightScale) : qz[u];
+    const int64_t r = bad ? exact::ToFixed(range[u], kHeightScale) : qr[u];
+    pixel[u] = Sums{z, z * z, int64_t(filled[u] != 0u), r, r * r, r * z};
   }
+  auto add = [&](uint32_t u, const Sums& a, const Sums& b, const Sums& c) {
+    out[u] = Sums{a.z + b.z + c.z, a.zz + b.zz + c.zz, a.n + b.n + c.n,
+                  a.r + b.r + c.r, a.rr + b.rr + c.rr, a.rz + b.rz + c.rz};
+  };
+  if (w == 1) return add(0, pixel[0], pixel[0], pixel[0]);
+  add(0, pixel[w - 1], pixel[0], pixel[1]);
+  for (uint32_t u = 1; u + 1 < w; ++u) add(u, pixel[u - 1], pixel[u], pixel[u + 1]);
+  add(w - 1, pixel[w - 2], pixel[w - 1], pixel[0]);
 }
 
 // The variance of z about the window's line in range (the contract above) from its moments.
@@ -214,6 +199,7 @@ namespace {
 void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s) {
   const uint32_t w = p.width, h = p.beams;
   for (std::vector<Sums>& row : s.sums) row.resize(w);
+  s.pixel.resize(w), s.qz.resize(w), s.qr.resize(w);
   s.empty_filled.assign(w, 0u);
   s.empty_value.assign(w, 0.0f);
   for (int k = 0; k < 2; ++k) {
@@ -246,17 +232,18 @@ void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s
   } else {
     measure(v0 - 1);
     const Row r = row_of(v0 - 1);
-    RowSums(r.filled, r.height, r.range, w, above);
+    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.pixel.data(), above);
   }
   measure(v0);
   {
     const Row r = row_of(v0);
-    RowSums(r.filled, r.height, r.range, w, here);
+    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.pixel.data(), here);
   }
   measure(v0 + 1);
   for (uint32_t v = v0; v < v1; ++v) {
     const Row row = row_of(v), next = row_of(v + 1);
-    RowSums(next.filled, next.height, next.range, w, below);
+    RowSums(next.filled, next.height, next.range, w, s.qz.data(), s.qr.data(), s.pixel.data(),
+            below);
     const size_t o = size_t(v) * w;
     SlopeEdges(row, next, w, f.f_slope.data() + o, f.f_edge_l.data() + o, f.f_edge_r.data() + o);
     const uint32_t* __restrict filled = row.filled;

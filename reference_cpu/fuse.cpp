@@ -182,25 +182,35 @@ void FuseRows(const Params& p, Frame& f, Range rows) {
     const uint32_t step_rows = p.occ_step_rows < v ? p.occ_step_rows : v;
     for (uint32_t u0 = 0; u0 < w; u0 += kPiece) {
       const uint32_t n = w - u0 < kPiece ? w - u0 : kPiece, at = v * w + u0;
+      Opinions(point + at, coarse, n, opinion);
       if (rows_above) {
         Bounds(p, range + at, height + at, cls + at, n, reach, top);
         for (uint32_t k = 1; k <= rows_above; ++k) {
           const uint32_t above = at - k * w;
           Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);
         }
-        for (uint32_t u = 0; u < n; ++u)
-          if (occluded[u] && cls[at + u] == kPixGround)
-            occluded[u] =
-                KeepsOccluder(p, filled, range, height, at + u, w, rows_above, reach[u], top[u]);
-        if (step_rows) {
-          for (uint32_t u = 0; u < n; ++u)
-            if (occluded[u] && SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
-              occluded[u] = 0;
+        // The marked pixels only: a pixel of class ground keeps its mark only with an occluder its
+        // ray did not pass under (KeepsOccluder); then a mark is lifted on a step (SparedStep). The
+        // mark changes what Decide writes only where the pixel is not empty and its vote is not
+        // non-ground (the vote is non-ground exactly where class and opinion both are), so only
+        // those pixels ask SparedStep; the others' marks stay, unread.
+        for (uint32_t u = 0; u < n; ++u) {
+          if (!occluded[u]) continue;
+          const uint32_t c = cls[at + u];
+          if (c == kPixGround &&
+              !KeepsOccluder(p, filled, range, height, at + u, w, rows_above, reach[u], top[u])) {
+            occluded[u] = 0;
+            continue;
+          }
+          const bool matters =
+              c != kPixEmpty && !(c == kPixNonGround && opinion[u] == kPixNonGround);
+          if (step_rows && matters &&
+              SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
+            occluded[u] = 0;
         }
       } else {
         for (uint32_t u = 0; u < n; ++u) occluded[u] = 0;
       }
-      Opinions(point + at, coarse, n, opinion);
       Decide(cls + at, occluded, opinion, n, fused + at);
     }
   }

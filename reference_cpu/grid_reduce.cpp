@@ -8,6 +8,7 @@
 // u / (width / sectors) with the zone's sector count. Cell = near rings x near sectors, then far.
 // Reductions: integer min/max/add, order-independent.
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "reference_cpu/exact.h"
@@ -36,15 +37,34 @@ struct CellSums {
   uint32_t* count;
 };
 
+// pix / width for every pixel index pix < 2^28 (beams <= 4096, width <= 65536), as a multiply and a
+// shift: with l = ceil(log2(width)) and m = ceil(2^(28 + l) / width), 2^(28 + l) <= m width <=
+// 2^(28 + l) + 2^l, so floor(pix m / 2^(28 + l)) = floor(pix / width) (Granlund and Montgomery
+// 1994, Theorem 4.2); m < 2^29 + 1, so pix m fits 58 bits.
+struct RowOfPixel {
+  uint64_t m;
+  uint32_t shift;
+  explicit RowOfPixel(uint32_t width) {
+    uint32_t l = 0;
+    while ((uint64_t(1) << l) < width) ++l;
+    shift = 28 + l;
+    m = ((uint64_t(1) << shift) + width - 1) / width;
+  }
+  uint32_t operator()(uint32_t pix) const { return uint32_t((uint64_t(pix) * m) >> shift); }
+};
+
 // The cell of every point of `points` (point_cell) and the cells' reductions over them into
-// `out` (which holds kNone, 0, 0 for a cell no point has reached).
+// `out` (which holds kNone, 0, 0 for a cell no point has reached). `edges` holds the rings' edges
+// with one before and one after: -inf, ring_bound2[0 .. rings - 1], +inf, so that ring k spans
+// edges[k] <= r2 < edges[k + 1] for every k in 0 .. rings (rings: beyond the last).
 void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restrict sn,
-             const uint32_t* __restrict sf, Range points, const CellSums& out) {
+             const uint32_t* __restrict sf, const float* __restrict edges, Range points,
+             const CellSums& out) {
   const uint32_t rings = p.rings_near + p.rings_far;
   const uint32_t width = p.width, rings_near = p.rings_near;
   const uint32_t sectors_near = p.sectors_near, sectors_far = p.sectors_far;
   const float* bound2 = t.ring_bound2.data();
-  const float inv_width = exact::Div(1.0f, float(width));
+  const RowOfPixel row_of(width);
   const uint32_t* __restrict flags = f.flags.data();
   const float* __restrict r2s = f.r2.data();
   const float* __restrict zt = f.zt.data();
@@ -60,16 +80,12 @@ void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restr
     point_cell[i] = kNone;
     if (flags[i] != kPointValid) continue;  // invalid or noise
     const float r2 = r2s[i];
-    const bool hint_right =
-        (hint == 0 || r2 >= bound2[hint - 1]) && (hint == rings || r2 < bound2[hint]);
+    const bool hint_right = (r2 >= edges[hint]) & (r2 < edges[hint + 1]);
     const uint32_t ring = hint_right ? hint : RingOf(r2, bound2, rings);
     hint = ring;
     if (ring >= rings) continue;
     const uint32_t pix = point_pixel[i];
-    uint32_t v = uint32_t(float(pix) * inv_width);  // pix / width, then made exact
-    while (v * width > pix) --v;
-    while ((v + 1) * width <= pix) ++v;
-    const uint32_t u = pix - v * width;
+    const uint32_t u = pix - row_of(pix) * width;
     const uint32_t cell = ring < rings_near ? ring * sectors_near + sn[u]
                                             : far_base + (ring - rings_near) * sectors_far + sf[u];
     point_cell[i] = cell;
@@ -80,10 +96,12 @@ void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restr
   }
 }
 
-// Scratch reused from frame to frame: every column's sector in each zone, and the cell reductions
-// of the pieces after the first (which reduces into the frame), three cells' arrays a piece.
+// Scratch reused from frame to frame: every column's sector in each zone, the rings' edges
+// (CellsOf), and the cell reductions of the pieces after the first (which reduces into the frame),
+// three cells' arrays a piece.
 struct Scratch {
   std::vector<uint32_t> sector_near, sector_far;
+  std::vector<float> edges;
   std::vector<uint32_t> pieces;
 };
 thread_local Scratch scratch;
@@ -104,6 +122,10 @@ void GridReduce(const Params& p, const Tables& t, Frame& f, Threads threads) {
   s.sector_near.resize(width), s.sector_far.resize(width);
   for (uint32_t u = 0; u < width; ++u)
     s.sector_near[u] = u / cols_near, s.sector_far[u] = u / cols_far;
+  const uint32_t rings = p.rings_near + p.rings_far;
+  s.edges.assign(size_t(rings) + 2, std::numeric_limits<float>::infinity());
+  s.edges[0] = -std::numeric_limits<float>::infinity();
+  std::copy(t.ring_bound2.begin(), t.ring_bound2.begin() + rings, s.edges.begin() + 1);
   const uint32_t pieces = PiecesFor(threads, n, 4096);
   s.pieces.resize(size_t(pieces - 1) * 3 * cells);
   auto sums = [&](uint32_t k) {
@@ -118,7 +140,7 @@ void GridReduce(const Params& p, const Tables& t, Frame& f, Threads threads) {
       std::fill(out.zmax, out.zmax + cells, 0u);
       std::fill(out.count, out.count + cells, 0u);
     }
-    CellsOf(p, t, f, s.sector_near.data(), s.sector_far.data(), points, out);
+    CellsOf(p, t, f, s.sector_near.data(), s.sector_far.data(), s.edges.data(), points, out);
   });
   if (pieces == 1) return;
   ForPieces(threads, PiecesFor(threads, cells, 256), cells, [&](uint32_t, Range r) {

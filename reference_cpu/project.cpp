@@ -93,9 +93,17 @@ inline bool Below(float x, float y, bool up, const Columns& c, uint32_t k) {
 
 // ColumnOf when a likely column is known (the previous point's column plus its last step: scans
 // come in sweep order). The column is the unique k with P(k) and not P(k + 1), so confirming that
-// at the guess or a neighbour gives exactly ColumnOf's answer; otherwise ColumnOf decides.
+// at the guess or a neighbour gives exactly ColumnOf's answer; otherwise ColumnOf decides. An
+// interior guess (both boundaries in the table, nearly every point) is confirmed first without
+// Below's end cases.
 inline uint32_t ColumnNear(float x, float y, const Columns& c, uint32_t guess) {
   const bool up = Upper(x, y);
+  if ((guess >= 1) & (guess + 1 < c.width)) {
+    const float* d = c.dir + 2 * guess;
+    const bool at = AngleBelow(x, y, up, d[0], d[1], c.upper[guess] != 0);
+    const bool next = AngleBelow(x, y, up, d[2], d[3], c.upper[guess + 1] != 0);
+    if (at & !next) return guess;
+  }
   const bool at = Below(x, y, up, c, guess), next = Below(x, y, up, c, guess + 1);
   if (at && !next) return guess;
   if (next) {  // the column lies after the guess
@@ -114,7 +122,7 @@ namespace {
 // h * |h|, h the point's height above that boundary's laser origin.
 inline bool BoundAbove(float z, float r2, const float* bound, const float* origin, uint32_t b) {
   const float h = z - origin[b];
-  const float hh = h * (h < 0.0f ? -h : h);
+  const float hh = h * std::fabs(h);  // only its sign differs from h * (h < 0 ? -h : h), at h = 0
   const float s = bound[b] * r2;
   return s > hh;
 }
@@ -138,9 +146,15 @@ namespace {
 
 // RowOf when the previous point's row is known: the row is the unique v with boundary v - 1 above
 // the point and boundary v not (boundary -1 counts as above, boundary beams - 1 as not), so
-// checking the hint gives exactly RowOf's answer when it is right; otherwise RowOf decides.
+// checking the hint gives exactly RowOf's answer when it is right; otherwise RowOf decides. An
+// interior hint (nearly every point) is checked first without the end cases.
 inline uint32_t RowNear(float z, float r2, const float* bound, const float* origin, uint32_t beams,
                         uint32_t hint) {
+  if ((hint >= 1) & (hint + 1 < beams)) {
+    const bool above_before = BoundAbove(z, r2, bound, origin, hint - 1);
+    const bool above_here = BoundAbove(z, r2, bound, origin, hint);
+    if (above_before & !above_here) return hint;
+  }
   const bool above_before = hint == 0 || BoundAbove(z, r2, bound, origin, hint - 1);
   const bool above_here = hint + 1 < beams && BoundAbove(z, r2, bound, origin, hint);
   if (above_before && !above_here) return hint;
@@ -154,9 +168,11 @@ namespace {
 // The pixel of every point of `points` (point_pixel: v * width + u, kNone when invalid). Each
 // search starts from the previous valid point's row and column in the range (the range's first
 // from row 0, column 0): the answer is unique, so where a range starts changes no byte.
-void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Columns& columns,
+void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Columns columns,
                  Frame& f, Range points) {
   const uint32_t width = p.width, beams = p.beams;
+  const bool ring_zero_is_top = p.ring_zero_is_top;
+  const int32_t* __restrict rings = cloud.ring.data();
   const float* __restrict xyzi = cloud.xyzi.data();
   const uint32_t* __restrict flags = f.flags.data();
   const float* __restrict r2 = f.r2.data();
@@ -178,8 +194,8 @@ void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Col
     column = u;
     uint32_t v;
     if (has_ring) {
-      const uint32_t ring = uint32_t(cloud.ring[i]);
-      v = p.ring_zero_is_top ? ring : beams - 1 - ring;
+      const uint32_t ring = uint32_t(rings[i]);
+      v = ring_zero_is_top ? ring : beams - 1 - ring;
     } else {
       v = RowNear(z, r2[i], bound, origin, beams, row);
       row = v;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <random>
 
 namespace lpir::exact {
@@ -103,6 +105,32 @@ TEST(Exact, DivToZeroAndToFixed) {
   EXPECT_EQ(ToFixed(-1.2344f, 1000.0f), -1234);
   EXPECT_EQ(Pow2(-3), 0.125f);
   EXPECT_EQ(Exponent(10.0f), 3);
+}
+
+// The int32 path gives ToFixed's integer wherever it does not flag the value, and flags only
+// values whose integer lies at or beyond 2^30 (there its callers take ToFixed's int64 path).
+TEST(Exact, ToFixed32IsToFixedWithinItsRangeAndFlagsBeyond) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> metres(-120000.0f, 120000.0f);  // x 1e4: beyond 2^30
+  uint32_t flagged = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const float x = metres(rng);
+    uint32_t bad = 0;
+    const int32_t q = ToFixed32(x, 10000.0f, bad);
+    const int64_t want = ToFixed(x, 10000.0f);
+    if (bad) {
+      ++flagged;
+      EXPECT_EQ(q, 0) << x;
+      EXPECT_GE(std::llabs(want), (int64_t(1) << 30) - 1) << x;
+    } else {
+      EXPECT_EQ(q, want) << x;
+    }
+  }
+  EXPECT_GT(flagged, 0u);
+  EXPECT_LT(flagged, 200000u);
+  uint32_t bad = 0;
+  EXPECT_EQ(ToFixed32(std::numeric_limits<float>::infinity(), 1.0f, bad), 0);
+  EXPECT_EQ(bad, 1u);
 }
 
 }  // namespace

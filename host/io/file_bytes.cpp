@@ -9,7 +9,7 @@
 
 namespace lpir {
 
-std::vector<char> ReadFileBytes(const std::string& path) {
+void ReadFileInto(const std::string& path, const std::function<char*(size_t)>& room) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(path, "no such file", ENOENT);
   if (std::filesystem::is_directory(path, ec))
@@ -18,9 +18,17 @@ std::vector<char> ReadFileBytes(const std::string& path) {
   if (!in) throw IoError(path, std::string("cannot open: ") + std::strerror(errno), errno);
   const std::streamoff size = in.tellg();
   if (size < 0) throw IoError(path, "cannot tell its size");
-  std::vector<char> bytes(static_cast<size_t>(size));
+  char* data = room(static_cast<size_t>(size));
   in.seekg(0);
-  if (size > 0 && !in.read(bytes.data(), size)) throw IoError(path, "read failed");
+  if (size > 0 && !in.read(data, size)) throw IoError(path, "read failed");
+}
+
+std::vector<char> ReadFileBytes(const std::string& path) {
+  std::vector<char> bytes;
+  ReadFileInto(path, [&](size_t size) {
+    bytes.resize(size);
+    return bytes.data();
+  });
   return bytes;
 }
 

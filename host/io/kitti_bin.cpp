@@ -18,21 +18,27 @@ size_t FloatsPerPoint(BinLayout layout) { return layout == BinLayout::kNuScenes5
 }  // namespace
 
 Cloud ReadKittiBin(const std::string& path, BinLayout layout) {
-  const std::vector<char> bytes = ReadFileBytes(path);
   const size_t stride = FloatsPerPoint(layout) * sizeof(float);
-  if (bytes.empty()) throw IoError(path, "empty file");
-  if (bytes.size() % stride != 0) {
-    throw IoError(path, "size " + std::to_string(bytes.size()) +
-                            " bytes is not a whole number of " + std::to_string(stride) +
-                            "-byte points");
-  }
-  const size_t n = bytes.size() / stride;
+  auto check = [&](size_t size) {
+    if (size == 0) throw IoError(path, "empty file");
+    if (size % stride != 0) {
+      throw IoError(path, "size " + std::to_string(size) + " bytes is not a whole number of " +
+                              std::to_string(stride) + "-byte points");
+    }
+  };
   Cloud cloud;
-  cloud.xyzi.resize(4 * n);
-  if (layout == BinLayout::kKitti4) {
-    std::memcpy(cloud.xyzi.data(), bytes.data(), bytes.size());
+  if (layout == BinLayout::kKitti4) {  // the file's bytes are the xyzi layout: read in place
+    ReadFileInto(path, [&](size_t size) {
+      check(size);
+      cloud.xyzi.resize(size / sizeof(float));
+      return reinterpret_cast<char*>(cloud.xyzi.data());
+    });
     return cloud;
   }
+  const std::vector<char> bytes = ReadFileBytes(path);
+  check(bytes.size());
+  const size_t n = bytes.size() / stride;
+  cloud.xyzi.resize(4 * n);
   cloud.ring.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const char* point = bytes.data() + i * stride;
