@@ -298,9 +298,19 @@ inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v
   }
 }
 
+// The end of the run of points of one cell that starts at i (scan order keeps a cell's points
+// together, about ten on a KITTI ring): the first point after i in another cell, or end.
+inline uint32_t RunEnd(const uint32_t* __restrict point_cell, uint32_t i, uint32_t end) {
+  const uint32_t c = point_cell[i];
+  uint32_t j = i + 1;
+  while (j < end && point_cell[j] == c) ++j;
+  return j;
+}
+
 // The seed test of every point of `points` (s.seed), and the seeds' sums per slot into `sums`
-// (int64, order-independent). Points come in runs of one cell (scan order): a run's sums stay in
-// registers and go to the cell's when the run ends.
+// (int64, order-independent), one run of one cell at a time: the cell's test and the run's sums
+// stay in registers, and go to the cell's sums when the run ends. A run without a slot (mode 0, or
+// no cell) has no seeds; in a mode 2 run every point is one (its test says so for any finite z_t).
 [[gnu::noinline]] void SumSeeds(const Frame& f, Scratch& s, Range points,
                                 SeedSums* __restrict sums) {
   const float* __restrict zt = f.zt.data();
@@ -310,34 +320,30 @@ inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v
   const int32_t* __restrict qz = s.qz.data();
   const SeedTest* __restrict test = s.test.data();
   uint8_t* __restrict seed = s.seed.data();
-  SeedTest st = test[0];
-  uint32_t run_cell = kNone;
-  int64_t rn = 0, rx = 0, ry = 0, rz = 0;
-  uint64_t rxx = 0, rxy = 0, rxz = 0, ryy = 0, ryz = 0, rzz = 0;
-  auto flush = [&] {
+  for (uint32_t i = points.begin; i < points.end;) {
+    const uint32_t end = RunEnd(point_cell, i, points.end);
+    const SeedTest st = test[point_cell[i] + 1u];
+    if (st.slot == 0) {
+      std::fill(seed + i, seed + end, uint8_t(0));
+      i = end;
+      continue;
+    }
+    const bool all = st.h == std::numeric_limits<float>::infinity();
+    int64_t rn = 0, rx = 0, ry = 0, rz = 0;
+    uint64_t rxx = 0, rxy = 0, rxz = 0, ryy = 0, ryz = 0, rzz = 0;
+    for (; i < end; ++i) {
+      const bool is_seed = all || exact::Ftz0(zt[i] - st.h) <= st.lambda;
+      seed[i] = is_seed;
+      if (!is_seed) continue;
+      const int64_t x = qx[i], y = qy[i], z = qz[i];
+      rn += 1, rx += x, ry += y, rz += z;
+      rxx += uint64_t(x * x), rxy += uint64_t(x * y), rxz += uint64_t(x * z);
+      ryy += uint64_t(y * y), ryz += uint64_t(y * z), rzz += uint64_t(z * z);
+    }
     SeedSums& a = sums[st.slot];
     a.n += rn, a.x += rx, a.y += ry, a.z += rz;
     a.xx += rxx, a.xy += rxy, a.xz += rxz, a.yy += ryy, a.yz += ryz, a.zz += rzz;
-    rn = rx = ry = rz = 0;
-    rxx = rxy = rxz = ryy = ryz = rzz = 0;
-  };
-  for (uint32_t i = points.begin; i < points.end; ++i) {
-    const uint32_t c = point_cell[i];
-    if (c != run_cell) {
-      flush();
-      run_cell = c;
-      st = test[c + 1u];
-    }
-    const float dz = exact::Ftz0(zt[i] - st.h);
-    const bool is_seed = dz <= st.lambda;
-    seed[i] = is_seed;
-    if (!is_seed) continue;
-    const int64_t x = qx[i], y = qy[i], z = qz[i];
-    rn += 1, rx += x, ry += y, rz += z;
-    rxx += uint64_t(x * x), rxy += uint64_t(x * y), rxz += uint64_t(x * z);
-    ryy += uint64_t(y * y), ryz += uint64_t(y * z), rzz += uint64_t(z * z);
   }
-  flush();
 }
 
 // b's sums added to a's (int64 and modulo 2^64: the same in any order).
