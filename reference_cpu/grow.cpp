@@ -480,9 +480,11 @@ void DecideVetoed(const Params& p, const float* __restrict range, const float* _
   lifted.clear();
   kept.clear();
   for (uint32_t v = rows.begin; v < rows.end; ++v) {
-    for (uint32_t u = 0; u < w; ++u) {
-      const uint32_t x = v * w + u;
-      if (label[x] != kPixVetoed) continue;
+    const uint32_t* const row = label + size_t(v) * w;
+    // The row's vetoed pixels in order, found by std::find (few pixels are vetoed).
+    for (const uint32_t* at = std::find(row, row + w, kPixVetoed); at != row + w;
+         at = std::find(at + 1, row + w, kPixVetoed)) {
+      const uint32_t u = uint32_t(at - row), x = v * w + u;
       const uint32_t left = u == 0 ? x + w - 1 : x - 1, right = u + 1 == w ? x + 1 - w : x + 1;
       auto joins = [&](uint32_t q) {
         return label[q] == kPixGround &&
