@@ -203,7 +203,7 @@ TEST(AccuracyLivox, ThreeRecordingsStayAboveTheFloors) {
   const struct {
     const char* recording;
     double f1_floor;
-  } recordings[] = {{"00", 93.2}, {"05", 92.6}, {"08", 92.8}};
+  } recordings[] = {{"00", 93.4}, {"05", 92.8}, {"08", 93.0}};
   LPIR_REQUIRE_DATA("livox/00/velodyne/000000.bin");
   Segmenter seg(LoadSensorProfile("mid70", LPIR_SENSORS_DIR), SegmenterOptions::For(Backend::kCpu));
   double sum = 0;
@@ -229,7 +229,7 @@ TEST(AccuracyLivox, ThreeRecordingsStayAboveTheFloors) {
     sum += 100 * s.f1;
   }
   std::printf("livox, mean of the recordings: DG F1 %.2f\n", sum / 3);
-  EXPECT_GE(sum / 3, 92.9);
+  EXPECT_GE(sum / 3, 93.1);
 }
 
 }  // namespace
