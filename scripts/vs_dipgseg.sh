@@ -7,7 +7,8 @@
 # Two settings: both cores (no affinity set) and pinned to one core (taskset -c 0). Runs are taken
 # in turns (lpir-gseg, DipG-Seg, lpir-gseg, ...; within a run both settings in turn too), after
 # one untimed warm-up of each (page cache), so that a spell of load on a shared machine falls on
-# both alike. Prints the medians, their ratio and the load average before and after.
+# both alike. Prints the medians, their ratio, the median of each run's own ratio, and the load
+# average before and after.
 #   scripts/vs_dipgseg.sh [RUNS (default 9)] [extra lpir-gseg segment options, e.g. --threads 1]
 # Environment: LPIR_BUILD_DIR (default ./build: its lpir-gseg), LPIR_DATA_DIR (default
 # ../shared/data), PEERS_BIN (default /tmp/peers/bin; built there when missing, which needs
@@ -68,12 +69,15 @@ labels = len(os.listdir(os.path.join(work, "lpir")))
 print(f"{len(files)} frames, {runs} runs in turns, lpir-gseg options: "
       f"{' '.join(extra) or '(defaults)'}; load average {load_before:.2f} before, "
       f"{load_after:.2f} after; {labels} label files written")
-print("| | lpir-gseg `segment --backend cpu` | DipG-Seg | ratio |")
-print("|---|---|---|---|")
+print("| | lpir-gseg `segment --backend cpu` | DipG-Seg | ratio | paired ratio |")
+print("|---|---|---|---|---|")
 for s in settings:
     a = statistics.median(times[(s, "lpir")])
     b = statistics.median(times[(s, "dipg")])
-    print(f"| {s} | {a:.3f} s | {b:.3f} s | {a / b:.2f} |")
+    # Each run's two processes ran back to back: the median of their ratios cancels a spell of
+    # load that falls on one run, where the ratio of the medians does not.
+    paired = statistics.median(x / y for x, y in zip(times[(s, "lpir")], times[(s, "dipg")]))
+    print(f"| {s} | {a:.3f} s | {b:.3f} s | {a / b:.2f} | {paired:.2f} |")
 for s in settings:
     for who in ("lpir", "dipg"):
         print(f"  {s}, {who}: " + " ".join(f"{t:.3f}" for t in sorted(times[(s, who)])))
