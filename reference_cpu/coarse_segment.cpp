@@ -10,6 +10,13 @@
 //     sits above what neighbour and slope allow: a car roof, a wall filling the cell); or h_min >
 //     -sensor_height + ground_max_above + slope_max * inner radius (far above any ground the
 //     slope limit can reach from under the sensor).
+//     With rise_carry 1, also none when h_min - h_in > lambda + rise_margin, h_in the lowest
+//     carried ground of the nearer ring's three cells under this one (NeighbourMin's sectors; the
+//     prior's base for ring 0). A cell's carried ground: min(h_min, h_in + slope_max * radial size)
+//     when it has seeds and h_min lies no more than lambda + rise_margin under h_nmin (not a point
+//     under the road: reflection noise), else h_in + slope_max * radial size: the ground's highest
+//     reach from the sensor along the sector, so a wall's feet cannot vouch for each other (float
+//     ops via Ftz0).
 //   mode 2 (whole cell): h_max - h_nmin <= h_athr.
 //   mode 1: the points with z_t - h_min <= lambda.
 // Plane (eqs. 6-7): in integers first. Coordinates in mm (ToFixed); mean = sum / n (the mean of
@@ -215,6 +222,7 @@ struct Fit {
 // ground".
 struct Scratch {
   std::vector<SeedTest> test;       // per cell + 1
+  std::vector<float> carried;       // per cell: the carried ground (rise_carry only)
   std::vector<int64_t> thr;         // per cell + 1: the threshold, -1 when no ground
   std::vector<uint32_t> cell_of;    // per slot
   std::vector<SeedSums> sums;       // per slot
@@ -244,8 +252,25 @@ inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v
 // The passes of CoarseSegment, in the contract's order. Each is kept out of line (noinline), so
 // that its loop over the points has the registers to itself.
 
-// Seed mode per cell (eq. 5), in cell order; cells that may have seeds get the next slot
-// (slot 0: none). Writes cell_seed_mode, s.test and s.cell_of.
+// The lowest carried ground of the nearer ring's three cells under cell g (NeighbourMin's sectors);
+// `base` for ring 0.
+float InnerCarried(const Params& p, const CellGeometry& g, const std::vector<float>& carried,
+                   float base) {
+  if (g.ring == 0) return base;
+  const uint32_t ring = g.ring - 1;
+  const uint32_t sectors = ring < p.rings_near ? p.sectors_near : p.sectors_far;
+  const uint32_t centre = uint32_t(uint64_t(g.sector) * sectors / g.sectors);
+  float h = std::numeric_limits<float>::infinity();
+  for (int ds = -1; ds <= 1; ++ds) {
+    const uint32_t sector = uint32_t((int64_t(centre) + ds + sectors) % sectors);
+    h = std::min(h, carried[CellIndex(p, ring, sector)]);
+  }
+  return h;
+}
+
+// Seed mode per cell (eq. 5), in cell order (ring by ring, so the nearer ring's carried ground is
+// known); cells that may have seeds get the next slot (slot 0: none). Writes cell_seed_mode,
+// s.test, s.cell_of and, with rise_carry, s.carried.
 [[gnu::noinline]] void SeedModes(const Params& p, const Tables& t, Frame& f, Scratch& s) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   const uint32_t cells = CellCount(p);
@@ -253,18 +278,32 @@ inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v
   const float lambda_far = exact::Ftz0(exact::Ftz0(p.ring_res_far * p.slope_max) + p.seed_margin);
   const uint32_t near_cells = p.rings_near * p.sectors_near;
   const float base = exact::Ftz0(-p.sensor_height + p.ground_max_above);
+  const float reach_near = exact::Ftz0(p.ring_res_near * p.slope_max);
+  const float reach_far = exact::Ftz0(p.ring_res_far * p.slope_max);
   s.test.assign(size_t(cells) + 1, SeedTest{-kInf, 0.0f, 0u});
   s.cell_of.assign(1, kNone);
+  if (p.rise_carry) s.carried.assign(cells, 0.0f);
   for (uint32_t c = 0; c < cells; ++c) {
-    if (f.cell_count[c] == 0) continue;
     const CellGeometry g = Geometry(p, c);
+    float carried = 0.0f;  // this cell's carried ground without seeds (rise_carry)
+    float inner = 0.0f;
+    if (p.rise_carry) {
+      inner = InnerCarried(p, g, s.carried, base);
+      carried = exact::Ftz0(inner + (c < near_cells ? reach_near : reach_far));
+      s.carried[c] = carried;
+    }
+    if (f.cell_count[c] == 0) continue;
     const float lam = c < near_cells ? lambda_near : lambda_far;
     const float hmin = exact::FromKey(f.cell_zmin[c]), hmax = exact::FromKey(f.cell_zmax[c]);
     const uint32_t nkey = NeighbourMin(p, f, c);
     const float hnmin = nkey == kNone ? hmin : exact::FromKey(nkey);
     const float rise = exact::Ftz0(hmin - hnmin);
     const float prior = exact::Ftz0(base + exact::Ftz0(p.slope_max * t.ring_inner[g.ring]));
-    if (rise > exact::Ftz0(lam + p.rise_margin) || hmin > prior) continue;
+    const float rise_lim = exact::Ftz0(lam + p.rise_margin);
+    if (rise > rise_lim || hmin > prior) continue;
+    if (p.rise_carry && exact::Ftz0(hmin - inner) > rise_lim) continue;
+    if (p.rise_carry && !(exact::Ftz0(hnmin - hmin) > rise_lim))
+      s.carried[c] = std::min(hmin, carried);
     const float spread = exact::Ftz0(hmax - hnmin);
     const uint32_t mode = spread <= p.h_athr ? 2u : 1u;
     f.cell_seed_mode[c] = mode;

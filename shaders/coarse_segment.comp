@@ -7,7 +7,11 @@
 //     cell's scratch: sums zeroed and the seed test (h, lambda) as the CPU's SeedTest (mode 2:
 //     h = +inf, lambda 0; mode 1: h = h_min and the zone's lambda; mode 0: no seeds). lambda,
 //     base, prior, rise and spread, each result through exact_Ftz0 as in the reference (a device
-//     may flush a subnormal one), as is pass 1's z_t - h.
+//     may flush a subnormal one), as is pass 1's z_t - h. With rise_carry the rise rule also
+//     reads the nearer ring's carried ground, so the rings go in order: the first workgroup
+//     alone runs ring after ring, a barrier between two, each cell's carried ground in its
+//     scratch word kCarried (the distance sum's high word, zeroed again at the end); the other
+//     workgroups return.
 //   pass 1, one invocation per kItems consecutive points: seed iff z_t - h <= lambda (one rounded
 //     float op, the CPU's test; mode 2 decided on z_t's bits with the same outcome, no infinity
 //     arithmetic); a seed adds n, x, y, z and the six products to its cell's sums. The chunk's
@@ -87,6 +91,10 @@ const uint kScratch = 24u;
 const uint kSumDist = 10u;
 const uint kTestH = 22u;
 const uint kTestLambda = 23u;
+const uint kCarried = 21u;  // pass 0 with rise_carry only: the carried ground (float bits)
+// The same words, coherent: pass 0's invocations read one another's carried ground (pass 0
+// accesses word kCarried through this alias only).
+layout(std430, set = 0, binding = 11) coherent buffer CoarseScratchC { uint coarse_scratch_c[]; };
 
 uint Base(uint cell) { return cell * kScratch; }
 
@@ -113,23 +121,45 @@ uint CellIndex(uint ring, uint sector) {
 
 void SeedMode(uint c) {
   for (uint k = 0u; k < 8u; ++k) cell_plane[8u * c + k] = 0;
-  for (uint k = 0u; k < 22u; ++k) coarse_scratch[Base(c) + k] = 0u;
+  for (uint k = 0u; k < kCarried; ++k) coarse_scratch[Base(c) + k] = 0u;  // word 21: below
   float inf = uintBitsToFloat(0x7F800000u);
   uint mode = 0u;
   float h = -inf, lam_out = 0.0;
-  if (cell_count[c] != 0u) {
-    uint near_cells = p.rings_near * p.sectors_near;
-    uint ring, sector, sectors;
-    if (c < near_cells) {
-      ring = c / p.sectors_near;
-      sector = c % p.sectors_near;
-      sectors = p.sectors_near;
-    } else {
-      uint d = c - near_cells;
-      ring = p.rings_near + d / p.sectors_far;
-      sector = d % p.sectors_far;
-      sectors = p.sectors_far;
+  uint near_cells = p.rings_near * p.sectors_near;
+  uint ring, sector, sectors;
+  if (c < near_cells) {
+    ring = c / p.sectors_near;
+    sector = c % p.sectors_near;
+    sectors = p.sectors_near;
+  } else {
+    uint d = c - near_cells;
+    ring = p.rings_near + d / p.sectors_far;
+    sector = d % p.sectors_far;
+    sectors = p.sectors_far;
+  }
+  // rise_carry: the lowest carried ground of the nearer ring's three cells under this one
+  // (NeighbourMin's sectors; the prior's base for ring 0), and this cell's without seeds.
+  precise float reach =
+      exact_Ftz0((c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max);
+  float inner = 0.0, carried = 0.0;
+  if (p.rise_carry != 0u) {
+    precise float base0 = exact_Ftz0(-p.sensor_height + p.ground_max_above);
+    inner = base0;
+    if (ring > 0u) {
+      inner = inf;
+      uint r = ring - 1u;
+      uint rs = r < p.rings_near ? p.sectors_near : p.sectors_far;
+      uint centre = uint(uint64_t(sector) * uint64_t(rs) / uint64_t(sectors));
+      for (int ds = -1; ds <= 1; ++ds) {
+        uint s = uint((int64_t(centre) + int64_t(ds) + int64_t(rs)) % int64_t(rs));
+        float o = uintBitsToFloat(coarse_scratch_c[Base(CellIndex(r, s)) + kCarried]);
+        inner = o < inner ? o : inner;
+      }
     }
+    precise float up = exact_Ftz0(inner + reach);
+    carried = up;
+  }
+  if (cell_count[c] != 0u) {
     // NeighbourMin: the lowest h_min key of the non-empty 3x3 neighbours (not the cell itself).
     uint rings = p.rings_near + p.rings_far;
     uint best = kNone;
@@ -145,9 +175,7 @@ void SeedMode(uint c) {
         best = min(best, cell_zmin[other]);
       }
     }
-    precise float lam =
-        exact_Ftz0((c < near_cells ? p.ring_res_near : p.ring_res_far) * p.slope_max);
-    lam = exact_Ftz0(lam + p.seed_margin);
+    precise float lam = exact_Ftz0(reach + p.seed_margin);
     float hmin = exact_FromKey(cell_zmin[c]), hmax = exact_FromKey(cell_zmax[c]);
     float hnmin = best == kNone ? hmin : exact_FromKey(best);
     precise float rise = exact_Ftz0(hmin - hnmin);
@@ -155,7 +183,13 @@ void SeedMode(uint c) {
     precise float slope_r = exact_Ftz0(p.slope_max * ring_inner[ring]);
     precise float prior = exact_Ftz0(base + slope_r);
     precise float rise_lim = exact_Ftz0(lam + p.rise_margin);
-    if (!(rise > rise_lim || hmin > prior)) {
+    precise float above = exact_Ftz0(hmin - inner);
+    precise float below = exact_Ftz0(hnmin - hmin);
+    bool carry_rejects = p.rise_carry != 0u && above > rise_lim;
+    if (!(rise > rise_lim || hmin > prior || carry_rejects)) {
+      // The cell seeds: its lowest point carries the ground on, unless it lies further under
+      // its neighbours' than the rise allows above them (reflection noise under the road).
+      if (p.rise_carry != 0u && !(below > rise_lim)) carried = hmin < carried ? hmin : carried;
       precise float spread = exact_Ftz0(hmax - hnmin);
       mode = spread <= p.h_athr ? 2u : 1u;
       if (mode == 2u) {
@@ -167,6 +201,8 @@ void SeedMode(uint c) {
       }
     }
   }
+  // The carried ground; 0 (the distance sum's zero high word) without rise_carry.
+  coarse_scratch_c[Base(c) + kCarried] = floatBitsToUint(carried);
   cell_seed_mode[c] = mode;
   coarse_scratch[Base(c) + kTestH] = floatBitsToUint(h);
   coarse_scratch[Base(c) + kTestLambda] = floatBitsToUint(lam_out);
@@ -440,7 +476,26 @@ void Classify(uint first) {
   }
 }
 
+// Pass 0 with rise_carry: the first workgroup, ring after ring (each ring's cells strided over its
+// invocations, a barrier between two rings), then the carried words zeroed.
+void SeedModesCarried() {
+  uint rings = p.rings_near + p.rings_far;
+  for (uint ring = 0u; ring < rings; ++ring) {
+    uint sectors = ring < p.rings_near ? p.sectors_near : p.sectors_far;
+    for (uint s = gl_LocalInvocationID.x; s < sectors; s += gl_WorkGroupSize.x)
+      SeedMode(CellIndex(ring, s));
+    memoryBarrierBuffer();
+    barrier();
+  }
+  for (uint c = gl_LocalInvocationID.x; c < pc.count; c += gl_WorkGroupSize.x)
+    coarse_scratch_c[Base(c) + kCarried] = 0u;
+}
+
 void main() {
+  if (kPass == 0u && p.rise_carry != 0u) {
+    if (gl_WorkGroupID.x == 0u) SeedModesCarried();
+    return;
+  }
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   if (kPass == 0u) {

@@ -231,6 +231,55 @@ TEST(CoarseSegment, CellFarAboveTheSlopePriorHasNoSeeds) {
   }
 }
 
+// rise_carry: a raised surface over rings 4-9 (an object's side along the sector, no ground in
+// its cells) rises above the road of rings 2-3 but not above its own neighbours, so the 3x3 rule
+// takes only ring 4; the ground carried out from the road (+ slope_max x 2 m a ring) takes rings
+// 5 and 6, and from ring 7 on the carried ground has climbed near enough.
+TEST(CoarseSegment, RiseCarryHoldsAFootChainToTheGroundCarriedFromTheSensor) {
+  Small s;
+  const float road = -s.p.sensor_height;
+  const float lambda = s.p.ring_res_near * s.p.slope_max + s.p.seed_margin;
+  const float reach = s.p.ring_res_near * s.p.slope_max;
+  const float raised = road + lambda + s.p.rise_margin + 0.5f;
+  Cloud c;
+  for (float x = 4.1f; x <= 19.9f; x += 0.1f)
+    for (float y = -0.5f; y <= 0.5f; y += 0.1f) {
+      const float r = std::hypot(x, y);
+      c.Push(x, y, r < 8.0f ? road : raised, 0.3f);
+    }
+  ASSERT_LT(reach, 0.5f * (raised - road - lambda - s.p.rise_margin));
+  for (uint32_t carry = 0; carry <= 1; ++carry) {
+    s.p.rise_carry = carry;
+    const Frame f = Coarse(c, s);
+    for (uint32_t i = 0; i < f.n; ++i) {
+      const uint32_t ring = f.point_cell[i] / s.p.sectors_near;
+      const bool none = ring == 4 || (carry && (ring == 5 || ring == 6));
+      EXPECT_EQ(f.cell_seed_mode[f.point_cell[i]] == 0u, none)
+          << "rise_carry " << carry << " ring " << ring;
+    }
+  }
+}
+
+// rise_carry: a point far under the road (reflection noise) does not carry the ground down with
+// it: the road beyond it keeps its seeds (ring 4, the noise's 3x3 neighbour, loses them to the 3x3
+// rule either way).
+TEST(CoarseSegment, RiseCarryIsNotDraggedDownByAPointUnderTheRoad) {
+  Small s;
+  s.p.rise_carry = 1;
+  const float road = -s.p.sensor_height;
+  Cloud c;
+  for (float x = 4.1f; x <= 13.9f; x += 0.1f)
+    for (float y = -0.5f; y <= 0.5f; y += 0.1f) c.Push(x, y, road, 0.3f);
+  c.Push(7.0f, 0.0f, road - 1.0f, 0.3f);  // ring 3
+  const Frame f = Coarse(c, s);
+  for (uint32_t i = 0; i < f.n; ++i) {
+    const uint32_t ring = f.point_cell[i] / s.p.sectors_near;
+    if (ring >= 5) {
+      EXPECT_EQ(f.coarse[i], 1u) << "road point " << i << " ring " << ring;
+    }
+  }
+}
+
 TEST(CoarseSegment, CollinearSeedsFallBackToTheHorizontalPlane) {
   const Small s;
   const float road = -s.p.sensor_height;

@@ -76,11 +76,13 @@ TEST_F(CoarseSegmentVk, RandomScenesMatchTheReference) {
   for (uint32_t seed = 1; seed <= 6; ++seed) {
     const size_t n = seed == 1 ? 1 : seed == 2 ? 100 : seed == 3 ? 5000 : 60000 * (seed - 3);
     const Cloud cloud = RandomScene(n, s.sensor_height, seed);
-    const Params p = ParamsForSensor(s);
+    Params p = ParamsForSensor(s);
     const Tables t = MakeTables(s, p);
     Frame f;
     RunReference(cloud, p, t, f);
     ExpectSameCoarse(device(), cloud, p, t, f, "random " + std::to_string(n));
+    p.rise_carry = 1;  // pass 0 ring by ring in one workgroup
+    ExpectSameCoarse(device(), cloud, p, t, f, "random, rise_carry, " + std::to_string(n));
   }
 }
 
@@ -92,6 +94,10 @@ TEST_F(CoarseSegmentVk, RandomHandMadeInputsMatchTheReference) {
   for (uint32_t seed = 11; seed <= 14; ++seed) {
     const Cloud cloud = RandomScene(40000, p.sensor_height, seed);
     ExpectSameCoarse(device(), cloud, p, t, test::CoarseInputs(cloud, p, t), "random hand-made");
+    Params q = p;
+    q.rise_carry = 1;
+    ExpectSameCoarse(device(), cloud, q, t, test::CoarseInputs(cloud, q, t),
+                     "random hand-made, rise_carry");
   }
 }
 
@@ -178,6 +184,8 @@ TEST_F(CoarseSegmentVkDegenerate, WallsBoxesAndRaisedCells) {
   AddPlane(&c, 4.2f, 5.8f, -6.0f, -5.6f, 0.1f, prior - 0.1f, 0, 0, 0, 3);
   AddPlane(&c, -17.8f, -4.2f, -9.0f, -3.0f, 0.1f, road, 0.02f, -0.01f, 0.02f, 4);  // sloped noisy
   Check(c, "walls, boxes, raised cells");
+  p.rise_carry = 1;
+  Check(c, "walls, boxes, raised cells, rise_carry");
 }
 
 }  // namespace

@@ -401,8 +401,8 @@ TEST(SensorProfile, ParamsForSensorRejectsSubnormalParameters) {
   for (const std::string& name : ParamNames()) {
     if (name == "rings_near" || name == "rings_far" || name == "sectors_near" ||
         name == "sectors_far" || name == "min_component" || name == "occ_rows" ||
-        name == "occ_step_rows" || name == "comp_seed_min" || name == "ring_res_near" ||
-        name == "ring_res_far")
+        name == "occ_step_rows" || name == "comp_seed_min" || name == "rise_carry" ||
+        name == "ring_res_near" || name == "ring_res_far")
       continue;  // whole numbers, or must be positive (checked before)
     for (float tiny : {1e-40f, -3e-39f}) {
       SensorProfile s = good;
