@@ -79,6 +79,14 @@ uint32_t CellIndex(const Params& p, uint32_t ring, uint32_t sector) {
              : p.rings_near * p.sectors_near + (ring - p.rings_near) * p.sectors_far + sector;
 }
 
+// The cell of ring `ring` ds sectors (-1, 0 or 1, wrapping) from the one under g's centre: zones
+// differ in sector count.
+uint32_t CellUnder(const Params& p, const CellGeometry& g, uint32_t ring, int ds) {
+  const uint32_t sectors = ring < p.rings_near ? p.sectors_near : p.sectors_far;
+  const uint32_t centre = uint32_t(uint64_t(g.sector) * sectors / g.sectors);
+  return CellIndex(p, ring, uint32_t((int64_t(centre) + ds + sectors) % sectors));
+}
+
 // Lowest h_min key among the non-empty cells of the 3x3 neighbourhood (excluding the cell).
 uint32_t NeighbourMin(const Params& p, const Frame& f, uint32_t cell) {
   const CellGeometry g = Geometry(p, cell);
@@ -87,12 +95,8 @@ uint32_t NeighbourMin(const Params& p, const Frame& f, uint32_t cell) {
   for (int dr = -1; dr <= 1; ++dr) {
     const int64_t ring = int64_t(g.ring) + dr;
     if (ring < 0 || ring >= int64_t(rings)) continue;
-    const uint32_t sectors = uint32_t(ring) < p.rings_near ? p.sectors_near : p.sectors_far;
-    // The neighbour ring's sector under this cell's centre (zones differ in sector count).
-    const uint32_t centre = uint32_t(uint64_t(g.sector) * sectors / g.sectors);
     for (int ds = -1; ds <= 1; ++ds) {
-      const uint32_t sector = uint32_t((int64_t(centre) + ds + sectors) % sectors);
-      const uint32_t other = CellIndex(p, uint32_t(ring), sector);
+      const uint32_t other = CellUnder(p, g, uint32_t(ring), ds);
       if (other == cell || f.cell_count[other] == 0) continue;
       best = std::min(best, f.cell_zmin[other]);
     }
@@ -257,14 +261,8 @@ inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v
 float InnerCarried(const Params& p, const CellGeometry& g, const std::vector<float>& carried,
                    float base) {
   if (g.ring == 0) return base;
-  const uint32_t ring = g.ring - 1;
-  const uint32_t sectors = ring < p.rings_near ? p.sectors_near : p.sectors_far;
-  const uint32_t centre = uint32_t(uint64_t(g.sector) * sectors / g.sectors);
   float h = std::numeric_limits<float>::infinity();
-  for (int ds = -1; ds <= 1; ++ds) {
-    const uint32_t sector = uint32_t((int64_t(centre) + ds + sectors) % sectors);
-    h = std::min(h, carried[CellIndex(p, ring, sector)]);
-  }
+  for (int ds = -1; ds <= 1; ++ds) h = std::min(h, carried[CellUnder(p, g, g.ring - 1, ds)]);
   return h;
 }
 

@@ -119,6 +119,14 @@ uint CellIndex(uint ring, uint sector) {
                                    (ring - p.rings_near) * p.sectors_far + sector;
 }
 
+// The cell of ring `ring` ds sectors (-1, 0 or 1, wrapping) from the one under the centre of
+// sector `sector` of `sectors` (the reference's CellUnder): zones differ in sector count.
+uint CellUnder(uint sector, uint sectors, uint ring, int ds) {
+  uint rs = ring < p.rings_near ? p.sectors_near : p.sectors_far;
+  uint centre = uint(uint64_t(sector) * uint64_t(rs) / uint64_t(sectors));
+  return CellIndex(ring, uint((int64_t(centre) + int64_t(ds) + int64_t(rs)) % int64_t(rs)));
+}
+
 void SeedMode(uint c) {
   for (uint k = 0u; k < 8u; ++k) cell_plane[8u * c + k] = 0;
   for (uint k = 0u; k < kCarried; ++k) coarse_scratch[Base(c) + k] = 0u;  // word 21: below
@@ -147,12 +155,9 @@ void SeedMode(uint c) {
     inner = base0;
     if (ring > 0u) {
       inner = inf;
-      uint r = ring - 1u;
-      uint rs = r < p.rings_near ? p.sectors_near : p.sectors_far;
-      uint centre = uint(uint64_t(sector) * uint64_t(rs) / uint64_t(sectors));
       for (int ds = -1; ds <= 1; ++ds) {
-        uint s = uint((int64_t(centre) + int64_t(ds) + int64_t(rs)) % int64_t(rs));
-        float o = uintBitsToFloat(coarse_scratch_c[Base(CellIndex(r, s)) + kCarried]);
+        uint other = CellUnder(sector, sectors, ring - 1u, ds);
+        float o = uintBitsToFloat(coarse_scratch_c[Base(other) + kCarried]);
         inner = o < inner ? o : inner;
       }
     }
@@ -166,11 +171,8 @@ void SeedMode(uint c) {
     for (int dr = -1; dr <= 1; ++dr) {
       int r = int(ring) + dr;
       if (r < 0 || r >= int(rings)) continue;
-      uint rs = uint(r) < p.rings_near ? p.sectors_near : p.sectors_far;
-      uint centre = uint(uint64_t(sector) * uint64_t(rs) / uint64_t(sectors));
       for (int ds = -1; ds <= 1; ++ds) {
-        uint s = uint((int64_t(centre) + int64_t(ds) + int64_t(rs)) % int64_t(rs));
-        uint other = CellIndex(uint(r), s);
+        uint other = CellUnder(sector, sectors, uint(r), ds);
         if (other == c || cell_count[other] == 0u) continue;
         best = min(best, cell_zmin[other]);
       }
