@@ -1,6 +1,7 @@
 // A cloud that does not fit its sensor profile (host/api/sensor_fit.h): rings past the beams are an
 // error on more than 1 % of the points and a warning below that; elevations outside the profile's
-// table are a warning; a simulated street of every profile fits its own profile.
+// table, or outside a rosette's circle, are a warning; a simulated street of every profile fits its
+// own profile.
 #include "host/api/sensor_fit.h"
 
 #include <gtest/gtest.h>
@@ -96,6 +97,23 @@ TEST(SensorFit, ElevationsOutsideTheTableAreAWarning) {
   EXPECT_TRUE(Contains(warnings[0], "wrong --sensor")) << warnings[0];
 }
 
+TEST(SensorFit, AFullTurnReadAsARosetteIsAWarning) {
+  // An HDL-64E street (a full turn, elevations within the Mid-70's +-35 deg table) read with the
+  // Mid-70 profile, which sees a 35 deg circle ahead: three quarters of the points lie behind
+  // or beside it.
+  const SensorProfile mid70 = Profile("mid70");
+  const SensorFit fit = MeasureSensorFit(Street("hdl64e", false), mid70);
+  EXPECT_GT(fit.outside_circle, fit.sampled / 2);
+  EXPECT_EQ(fit.above + fit.below, 0u);
+  const std::vector<std::string> warnings = SensorFitWarnings(fit, mid70);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_TRUE(Contains(warnings[0],
+                       "outside the 35.0 deg circle about the x axis that profile "
+                       "'mid70' sees"))
+      << warnings[0];
+  EXPECT_TRUE(Contains(warnings[0], "wrong --sensor")) << warnings[0];
+}
+
 TEST(SensorFit, EveryProfilesStreetFitsItsOwnProfile) {
   for (const std::string& name : KnownSensorProfiles(test::SensorsDir())) {
     const SensorProfile sensor = Profile(name);
@@ -119,14 +137,17 @@ TEST(SensorFit, RealScansFitTheirOwnProfiles) {
   } scans[] = {{"hdl64e", "kitti/00/velodyne/000000.bin"},
                {"hdl32e", "nuscenes/lidarseg/scene-0001/velodyne/000000.bin"},
                {"os1-64", "rellis3d/os1/000104.bin"},
-               {"vlp32c", "rellis3d/vlp32c/000104.bin"}};
+               {"vlp32c", "rellis3d/vlp32c/000104.bin"},
+               {"mid70", "livox/00/velodyne/000000.bin"},
+               {"mid70", "livox/05/velodyne/000000.bin"},
+               {"mid70", "livox/08/velodyne/000000.bin"}};
   for (const auto& s : scans) {
     const std::string path = test::DataFile(s.file);
     ASSERT_FALSE(path.empty()) << s.file;
     const SensorProfile sensor = Profile(s.sensor);
     const SensorFit fit = MeasureSensorFit(ReadCloud(path), sensor);
     EXPECT_TRUE(SensorFitWarnings(fit, sensor).empty()) << s.file;
-    EXPECT_LT(fit.above + fit.below, fit.sampled / 100 + 1) << s.file;
+    EXPECT_LT(fit.above + fit.below + fit.outside_circle, fit.sampled / 100 + 1) << s.file;
   }
   // And the KITTI scan with the VLP-16 profile is called out.
   const SensorProfile vlp16 = Profile("vlp16");

@@ -31,6 +31,13 @@ std::string Degrees(double d) {
   return text;
 }
 
+// A rosette's circle about its x axis, degrees: the table's top bin centre plus half a bin (its
+// bins are even), as `simulate` casts it.
+double CircleDeg(const SensorProfile& sensor) {
+  const std::vector<float>& e = sensor.elevation_deg;
+  return e.empty() ? 0.0 : e.front() + (e.size() > 1 ? 0.5 * (e[0] - e[1]) : 0.0);
+}
+
 }  // namespace
 
 SensorFit MeasureRings(const Cloud& cloud, const SensorProfile& sensor) {
@@ -57,6 +64,8 @@ SensorFit MeasureSensorFit(const Cloud& cloud, const SensorProfile& sensor) {
   const double bottom = sensor.elevation_deg.back() - kElevationMarginDeg;
   const size_t stride = std::max<size_t>(1, cloud.size() / kElevationSamples);
   const double kDeg = 180.0 / 3.14159265358979323846;
+  const double circle = CircleDeg(sensor) + kElevationMarginDeg;
+  const bool rosette = sensor.pattern == ScanPattern::kRosette;
   for (size_t i = 0; i < cloud.size(); i += stride) {
     const double x = cloud.x(i), y = cloud.y(i);
     const double z = cloud.z(i) - sensor.k_xz * x - sensor.k_yz * y - origin;
@@ -68,6 +77,10 @@ SensorFit MeasureSensorFit(const Cloud& cloud, const SensorProfile& sensor) {
     ++fit.sampled;
     fit.above += elevation > top;
     fit.below += elevation < bottom;
+    if (rosette) {  // the angle off the sensor's x axis, in its own frame
+      const double off = std::atan2(std::hypot(double(cloud.y(i)), double(cloud.z(i))), x) * kDeg;
+      fit.outside_circle += off > circle;
+    }
   }
   return fit;
 }
@@ -105,6 +118,14 @@ std::vector<std::string> SensorFitWarnings(const SensorFit& fit, const SensorPro
     warnings.push_back(where + " of profile '" + sensor.name +
                        "': wrong --sensor, or a mount tilt the profile does not hold "
                        "(lpir-gseg calibrate)?");
+  }
+  if (fit.sampled > 0 && double(fit.outside_circle) > kElevationWarnShare * double(fit.sampled)) {
+    warnings.push_back(Percent(fit.outside_circle, fit.sampled) + " of the points lie more than " +
+                       Degrees(kElevationMarginDeg).substr(1) + " outside the " +
+                       Degrees(CircleDeg(sensor)).substr(1) +
+                       " circle about the x axis that profile '" + sensor.name +
+                       "' sees (a rosette looks ahead only; a full turn is a spinning "
+                       "sensor's): wrong --sensor?");
   }
   return warnings;
 }

@@ -23,6 +23,9 @@ struct SensorFit {
   // above the top beam or below the bottom one (the angle of z - k_xz x - k_yz y - the mean beam
   // origin over the planar range).
   size_t sampled = 0, above = 0, below = 0;
+  // A rosette pattern (Mid-70) sees a circle about its x axis: of the sampled points, those more
+  // than kElevationMarginDeg outside it (its radius the table's top bin edge).
+  size_t outside_circle = 0;
 };
 
 constexpr size_t kElevationSamples = 4096;
@@ -30,13 +33,14 @@ constexpr double kElevationMarginDeg = 2.0;
 // Rings outside the beams on more than this share of the points make the cloud unusable with the
 // profile (a wrong profile puts a third to a half of them there); fewer are invalid points.
 constexpr double kRingErrorShare = 0.01;
-// Elevations outside the table on more than this share of the sampled points are warned about.
+// Elevations outside the table, or points outside a rosette's circle, on more than this share of
+// the sampled points are warned about.
 constexpr double kElevationWarnShare = 0.05;
 
 // The rings only (cheap: one pass over the ring field; nothing when the cloud has none or the
 // profile's pattern is not spinning, which ignores them).
 SensorFit MeasureRings(const Cloud& cloud, const SensorProfile& sensor);
-// Rings and elevations.
+// Rings, elevations and a rosette's circle.
 SensorFit MeasureSensorFit(const Cloud& cloud, const SensorProfile& sensor);
 
 // The message of a cloud that cannot be segmented with the profile ("" when it can): rings past
@@ -44,7 +48,8 @@ SensorFit MeasureSensorFit(const Cloud& cloud, const SensorProfile& sensor);
 // 70,000 points at 32 or above); profile 'vlp32c' has 32 beams, rings 0..31: wrong --sensor?".
 std::string SensorFitError(const SensorFit& fit, const SensorProfile& sensor);
 // Warnings for a cloud that can be segmented but does not look like the profile's sensor: a few
-// rings past the beams (those points are invalid), elevations outside the table.
+// rings past the beams (those points are invalid), elevations outside the table, points outside a
+// rosette's circle (a spinning sensor's full turn read as a Mid-70's).
 std::vector<std::string> SensorFitWarnings(const SensorFit& fit, const SensorProfile& sensor);
 
 }  // namespace lpir
