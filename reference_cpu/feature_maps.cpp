@@ -31,7 +31,11 @@
 // CPU implementation (the bits do not depend on it): row by row, each row measured and filled
 // just before the row above it needs it; columns wrap without %; slope and edges without branches
 // (every quotient computed on a non-zero divisor, then the defined value selected) so that those
-// loops vectorise. Threads (reference_cpu/threads.h): pieces of rows, each measuring the rows just
+// loops vectorise. The moments are summed in doubles, one array per moment, so that those loops
+// vectorise too: where every quantised value of a window is at most 2^22 in magnitude (heights and
+// ranges under 419 m), each sum and product is an integer under 2^53, so the doubles hold the int64
+// values exactly and convert to the same floats; a row with a larger value takes the int64 sums
+// pixel by pixel. Threads (reference_cpu/threads.h): pieces of rows, each measuring the rows just
 // outside it once more for itself.
 #include <algorithm>
 #include <cmath>
@@ -49,19 +53,34 @@ namespace {
 constexpr float kHeightScale = 10000.0f;  // m -> 0.1 mm
 constexpr float kHeightQuantum2 = 1e-8f;  // (0.1 mm)^2 in m^2
 
-// Three-column sums of one pixel of an image row (columns wrap): count, and the moments of the
-// quantised height and range.
-struct Sums {
-  int64_t z, zz, n, r, rr, rz;
+// Quantised values up to this magnitude keep every window sum and product exact in a double:
+// n * sum z^2 <= 81 * 2^44 < 2^53.
+constexpr int32_t kNarrow = 1 << 22;
+
+// The three-column sums of each pixel of one image row (columns wrap), one array per moment of the
+// quantised height and range, exact as doubles; `wide` when a value of the row is beyond kNarrow
+// (the arrays are then not filled).
+struct RowMoments {
+  std::vector<double> n, z, zz, r, rr, rz;
+  bool wide = false;
+  void Resize(uint32_t w) {
+    for (std::vector<double>* m : {&n, &z, &zz, &r, &rr, &rz}) m->resize(w);
+  }
+  void Zero() {
+    for (std::vector<double>* m : {&n, &z, &zz, &r, &rr, &rz}) std::fill(m->begin(), m->end(), 0.0);
+    wide = false;
+  }
 };
 
 // Scratch reused from frame to frame (each thread has its own): the sums of three image rows and
-// the quantised values and per-pixel moments of the row being summed, an empty row that stands for
+// the quantised values of the row being summed (int32, then as doubles with the wrap's two
+// columns), an empty row that stands for
 // the ones above the first and below the last, and the two rows just outside a band of rows,
 // measured for it (filled, range, height of each).
 struct Scratch {
-  std::vector<Sums> sums[3], pixel;
+  RowMoments sums[3];
   std::vector<int32_t> qz, qr;
+  std::vector<double> dz, dr, dn;
   std::vector<uint32_t> empty_filled;
   std::vector<float> empty_value;
   std::vector<uint32_t> outside_filled[2];
@@ -115,32 +134,51 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
   if (w > 1) fill(w - 1, w - 2, 0);
 }
 
+// The three-column sums of pixels 0 .. w - 1 from the row's quantised heights z, ranges r and
+// counts n (as doubles), each readable at -1 and w (the row's last and first pixel: columns wrap).
+void SumThreeColumns(const double* __restrict z, const double* __restrict r,
+                     const double* __restrict n, uint32_t w, double* __restrict on,
+                     double* __restrict oz, double* __restrict ozz, double* __restrict or_,
+                     double* __restrict orr, double* __restrict orz) {
+  for (int64_t u = 0; u < int64_t(w); ++u) {
+    const double z0 = z[u - 1], z1 = z[u], z2 = z[u + 1];
+    const double r0 = r[u - 1], r1 = r[u], r2 = r[u + 1];
+    on[u] = n[u - 1] + n[u] + n[u + 1];
+    oz[u] = z0 + z1 + z2;
+    ozz[u] = z0 * z0 + z1 * z1 + z2 * z2;
+    or_[u] = r0 + r1 + r2;
+    orr[u] = r0 * r0 + r1 * r1 + r2 * r2;
+    orz[u] = r0 * z0 + r1 * z1 + r2 * z2;
+  }
+}
+
 // Three-column sums of one finished row: each pixel's count and moments of its quantised height
-// and range (in `pixel`), then the sums of each pixel's and its two neighbours' (columns wrap).
-// Empty pixels hold height and range 0, which quantise to 0, so only the count needs their flag.
-// The quantisation runs four pixels at a time in int32 (exact::ToFixed32, in `qz` and `qr`), the
-// contract's int64 ToFixed for the row when a value lies beyond it.
+// and range summed with its two neighbours' (columns wrap). Empty pixels hold height and range 0,
+// which quantise to 0, so only the count needs their flag. The quantisation runs four pixels at a
+// time in int32 (exact::ToFixed32, in `qz` and `qr`); a row with a value beyond kNarrow (or beyond
+// ToFixed32) is only marked wide. `dz`, `dr` and `dn` hold w + 2 doubles: the row's values with
+// its last pixel before them and its first after them.
 void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
              const float* __restrict range, uint32_t w, int32_t* __restrict qz,
-             int32_t* __restrict qr, Sums* __restrict pixel, Sums* __restrict out) {
-  uint32_t bad = 0;
+             int32_t* __restrict qr, double* __restrict dz, double* __restrict dr,
+             double* __restrict dn, RowMoments& out) {
+  uint32_t bad = 0, wide = 0;
   for (uint32_t u = 0; u < w; ++u) {
     qz[u] = exact::ToFixed32(height[u], kHeightScale, bad);
     qr[u] = exact::ToFixed32(range[u], kHeightScale, bad);
+    // |q| > kNarrow, as one unsigned comparison
+    wide |= uint32_t(uint32_t(qz[u]) + uint32_t(kNarrow) > 2u * uint32_t(kNarrow)) |
+            uint32_t(uint32_t(qr[u]) + uint32_t(kNarrow) > 2u * uint32_t(kNarrow));
   }
-  for (uint32_t u = 0; u < w; ++u) {
-    const int64_t z = bad ? exact::ToFixed(height[u], kHeightScale) : qz[u];
-    const int64_t r = bad ? exact::ToFixed(range[u], kHeightScale) : qr[u];
-    pixel[u] = Sums{z, z * z, int64_t(filled[u] != 0u), r, r * r, r * z};
+  out.wide = (bad | wide) != 0;
+  if (out.wide) return;
+  for (uint32_t u = 0; u < w; ++u) {  // as doubles, so that the sums run two to a vector
+    dz[u + 1] = double(qz[u]), dr[u + 1] = double(qr[u]);
+    dn[u + 1] = double(int32_t(filled[u] != 0u));
   }
-  auto add = [&](uint32_t u, const Sums& a, const Sums& b, const Sums& c) {
-    out[u] = Sums{a.z + b.z + c.z, a.zz + b.zz + c.zz, a.n + b.n + c.n,
-                  a.r + b.r + c.r, a.rr + b.rr + c.rr, a.rz + b.rz + c.rz};
-  };
-  if (w == 1) return add(0, pixel[0], pixel[0], pixel[0]);
-  add(0, pixel[w - 1], pixel[0], pixel[1]);
-  for (uint32_t u = 1; u + 1 < w; ++u) add(u, pixel[u - 1], pixel[u], pixel[u + 1]);
-  add(w - 1, pixel[w - 2], pixel[w - 1], pixel[0]);
+  for (double* d : {dz, dr, dn}) d[0] = d[w], d[w + 1] = d[1];
+  SumThreeColumns(dz + 1, dr + 1, dn + 1, w, out.n.data(), out.z.data(), out.zz.data(),
+                  out.r.data(), out.rr.data(), out.rz.data());
 }
 
 // The variance of z about the window's line in range (the contract above) from its moments.
@@ -155,6 +193,65 @@ inline float VarianceAboutLine(int64_t n, int64_t sz, int64_t szz, int64_t sr, i
   const float res = (vz - (bc + bc)) + (b * b) * vr;
   const float den = float(n * n);  // <= 81: exact
   return exact::Div(std::max(res, 0.0f), den) * kHeightQuantum2;
+}
+
+// varz of one row from the three-column sums of the rows above, here and below (none wide):
+// VarianceAboutLine's operations in the same order, the int64 values held exactly in doubles
+// (kNarrow), without branches so that the loop vectorises; 0 where the pixel is not filled.
+void VarianceRow(const RowMoments& above, const RowMoments& here, const RowMoments& below,
+                 const uint32_t* __restrict filled, uint32_t w, float* __restrict varz) {
+  const double *__restrict an = above.n.data(), *__restrict bn = here.n.data(),
+               *__restrict cn = below.n.data();
+  const double *__restrict az = above.z.data(), *__restrict bz = here.z.data(),
+               *__restrict cz = below.z.data();
+  const double *__restrict azz = above.zz.data(), *__restrict bzz = here.zz.data(),
+               *__restrict czz = below.zz.data();
+  const double *__restrict ar = above.r.data(), *__restrict br = here.r.data(),
+               *__restrict cr = below.r.data();
+  const double *__restrict arr = above.rr.data(), *__restrict brr = here.rr.data(),
+               *__restrict crr = below.rr.data();
+  const double *__restrict arz = above.rz.data(), *__restrict brz = here.rz.data(),
+               *__restrict crz = below.rz.data();
+  for (uint32_t u = 0; u < w; ++u) {
+    const double n = an[u] + bn[u] + cn[u];
+    const double sz = az[u] + bz[u] + cz[u], szz = azz[u] + bzz[u] + czz[u];
+    const double sr = ar[u] + br[u] + cr[u], srr = arr[u] + brr[u] + crr[u];
+    const double srz = arz[u] + brz[u] + crz[u];
+    const float vz = float(n * szz - sz * sz);
+    const float vr = float(n * srr - sr * sr);
+    const float c = float(n * srz - sr * sz);
+    const bool positive = vr > 0.0f;
+    const float fitted = Select(positive, exact::Div(c, Select(positive, vr, 1.0f)), 0.0f);
+    const float b = std::min(std::max(fitted, -1.0f), 1.0f);
+    const float bc = b * c;
+    const float res = (vz - (bc + bc)) + (b * b) * vr;
+    const bool f = filled[u] != 0u;  // then n >= 1
+    const float nf = float(n);
+    const float den = Select(f, nf * nf, 1.0f);
+    const float var = exact::Div(std::max(res, 0.0f), den) * kHeightQuantum2;
+    varz[u] = Select(f, var, 0.0f);
+  }
+}
+
+// varz of row `here` pixel by pixel in int64 (VarianceAboutLine), for a window with a wide row:
+// each filled pixel's 3 x 3 window of the rows above, here and below, columns wrapping.
+void VarianceRowWide(const Row& above, const Row& here, const Row& below, uint32_t w,
+                     float* __restrict varz) {
+  for (uint32_t u = 0; u < w; ++u) {
+    varz[u] = 0.0f;
+    if (!here.filled[u]) continue;
+    int64_t n = 0, sz = 0, szz = 0, sr = 0, srr = 0, srz = 0;
+    const uint32_t columns[3] = {u == 0 ? w - 1 : u - 1, u, u + 1 == w ? 0 : u + 1};
+    for (const Row* row : {&above, &here, &below}) {
+      for (uint32_t k : columns) {
+        const int64_t z = exact::ToFixed(row->height[k], kHeightScale);
+        const int64_t r = exact::ToFixed(row->range[k], kHeightScale);
+        n += int64_t(row->filled[k] != 0u);
+        sz += z, szz += z * z, sr += r, srr += r * r, srz += r * z;
+      }
+    }
+    varz[u] = VarianceAboutLine(n, sz, szz, sr, srr, srz);
+  }
 }
 
 // Slope and edges of one row, given the row below (empty below the last row). Branch-free, so
@@ -198,8 +295,8 @@ namespace {
 // frame's, so that bands of rows run side by side and write only their own rows.
 void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s) {
   const uint32_t w = p.width, h = p.beams;
-  for (std::vector<Sums>& row : s.sums) row.resize(w);
-  s.pixel.resize(w), s.qz.resize(w), s.qr.resize(w);
+  for (RowMoments& row : s.sums) row.Resize(w);
+  s.qz.resize(w), s.qr.resize(w), s.dz.resize(w + 2), s.dr.resize(w + 2), s.dn.resize(w + 2);
   s.empty_filled.assign(w, 0u);
   s.empty_value.assign(w, 0.0f);
   for (int k = 0; k < 2; ++k) {
@@ -224,47 +321,37 @@ void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s
   };
 
   // The rows' three-column sums: above (zero above the first row), here and below.
-  Sums* above = s.sums[0].data();
-  Sums* here = s.sums[1].data();
-  Sums* below = s.sums[2].data();
+  RowMoments* above = &s.sums[0];
+  RowMoments* here = &s.sums[1];
+  RowMoments* below = &s.sums[2];
   if (v0 == 0) {
-    for (uint32_t u = 0; u < w; ++u) above[u] = Sums{0, 0, 0, 0, 0, 0};
+    above->Zero();
   } else {
     measure(v0 - 1);
     const Row r = row_of(v0 - 1);
-    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.pixel.data(), above);
+    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.dz.data(), s.dr.data(),
+            s.dn.data(), *above);
   }
   measure(v0);
   {
     const Row r = row_of(v0);
-    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.pixel.data(), here);
+    RowSums(r.filled, r.height, r.range, w, s.qz.data(), s.qr.data(), s.dz.data(), s.dr.data(),
+            s.dn.data(), *here);
   }
   measure(v0 + 1);
   for (uint32_t v = v0; v < v1; ++v) {
     const Row row = row_of(v), next = row_of(v + 1);
-    RowSums(next.filled, next.height, next.range, w, s.qz.data(), s.qr.data(), s.pixel.data(),
-            below);
+    RowSums(next.filled, next.height, next.range, w, s.qz.data(), s.qr.data(), s.dz.data(),
+            s.dr.data(), s.dn.data(), *below);
     const size_t o = size_t(v) * w;
     SlopeEdges(row, next, w, f.f_slope.data() + o, f.f_edge_l.data() + o, f.f_edge_r.data() + o);
-    const uint32_t* __restrict filled = row.filled;
-    const Sums* __restrict sa = above;
-    const Sums* __restrict sb = here;
-    const Sums* __restrict sc = below;
-    float* __restrict varz = f.f_varz.data() + o;
-    for (uint32_t u = 0; u < w; ++u) {
-      if (!filled[u]) {
-        varz[u] = 0.0f;
-        continue;
-      }
-      // The 3x3 window: this row's sums and those of the rows above and below.
-      const Sums& a = sa[u];
-      const Sums& b = sb[u];
-      const Sums& c = sc[u];
-      const int64_t n = a.n + b.n + c.n;
-      varz[u] = VarianceAboutLine(n, a.z + b.z + c.z, a.zz + b.zz + c.zz, a.r + b.r + c.r,
-                                  a.rr + b.rr + c.rr, a.rz + b.rz + c.rz);
-    }
-    Sums* spare = above;
+    // The 3x3 windows: this row's sums and those of the rows above and below.
+    float* varz = f.f_varz.data() + o;
+    if (above->wide || here->wide || below->wide)
+      VarianceRowWide(row_of(v - 1), row, next, w, varz);
+    else
+      VarianceRow(*above, *here, *below, row.filled, w, varz);
+    RowMoments* spare = above;
     above = here, here = below, below = spare;
     if (v + 2 <= v1) measure(v + 2);
   }

@@ -2,7 +2,8 @@
 // (reference_cpu/feature_maps.cpp): pixel_filled and the six feature maps byte for byte.
 // Inputs: hand-made images (tests/feature_maps_images.h: holes at the column wrap, holes whose
 // neighbours' ranges sit exactly on, one ulp under and one ulp over hole_gap, equal ranges down a
-// column (undefined slope), large and negative heights, images 1 and 2 pixels wide or 1 row high),
+// column (undefined slope), large and negative heights, rows of heights beyond 419 m among rows
+// under it, images 1 and 2 pixels wide or 1 row high),
 // and the reference's prepare, project, grid_reduce and coarse_segment on random clouds of 1 to
 // 200000 points and the scenes of tests/stage_scenes.h (tests/stage_harness.h runs and compares).
 #include <gtest/gtest.h>
@@ -65,6 +66,25 @@ TEST_F(FeatureMapsVkHand, LargeHeights) {
     o.empty = 0.1f * float(seed - 3);
     ExpectSameFeatures(device(), p, HandMadeImage(p, seed, o), "hand-made, large heights");
   }
+}
+
+// The reference sums a window's moments in doubles where every quantised value is at most 2^22
+// (419.4304 m) and in int64 pixel by pixel where a row of the window holds a larger one: heights up
+// to 400 m, rows 5 and 11 with a height of 450 m, one pixel exactly at the bound and one a step
+// beyond it.
+TEST_F(FeatureMapsVkHand, WideRowsAmongNarrowOnes) {
+  const Params p = SmallImage(64, 16);
+  HandOptions o;
+  o.height_scale = 400.0f;
+  Frame f = HandMadeImage(p, 7, o);
+  auto set_height = [&](uint32_t v, uint32_t u, float z) {
+    const uint32_t i = f.pixel_point[v * p.width + u];
+    if (i != kNone) f.zt[i] = z;
+  };
+  for (uint32_t u = 0; u < p.width; u += 9) set_height(5, u, 450.0f), set_height(11, u, -450.0f);
+  set_height(2, 3, 419.4304f);
+  set_height(8, 40, -419.4306f);
+  ExpectSameFeatures(device(), p, f, "hand-made, wide rows among narrow ones");
 }
 
 TEST_F(FeatureMapsVkHand, TinyImages) {
