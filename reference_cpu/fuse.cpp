@@ -175,7 +175,7 @@ void FuseRows(const Params& p, Frame& f, Range rows) {
   uint32_t* __restrict fused = f.pixel_fused.data();
   // Pieces of rows, so that the scratch stays in the L1 cache.
   float reach[kPiece], top[kPiece];
-  uint32_t occluded[kPiece], opinion[kPiece];
+  uint32_t occluded[kPiece], opinion[kPiece], asks[kPiece];
   for (uint32_t v = rows.begin; v < rows.end; ++v) {
     // The occlusion veto looks at rows v - k for k = 1 .. min(occ_rows, v).
     const uint32_t rows_above = p.occ_rows < v ? p.occ_rows : v;
@@ -189,23 +189,27 @@ void FuseRows(const Params& p, Frame& f, Range rows) {
           const uint32_t above = at - k * w;
           Occlude(filled + above, range + above, height + above, reach, top, n, k == 1, occluded);
         }
-        // The marked pixels only: a pixel of class ground keeps its mark only with an occluder its
-        // ray did not pass under (KeepsOccluder); then a mark is lifted on a step (SparedStep). The
-        // mark changes what Decide writes only where the pixel is not empty and its vote is not
-        // non-ground (the vote is non-ground exactly where class and opinion both are), so only
-        // those pixels ask SparedStep; the others' marks stay, unread.
+        // The marked pixels whose mark can change what Decide writes: not empty, and the vote not
+        // non-ground (the vote is non-ground exactly where class and opinion both are); the
+        // others' marks stay, unread. Listed without a branch, then in turn: a pixel of class
+        // ground keeps its mark only with an occluder its ray did not pass under (KeepsOccluder);
+        // then a mark is lifted on a step (SparedStep).
+        uint32_t count = 0;
         for (uint32_t u = 0; u < n; ++u) {
-          if (!occluded[u]) continue;
           const uint32_t c = cls[at + u];
-          if (c == kPixGround &&
+          const uint32_t vote_non_ground =
+              uint32_t(c == kPixNonGround) & uint32_t(opinion[u] == kPixNonGround);
+          asks[count] = u;
+          count += occluded[u] & uint32_t(c != kPixEmpty) & (vote_non_ground ^ 1u);
+        }
+        for (uint32_t j = 0; j < count; ++j) {
+          const uint32_t u = asks[j];
+          if (cls[at + u] == kPixGround &&
               !KeepsOccluder(p, filled, range, height, at + u, w, rows_above, reach[u], top[u])) {
             occluded[u] = 0;
             continue;
           }
-          const bool matters =
-              c != kPixEmpty && !(c == kPixNonGround && opinion[u] == kPixNonGround);
-          if (step_rows && matters &&
-              SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
+          if (step_rows && SparedStep(p, filled, cls, range, height, at + u, w, step_rows))
             occluded[u] = 0;
         }
       } else {
