@@ -167,9 +167,12 @@ namespace {
 
 // The pixel of every point of `points` (point_pixel: v * width + u, kNone when invalid). Each
 // search starts from the previous valid point's row and column in the range (the range's first
-// from row 0, column 0): the answer is unique, so where a range starts changes no byte.
+// from row 0, column 0): the answer is unique, so where a range starts changes no byte. With
+// `winners` (the points are all of them, in one range), each non-noise point also takes its pixel
+// where its key is smaller than the pixel's so far (pixel_key and pixel_point start at kNone):
+// Winners' pass, while the point is at hand.
 void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Columns columns,
-                 Frame& f, Range points) {
+                 Frame& f, Range points, bool winners) {
   const uint32_t width = p.width, beams = p.beams;
   const bool ring_zero_is_top = p.ring_zero_is_top;
   const int32_t* __restrict rings = cloud.ring.data();
@@ -180,6 +183,8 @@ void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Col
   const float* bound = t.beam_bound.data();
   const float* origin = t.beam_origin.data();
   const bool has_ring = !cloud.ring.empty();
+  uint32_t* __restrict pixel_key = f.pixel_key.data();
+  uint32_t* __restrict pixel_point = f.pixel_point.data();
   uint32_t column = 0, row = 0;  // the previous valid point's
   int32_t step = 0;              // and its column step, clamped to -1..1
   for (uint32_t i = points.begin; i < points.end; ++i) {
@@ -200,7 +205,12 @@ void PointPixels(const Cloud& cloud, const Params& p, const Tables& t, const Col
       v = RowNear(z, r2[i], bound, origin, beams, row);
       row = v;
     }
-    point_pixel[i] = v * width + u;
+    const uint32_t pix = v * width + u;
+    point_pixel[i] = pix;
+    if (winners && !(flags[i] & kPointNoise)) {
+      const uint32_t key = exact::Key(r2[i]);
+      if (key < pixel_key[pix]) pixel_key[pix] = key, pixel_point[pix] = i;
+    }
   }
 }
 
@@ -227,7 +237,7 @@ void Winners(const Frame& f, Range pixels, uint32_t* __restrict pixel_key,
 }  // namespace
 
 // Pieces of points find their pixels; then pieces of rows take their pixels' winners from every
-// point (each reads all the pixels, but writes only its own).
+// point (each reads all the pixels, but writes only its own). One piece does both in one pass.
 void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f, Threads threads) {
   const uint32_t n = f.n, pixels = p.width * p.beams, width = p.width;
   f.point_pixel.resize(n);
@@ -238,8 +248,14 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f, Thr
   for (uint32_t k = 0; k < width; ++k)
     upper[k] = Upper(t.column_dir[2 * k], t.column_dir[2 * k + 1]);
   const Columns columns{t.column_dir.data(), upper.data(), width};
-  ForPieces(threads, PiecesFor(threads, n, 4096), n,
-            [&](uint32_t, Range points) { PointPixels(cloud, p, t, columns, f, points); });
+  const uint32_t pieces = PiecesFor(threads, n, 4096);
+  if (pieces == 1) {
+    std::fill(f.pixel_key.begin(), f.pixel_key.end(), kNone);
+    std::fill(f.pixel_point.begin(), f.pixel_point.end(), kNone);
+    return PointPixels(cloud, p, t, columns, f, {0, n}, true);
+  }
+  ForPieces(threads, pieces, n,
+            [&](uint32_t, Range points) { PointPixels(cloud, p, t, columns, f, points, false); });
   ForPieces(threads, PiecesFor(threads, p.beams, 4), p.beams, [&](uint32_t, Range rows) {
     Winners(f, {rows.begin * width, rows.end * width}, f.pixel_key.data(), f.pixel_point.data());
   });
