@@ -115,18 +115,18 @@ void MeasureRow(const uint32_t* __restrict point, const float* __restrict r2,
   uint32_t* __restrict filled = row.filled;
   float* __restrict range = row.range;
   float* __restrict height = row.height;
-  bool holes = false;
+  // Without branches: point 0 stands in for none (its values are read, then not taken), and the
+  // square roots are taken in a second loop, which becomes vector code.
+  uint32_t holes = 0;
   for (uint32_t u = 0; u < w; ++u) {
-    const uint32_t i = point[u];
-    if (i == kNone) {
-      filled[u] = 0u, range[u] = 0.0f, height[u] = 0.0f;
-      holes = true;
-      continue;
-    }
-    filled[u] = 1u;
-    range[u] = exact::Sqrt(r2[i]);
-    height[u] = zt[i];
+    const uint32_t i = point[u], has = uint32_t(i != kNone);
+    const uint32_t at = i & (0u - has);
+    filled[u] = has;
+    range[u] = r2[at];
+    height[u] = Select(has != 0u, zt[at], 0.0f);
+    holes |= has ^ 1u;
   }
+  for (uint32_t u = 0; u < w; ++u) range[u] = Select(filled[u] != 0u, exact::Sqrt(range[u]), 0.0f);
   if (!holes) return;
   // Only measured pixels (filled 1) feed the filling: a filled pixel (2) has none as neighbour.
   auto fill = [&](uint32_t u, uint32_t l, uint32_t r) {
@@ -317,8 +317,10 @@ void FeatureRows(const Params& p, Frame& f, uint32_t v0, uint32_t v1, Scratch& s
   };
   auto measure = [&](uint32_t v) {
     if (v >= h) return;
-    MeasureRow(f.pixel_point.data() + size_t(v) * w, f.r2.data(), f.zt.data(), p.hole_gap, w,
-               row_of(v));
+    static const float kNoPoint[1] = {0.0f};  // read in place of point 0 when there are none
+    const float* r2 = f.n ? f.r2.data() : kNoPoint;
+    const float* zt = f.n ? f.zt.data() : kNoPoint;
+    MeasureRow(f.pixel_point.data() + size_t(v) * w, r2, zt, p.hole_gap, w, row_of(v));
   };
 
   // The rows' three-column sums: above (zero above the first row), here and below.
