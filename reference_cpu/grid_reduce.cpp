@@ -54,9 +54,12 @@ struct RowOfPixel {
 };
 
 // The cell of every point of `points` (point_cell) and the cells' reductions over them into
-// `out` (which holds kNone, 0, 0 for a cell no point has reached). `edges` holds the rings' edges
-// with one before and one after: -inf, ring_bound2[0 .. rings - 1], +inf, so that ring k spans
-// edges[k] <= r2 < edges[k + 1] for every k in 0 .. rings (rings: beyond the last).
+// `out` (which holds kNone, 0, 0 for a cell no point has reached). A run of consecutive points in
+// one cell (scan order keeps a sector's points together) is reduced in registers and merged into
+// the cell when the run ends, so that each point does not wait on the last one's store. `edges`
+// holds the rings' edges with one before and one after: -inf, ring_bound2[0 .. rings - 1], +inf, so
+// that ring k spans edges[k] <= r2 < edges[k + 1] for every k in 0 .. rings (rings: beyond the
+// last).
 void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restrict sn,
              const uint32_t* __restrict sf, const float* __restrict edges, Range points,
              const CellSums& out) {
@@ -76,6 +79,12 @@ void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restr
   const uint32_t far_base = rings_near * sectors_near;
   uint32_t hint =
       0;  // the previous point's ring: the ring is unique, so a right hint is the answer
+  uint32_t run_cell = 0, run_min = kNone, run_max = 0, run_count = 0;  // the run so far
+  auto merge_run = [&] {
+    zmin[run_cell] = std::min(zmin[run_cell], run_min);
+    zmax[run_cell] = std::max(zmax[run_cell], run_max);
+    count[run_cell] += run_count;
+  };
   for (uint32_t i = points.begin; i < points.end; ++i) {
     point_cell[i] = kNone;
     if (flags[i] != kPointValid) continue;  // invalid or noise
@@ -89,11 +98,16 @@ void CellsOf(const Params& p, const Tables& t, Frame& f, const uint32_t* __restr
     const uint32_t cell = ring < rings_near ? ring * sectors_near + sn[u]
                                             : far_base + (ring - rings_near) * sectors_far + sf[u];
     point_cell[i] = cell;
+    if (cell != run_cell) {
+      if (run_count) merge_run();
+      run_cell = cell, run_min = kNone, run_max = 0, run_count = 0;
+    }
     const uint32_t key = exact::Key(zt[i]);
-    zmin[cell] = std::min(zmin[cell], key);
-    zmax[cell] = std::max(zmax[cell], key);
-    count[cell] += 1;
+    run_min = std::min(run_min, key);
+    run_max = std::max(run_max, key);
+    run_count += 1;
   }
+  if (run_count) merge_run();
 }
 
 // Scratch reused from frame to frame: every column's sector in each zone, the rings' edges
