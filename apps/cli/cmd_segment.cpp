@@ -363,8 +363,16 @@ class SegmentRun {
       FitWarnings(in);
       try {
         while (!segmenter_.CanSubmit()) Finish();
-        segmenter_.Submit(in.cloud);
+        // Borrowed: the job holds the cloud until Finish has collected its frame (no copy on the
+        // CPU backend; std::deque keeps the element in place as jobs are added).
         jobs_.push_back(std::move(in));
+        try {
+          segmenter_.SubmitBorrowed(jobs_.back().cloud);
+        } catch (...) {
+          in = std::move(jobs_.back());
+          jobs_.pop_back();
+          throw;
+        }
       } catch (const std::exception& e) {
         while (!jobs_.empty()) Finish();
         Fail(in, Where(in) + ": " + e.what());
@@ -467,10 +475,14 @@ class SegmentRun {
     }
   }
 
-  // Collects the oldest frame in flight and writes what it gives.
+  // Collects the oldest frame in flight and writes what it gives; the job leaves the queue last,
+  // its cloud having been read in place by the frame.
   void Finish() {
-    const FrameInput job = std::move(jobs_.front());
-    jobs_.pop_front();
+    const struct PopFront {
+      std::deque<FrameInput>& jobs;
+      ~PopFront() { jobs.pop_front(); }
+    } pop{jobs_};
+    const FrameInput& job = jobs_.front();
     try {
       FrameTimes times;
       const Frame& frame = segmenter_.Collect(&times);

@@ -34,9 +34,15 @@ CpuPipeline::~CpuPipeline() {
     if (runner.joinable()) runner.join();
 }
 
-void CpuPipeline::Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) {
-  slots_[slot].cloud = cloud;  // into the slot's vectors: no allocation once they have grown
-  slots_[slot].params = WithMount(params_, mount);
+void CpuPipeline::Stage(uint32_t slot, const Cloud& cloud, const Mount& mount, bool borrowed) {
+  Slot& s = slots_[slot];
+  if (borrowed) {
+    s.cloud = &cloud;
+  } else {
+    s.copy = cloud;  // into the slot's vectors: no allocation once they have grown
+    s.cloud = &s.copy;
+  }
+  s.params = WithMount(params_, mount);
 }
 
 void CpuPipeline::SubmitStaged(uint32_t first, uint32_t count) {
@@ -67,7 +73,7 @@ void CpuPipeline::Run(uint32_t slot) {
     lock.unlock();
     std::exception_ptr error;
     try {
-      RunReference(s.cloud, s.params, tables_, s.frame, &s.times, Threads{frame_threads_});
+      RunReference(*s.cloud, s.params, tables_, s.frame, &s.times, Threads{frame_threads_});
     } catch (...) {
       error = std::current_exception();
     }
@@ -82,7 +88,7 @@ void CpuPipeline::Collect(uint32_t slot, Frame& out, bool, FrameTimes* times) {
   pending_.erase(std::find(pending_.begin(), pending_.end(), slot));
   Slot& s = slots_[slot];
   if (!s.started) {  // alone: now, on this thread, with every thread
-    RunReference(s.cloud, s.params, tables_, out, times, Threads{threads_});
+    RunReference(*s.cloud, s.params, tables_, out, times, Threads{threads_});
     return;
   }
   std::unique_lock<std::mutex> lock(mutex_);

@@ -1,5 +1,6 @@
 // CpuPipeline: the CPU reference (RunReference) behind the slots of vk::FramePipeline. Stage
-// copies the cloud into its slot, as the Vulkan twin copies it into the slot's staging buffer.
+// copies the cloud into its slot, as the Vulkan twin copies it into the slot's staging buffer, or
+// keeps a borrowed one where it is.
 // With one thread every frame runs when it is collected, on the calling thread, straight into the
 // caller's Frame: one set of frame buffers however many slots, reused from frame to frame (the
 // reference as it always ran). With more, the frames pending share the threads out: a frame
@@ -33,7 +34,7 @@ class CpuPipeline final : public FrameBackend {
   CpuPipeline(const Params& params, const Tables& tables, uint32_t slots, uint32_t threads);
   ~CpuPipeline() override;  // waits for the frames running
 
-  void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) override;
+  void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount, bool borrowed) override;
   void SubmitStaged(uint32_t first, uint32_t count) override;
   void Collect(uint32_t slot, Frame& out, bool all_buffers, FrameTimes* times) override;
 
@@ -46,8 +47,9 @@ class CpuPipeline final : public FrameBackend {
  private:
   // A slot's frame from Stage to Collect.
   struct Slot {
-    Cloud cloud;    // the cloud staged
-    Params params;  // the backend's Params seen from the cloud's mount (WithMount)
+    Cloud copy;                    // the cloud staged, when it was not borrowed
+    const Cloud* cloud = nullptr;  // the cloud staged: `copy`, or the caller's
+    Params params;                 // the backend's Params seen from the cloud's mount (WithMount)
     // Set while the frame runs or has run on the slot's thread (under mutex_), and what it gave.
     bool started = false, done = false;
     Frame frame;

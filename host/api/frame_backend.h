@@ -17,10 +17,12 @@ class FrameBackend {
  public:
   virtual ~FrameBackend() = default;
 
-  // Copies `cloud` into the free slot `slot`; its frame runs with the backend's Params seen from
+  // Stages `cloud` in the free slot `slot`; its frame runs with the backend's Params seen from
   // `mount` (WithMount). The cloud is checked: at most the backend's max_points points, a ring
-  // field empty or one entry a point.
-  virtual void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) = 0;
+  // field empty or one entry a point. `borrowed`: the caller keeps the cloud alive and unchanged
+  // until the slot's frame is collected, so a backend may read it in place (the CPU does) rather
+  // than copy it; otherwise it is copied before Stage returns.
+  virtual void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount, bool borrowed) = 0;
   // Starts the frames staged in slots first .. first + count - 1 as one batch
   // (1 <= count <= batch()).
   virtual void SubmitStaged(uint32_t first, uint32_t count) = 0;

@@ -107,7 +107,11 @@ bool Segmenter::CanSubmit() const {
   return (last + blocks - first) % blocks + 1 < blocks;  // blocks with frames pending
 }
 
-void Segmenter::Submit(const Cloud& cloud) {
+void Segmenter::Submit(const Cloud& cloud) { Submit(cloud, false); }
+
+void Segmenter::SubmitBorrowed(const Cloud& cloud) { Submit(cloud, true); }
+
+void Segmenter::Submit(const Cloud& cloud, bool borrowed) {
   if (!CanSubmit())
     throw std::logic_error("Submit called with " + std::to_string(pending_.size()) +
                            " frames pending, the most in flight: Collect first");
@@ -116,12 +120,13 @@ void Segmenter::Submit(const Cloud& cloud) {
     unringed_.xyzi = cloud.xyzi;  // into the scratch's vector: no allocation once it has grown
     unringed_.ring.clear();
     staged = &unringed_;
+    borrowed = false;  // the scratch is the next cloud's too
   }
   CheckCloud(*staged);
   if (staged_ == 0) next_slot_ = next_block_ * batch_;
   const uint32_t slot = next_slot_;
   slot_mounts_[slot] = FrameMount(*staged, sensor_, params_);
-  pipeline_->Stage(slot, *staged, slot_mounts_[slot].mount);
+  pipeline_->Stage(slot, *staged, slot_mounts_[slot].mount, borrowed);
   ++staged_;
   pending_.push_back(slot);
   next_slot_ = slot + 1;

@@ -91,6 +91,9 @@ class Segmenter {
   // one, submitted by Collect, leaves the rest of its block unused) and may start only in a
   // block with no frame pending: with batch 1, CanSubmit() is pending() < frames_in_flight.
   void Submit(const Cloud& cloud);
+  // Submit without the copy: the CPU backend reads `cloud` in place, so the caller keeps it alive
+  // and unchanged until Collect has returned its frame (segment's jobs hold their clouds so).
+  void SubmitBorrowed(const Cloud& cloud);
   const Frame& Collect(FrameTimes* times = nullptr);
   bool CanSubmit() const;
   size_t pending() const { return pending_.size(); }
@@ -122,8 +125,9 @@ class Segmenter {
   uint32_t threads() const { return options_.threads; }
 
  private:
-  void CheckCloud(const Cloud& cloud) const;  // the one check of every cloud, before Stage
-  void SubmitStaged();                        // the staged frames, as one batch
+  void CheckCloud(const Cloud& cloud) const;       // the one check of every cloud, before Stage
+  void SubmitStaged();                             // the staged frames, as one batch
+  void Submit(const Cloud& cloud, bool borrowed);  // Submit and SubmitBorrowed
 
   SensorProfile sensor_;
   SegmenterOptions options_;

@@ -30,8 +30,8 @@ vk::Result<std::unique_ptr<VulkanPipeline>> VulkanPipeline::Create(
 VulkanPipeline::VulkanPipeline(uint32_t batch) : batch_(batch) {}
 VulkanPipeline::~VulkanPipeline() = default;
 
-void VulkanPipeline::Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) {
-  ThrowIfError(pipeline_->Stage(slot, cloud, mount));
+void VulkanPipeline::Stage(uint32_t slot, const Cloud& cloud, const Mount& mount, bool) {
+  ThrowIfError(pipeline_->Stage(slot, cloud, mount));  // into the slot's staging buffer
 }
 
 void VulkanPipeline::SubmitStaged(uint32_t first, uint32_t count) {

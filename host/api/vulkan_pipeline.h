@@ -29,7 +29,7 @@ class VulkanPipeline final : public FrameBackend {
   VulkanPipeline(const VulkanPipeline&) = delete;
   VulkanPipeline& operator=(const VulkanPipeline&) = delete;
 
-  void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount) override;
+  void Stage(uint32_t slot, const Cloud& cloud, const Mount& mount, bool borrowed) override;
   void SubmitStaged(uint32_t first, uint32_t count) override;
   void Collect(uint32_t slot, Frame& out, bool all_buffers, FrameTimes* times) override;
 
