@@ -1,7 +1,8 @@
 // The CPU backend (host/api/cpu_pipeline.h) through lpir::Segmenter: frames collected alone and
-// frames in flight, at one thread and at several, every buffer byte for byte equal to the reference
-// on one thread (RunReference); the threads option resolved and checked; a segmenter destroyed with
-// frames still running; AvailableCores under a narrowed affinity.
+// frames in flight, at one thread and at several, clouds borrowed and copied, every buffer byte for
+// byte equal to the reference on one thread (RunReference); the threads option resolved and
+// checked; a segmenter destroyed with frames still running; AvailableCores under a narrowed
+// affinity.
 #include "host/api/cpu_pipeline.h"
 
 #include <gtest/gtest.h>
@@ -91,6 +92,32 @@ TEST(CpuPipeline, AloneAndInFlightInTurns) {
   check(s.Collect(), 3, "third in flight");
   check(s.Segment(clouds[4]), 4, "alone again");
   check(s.Segment(clouds[0]), 0, "alone, the first again");
+}
+
+// SubmitBorrowed reads the caller's cloud in place and Submit copies it: borrowed clouds in flight
+// give the reference's frames, and a cloud its caller overwrites right after Submit still gives its
+// own frame (with one thread the frames run only when collected, after the overwrite).
+TEST(CpuPipeline, BorrowedCloudsAndCopiedOnes) {
+  const SensorProfile sensor = Hdl64();
+  const std::vector<Cloud> clouds = Streets(sensor, 4);
+  for (uint32_t threads : {1u, 2u}) {
+    Segmenter s(sensor, Cpu(threads, 2));
+    auto check = [&](size_t k, const std::string& what) {
+      test::ExpectSameFrame(s.params(), Reference(s, clouds[k]), s.Collect(), &clouds[k],
+                            what + ", " + std::to_string(threads) + " threads",
+                            {"reference", "segmenter"});
+    };
+    s.SubmitBorrowed(clouds[0]);
+    Cloud reused = clouds[1];
+    s.Submit(reused);
+    reused = clouds[2];
+    check(0, "borrowed");
+    check(1, "copied, then overwritten by its caller");
+    s.SubmitBorrowed(clouds[2]);
+    s.SubmitBorrowed(clouds[3]);
+    check(2, "borrowed, two in flight");
+    check(3, "borrowed, the second");
+  }
 }
 
 TEST(CpuPipeline, DestroyedWithFramesRunning) {
