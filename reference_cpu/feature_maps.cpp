@@ -188,23 +188,30 @@ void RowSums(const uint32_t* __restrict filled, const float* __restrict height,
   SumThreeColumns(dz + 1, dr + 1, dn + 1, w, out.n, out.z, out.zz, out.r, out.rr, out.rz);
 }
 
-// The variance of z about the window's line in range (the contract above) from its moments.
-inline float VarianceAboutLine(int64_t n, int64_t sz, int64_t szz, int64_t sr, int64_t srr,
-                               int64_t srz) {
-  const float vz = exact::I64ToFloat(n * szz - sz * sz);
-  const float vr = exact::I64ToFloat(n * srr - sr * sr);
-  const float c = exact::I64ToFloat(n * srz - sr * sz);
-  const float fitted = vr > 0.0f ? exact::Div(c, vr) : 0.0f;
+// The contract's float steps from the window's terms vz, vr and c (the exact integers as floats)
+// and den = n^2 (> 0): b = Div(c, vr) when vr > 0, else 0, clamped to [-1, 1]; res = (vz - (bc +
+// bc)) + (b * b) * vr, at least 0; Div(res, den) * quantum^2. Without branches, so that a loop over
+// it becomes vector code.
+inline float VarianceFromTerms(float vz, float vr, float c, float den) {
+  const bool positive = vr > 0.0f;
+  const float fitted = Select(positive, exact::Div(c, Select(positive, vr, 1.0f)), 0.0f);
   const float b = std::min(std::max(fitted, -1.0f), 1.0f);
   const float bc = b * c;
   const float res = (vz - (bc + bc)) + (b * b) * vr;
-  const float den = float(n * n);  // <= 81: exact
   return exact::Div(std::max(res, 0.0f), den) * kHeightQuantum2;
 }
 
+// The variance of z about the window's line in range (the contract above) from its moments.
+inline float VarianceAboutLine(int64_t n, int64_t sz, int64_t szz, int64_t sr, int64_t srr,
+                               int64_t srz) {
+  return VarianceFromTerms(exact::I64ToFloat(n * szz - sz * sz),
+                           exact::I64ToFloat(n * srr - sr * sr),
+                           exact::I64ToFloat(n * srz - sr * sz), float(n * n));  // n^2 <= 81: exact
+}
+
 // varz of one row from the three-column sums of the rows above, here and below (none wide):
-// VarianceAboutLine's operations in the same order, the int64 values held exactly in doubles
-// (kNarrow), without branches so that the loop vectorises; 0 where the pixel is not filled.
+// VarianceAboutLine with the int64 values held exactly in doubles (kNarrow), so that the loop
+// vectorises; 0 where the pixel is not filled.
 void VarianceRow(const RowMoments& above, const RowMoments& here, const RowMoments& below,
                  const uint32_t* __restrict filled, uint32_t w, float* __restrict varz) {
   const double* __restrict an = above.n, * __restrict bn = here.n, * __restrict cn = below.n;
@@ -218,18 +225,10 @@ void VarianceRow(const RowMoments& above, const RowMoments& here, const RowMomen
     const double sz = az[u] + bz[u] + cz[u], szz = azz[u] + bzz[u] + czz[u];
     const double sr = ar[u] + br[u] + cr[u], srr = arr[u] + brr[u] + crr[u];
     const double srz = arz[u] + brz[u] + crz[u];
-    const float vz = float(n * szz - sz * sz);
-    const float vr = float(n * srr - sr * sr);
-    const float c = float(n * srz - sr * sz);
-    const bool positive = vr > 0.0f;
-    const float fitted = Select(positive, exact::Div(c, Select(positive, vr, 1.0f)), 0.0f);
-    const float b = std::min(std::max(fitted, -1.0f), 1.0f);
-    const float bc = b * c;
-    const float res = (vz - (bc + bc)) + (b * b) * vr;
     const bool f = filled[u] != 0u;  // then n >= 1
     const float nf = float(n);
-    const float den = Select(f, nf * nf, 1.0f);
-    const float var = exact::Div(std::max(res, 0.0f), den) * kHeightQuantum2;
+    const float var = VarianceFromTerms(float(n * szz - sz * sz), float(n * srr - sr * sr),
+                                        float(n * srz - sr * sz), Select(f, nf * nf, 1.0f));
     varz[u] = Select(f, var, 0.0f);
   }
 }
