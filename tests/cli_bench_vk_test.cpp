@@ -11,6 +11,7 @@
 #include <string>
 
 #include "reference_cpu/pipeline.h"
+#include "reference_cpu/wide.h"
 #include "tests/test_util.h"
 
 namespace lpir {
@@ -43,6 +44,8 @@ TEST(CliBench, JsonHoldsEveryField) {
   EXPECT_NE(json.find("\"device\": \""), std::string::npos) << json;
   EXPECT_EQ(json.find("\"device\": \"none"), std::string::npos) << json;
   EXPECT_NE(json.find("\"end_to_end\": {\"cpu\": {\"median_ms\": "), std::string::npos) << json;
+  // The CPU's name says which build of the kernels ran (reference_cpu/wide.h).
+  EXPECT_EQ(json.find(", 1 thread, AVX2 kernels\"") != std::string::npos, WideKernels()) << json;
   EXPECT_NE(json.find("\"vulkan\": {\"median_ms\": "), std::string::npos) << json;
   for (const char* stage : kStageNames)
     EXPECT_NE(json.find(std::string("{\"name\": \"") + stage + "\", \"cpu_ms\": "),

@@ -1,6 +1,7 @@
 // The stages split over threads (reference_cpu/threads.h) against the reference on one thread:
 // every buffer of every stage byte for byte (tests/frame_compare.h) at 2, 3, 4 and 8 threads (more
-// than this machine's cores included), on every real scan of ../shared/data with its sensor's
+// than this machine's cores included) and in the kernels' baseline build against their AVX2 one
+// (reference_cpu/wide.h), on every real scan of ../shared/data with its sensor's
 // profile, on a simulated street of every profile in sensors/ (the data's stand-in where it is
 // absent), and on clouds smaller than the pieces; and grow's bands on a path of unknown pixels
 // that crosses every band's edge many times.
@@ -17,6 +18,7 @@
 #include "host/io/sensor_profile.h"
 #include "reference_cpu/pipeline.h"
 #include "reference_cpu/stages.h"
+#include "reference_cpu/wide.h"
 #include "tests/frame_compare.h"
 #include "tests/stage_test_util.h"
 #include "tests/test_util.h"
@@ -38,11 +40,19 @@ SensorSetup MakeSetup(const SensorProfile& sensor) {
   return s;
 }
 
-// RunReference on one thread, then on each of kThreadCounts into one frame reused from count to
-// count (every stage rewrites all of its buffers), each compared with the first.
+// RunReference on one thread, then on one thread with the kernels' baseline build (without AVX2,
+// reference_cpu/wide.h), then on each of kThreadCounts, into one frame reused from run to run
+// (every stage rewrites all of its buffers), each compared with the first.
 void ExpectSameAtEveryCount(const SensorSetup& s, const Cloud& cloud, const std::string& what) {
   Frame one, many;
   RunReference(cloud, s.params, s.tables, one);
+  const bool wide = WideKernels();
+  SetWideKernels(false);
+  RunReference(cloud, s.params, s.tables, many);
+  SetWideKernels(true);
+  test::ExpectSameFrame(
+      s.params, one, many, &cloud, what + ", baseline kernels",
+      {wide ? "AVX2 kernels" : "baseline kernels (no AVX2 here)", "baseline kernels"});
   for (uint32_t threads : kThreadCounts) {
     RunReference(cloud, s.params, s.tables, many, nullptr, Threads{threads});
     const std::string label = std::to_string(threads) + " threads";

@@ -38,6 +38,7 @@
 #include "host/io/kitti_bin.h"
 #include "host/io/sensor_profile.h"
 #include "host/vk/context.h"
+#include "reference_cpu/wide.h"
 
 namespace fs = std::filesystem;
 
@@ -471,7 +472,7 @@ BenchReport Measure(const BenchArgs& a) {
   r.has_gpu = gpu != nullptr;
   if (!r.has_gpu && !a.device.empty())  // asked for by name: no CPU-only report instead
     throw std::runtime_error("--device " + a.device + ": " + r.device);
-  r.cpu_name = CpuName() + ", 1 thread";
+  r.cpu_name = CpuName() + ", 1 thread" + (WideKernels() ? ", AVX2 kernels" : "");
 
   say("checking the labels of both backends against the reference");
   Segmenter cpu(hdl64e, cpu_options);
