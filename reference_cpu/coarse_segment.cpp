@@ -38,7 +38,8 @@
 // (exact::ToFixed32; the contract's int64 path when one exceeds 2^30 mm); the centred moments come
 // from raw sums modulo 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept
 // over runs of one cell. Threads (reference_cpu/threads.h): pieces of points, each summing into its
-// own slots and cells, merged by integer addition; pieces of slots fit the planes.
+// own slots and cells, merged by integer addition, each piece of points in the AVX2 build where the
+// CPU has AVX2 (reference_cpu/wide.h); pieces of slots fit the planes.
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
@@ -46,6 +47,7 @@
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
+#include "reference_cpu/wide.h"
 
 namespace lpir {
 namespace {
@@ -253,8 +255,9 @@ int64_t Centred(uint64_t sab, int64_t sa, int64_t sb, int64_t ma, int64_t mb, in
 // v with its bits cleared where keep is 0 (a select the vectoriser can use).
 inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v) & keep); }
 
-// The passes of CoarseSegment, in the contract's order. Each is kept out of line (noinline), so
-// that its loop over the points has the registers to itself.
+// The passes of CoarseSegment, in the contract's order. The scalar ones are kept out of line
+// (noinline), so that each loop has the registers to itself; the vector ones (ToMillimetres,
+// SumDistances, Label) are inlined into their pieces' AVX2 build (reference_cpu/wide.h).
 
 // The lowest carried ground of the nearer ring's three cells under cell g (NeighbourMin's sectors);
 // `base` for ring 0.
@@ -313,7 +316,7 @@ float InnerCarried(const Params& p, const CellGeometry& g, const std::vector<flo
 
 // Every point of `points` with a cell in mm (0 without one): x, y and z_t into s.qx, s.qy, s.qz,
 // SSE-wide; the scalar path of the contract if any coordinate lies beyond 2^30 mm.
-[[gnu::noinline]] void ToMillimetres(const Cloud& cloud, const Frame& f, Scratch& s, Range points) {
+void ToMillimetres(const Cloud& cloud, const Frame& f, Scratch& s, Range points) {
   const float* __restrict xyzi = cloud.xyzi.data();
   const float* __restrict zt = f.zt.data();
   const uint32_t* __restrict point_cell = f.point_cell.data();
@@ -425,8 +428,7 @@ inline void AddSums(SeedSums& a, const SeedSums& b) {
 // Distance in mm * 2^14 of every point of `points` to its cell's plane (s.dist; 0 in cells without
 // ground), and the seeds' sum per cell + 1 into `dist_sum`, again kept in a register over a run of
 // one cell.
-[[gnu::noinline]] void SumDistances(const Frame& f, Scratch& s, Range points,
-                                    int64_t* __restrict dist_sum) {
+void SumDistances(const Frame& f, Scratch& s, Range points, int64_t* __restrict dist_sum) {
   const int32_t* __restrict qx = s.qx.data();
   const int32_t* __restrict qy = s.qy.data();
   const int32_t* __restrict qz = s.qz.data();
@@ -472,7 +474,7 @@ inline void AddSums(SeedSums& a, const SeedSums& b) {
 
 // Coarse label per point of `points`: distances are >= 0, so a threshold of -1 (no seeds, no
 // ground) or any negative one says 0.
-[[gnu::noinline]] void Label(Frame& f, const Scratch& s, Range points) {
+void Label(Frame& f, const Scratch& s, Range points) {
   const uint32_t* __restrict point_cell = f.point_cell.data();
   const int64_t* __restrict dist = s.dist.data();
   const int64_t* __restrict thr = s.thr.data();
@@ -509,7 +511,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   auto piece_dist_sums = [&](uint32_t k) {
     return k ? s.piece_dist_sums.data() + size_t(k - 1) * (cells + 1) : s.dist_sum.data();
   };
-  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
+  ForPiecesWide(threads, pieces, n, [&](uint32_t k, Range points) {
     ToMillimetres(cloud, f, s, points);
     SeedSums* sums = piece_sums(k);
     if (k) std::fill(sums, sums + slots, SeedSums{});
@@ -521,7 +523,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   s.ground.assign(slots, 0);
   ForPieces(threads, PiecesFor(threads, slots, 64), slots,
             [&](uint32_t, Range r) { FitPlanes(p, f, s, r); });
-  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
+  ForPiecesWide(threads, pieces, n, [&](uint32_t k, Range points) {
     int64_t* dist_sum = piece_dist_sums(k);
     if (k) std::fill(dist_sum, dist_sum + cells + 1, 0);
     SumDistances(f, s, points, dist_sum);
@@ -529,7 +531,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   for (uint32_t k = 1; k < pieces; ++k)
     for (uint32_t c = 0; c <= cells; ++c) s.dist_sum[c] += piece_dist_sums(k)[c];
   Thresholds(p, f, s);
-  ForPieces(threads, pieces, n, [&](uint32_t, Range points) { Label(f, s, points); });
+  ForPiecesWide(threads, pieces, n, [&](uint32_t, Range points) { Label(f, s, points); });
 }
 
 }  // namespace lpir
