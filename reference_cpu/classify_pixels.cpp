@@ -11,9 +11,7 @@
 // bank_rough: a smooth surface rising at up to ~39 degrees (a grassed embankment) that eq. 9's
 // slope vote calls an object; fuse decides it with the coarse label (docs/decisions/grow.md,
 // Banks). Empty pixels are kPixEmpty. Comparisons only.
-// Pieces of pixels, each in the AVX2 build where the CPU has AVX2 (reference_cpu/wide.h).
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 namespace {
@@ -63,8 +61,8 @@ void ClassifyRange(const Params& p, Frame& f, Range r) {
 void ClassifyPixels(const Params& p, Frame& f, Threads threads) {
   const uint32_t pixels = p.width * p.beams;
   f.pixel_class.resize(pixels);
-  ForPiecesWide(threads, PiecesFor(threads, pixels, 8192), pixels,
-                [&](uint32_t, Range r) { ClassifyRange(p, f, r); });
+  ForPieces(threads, PiecesFor(threads, pixels, 8192), pixels,
+            [&](uint32_t, Range r) { ClassifyRange(p, f, r); });
 }
 
 }  // namespace lpir

@@ -38,8 +38,7 @@
 // (exact::ToFixed32; the contract's int64 path when one exceeds 2^30 mm); the centred moments come
 // from raw sums modulo 2^64 (s_ab - m_a s_b - m_b s_a + n m_a m_b is the same integer); sums kept
 // over runs of one cell. Threads (reference_cpu/threads.h): pieces of points, each summing into its
-// own slots and cells, merged by integer addition, each piece of points in the AVX2 build where the
-// CPU has AVX2 (reference_cpu/wide.h); pieces of slots fit the planes.
+// own slots and cells, merged by integer addition; pieces of slots fit the planes.
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
@@ -47,7 +46,6 @@
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 namespace {
@@ -257,7 +255,7 @@ inline float Keep(float v, uint32_t keep) { return exact::FromBits(exact::Bits(v
 
 // The passes of CoarseSegment, in the contract's order. The scalar ones are kept out of line
 // (noinline), so that each loop has the registers to itself; the vector ones (ToMillimetres,
-// SumDistances, Label) are inlined into their pieces' AVX2 build (reference_cpu/wide.h).
+// SumDistances, Label) are inlined into their pieces' AVX2 build (reference_cpu/threads.h).
 
 // The lowest carried ground of the nearer ring's three cells under cell g (NeighbourMin's sectors);
 // `base` for ring 0.
@@ -511,7 +509,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   auto piece_dist_sums = [&](uint32_t k) {
     return k ? s.piece_dist_sums.data() + size_t(k - 1) * (cells + 1) : s.dist_sum.data();
   };
-  ForPiecesWide(threads, pieces, n, [&](uint32_t k, Range points) {
+  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
     ToMillimetres(cloud, f, s, points);
     SeedSums* sums = piece_sums(k);
     if (k) std::fill(sums, sums + slots, SeedSums{});
@@ -523,7 +521,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   s.ground.assign(slots, 0);
   ForPieces(threads, PiecesFor(threads, slots, 64), slots,
             [&](uint32_t, Range r) { FitPlanes(p, f, s, r); });
-  ForPiecesWide(threads, pieces, n, [&](uint32_t k, Range points) {
+  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
     int64_t* dist_sum = piece_dist_sums(k);
     if (k) std::fill(dist_sum, dist_sum + cells + 1, 0);
     SumDistances(f, s, points, dist_sum);
@@ -531,7 +529,7 @@ void CoarseSegment(const Cloud& cloud, const Params& p, const Tables& t, Frame& 
   for (uint32_t k = 1; k < pieces; ++k)
     for (uint32_t c = 0; c <= cells; ++c) s.dist_sum[c] += piece_dist_sums(k)[c];
   Thresholds(p, f, s);
-  ForPiecesWide(threads, pieces, n, [&](uint32_t, Range points) { Label(f, s, points); });
+  ForPieces(threads, pieces, n, [&](uint32_t, Range points) { Label(f, s, points); });
 }
 
 }  // namespace lpir

@@ -36,7 +36,7 @@
 // ranges under 419 m), each sum and product is an integer under 2^53, so the doubles hold the int64
 // values exactly and convert to the same floats; a row with a larger value takes the int64 sums
 // pixel by pixel. Threads (reference_cpu/threads.h): pieces of rows, each measuring the rows just
-// outside it once more for itself, in the AVX2 build where the CPU has AVX2 (reference_cpu/wide.h).
+// outside it once more for itself.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -45,7 +45,6 @@
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 
@@ -373,8 +372,8 @@ void FeatureMaps(const Params& p, Frame& f, Threads threads) {
   f.f_edge_r.resize(pixels);
   f.f_varz.resize(pixels);
   if (pixels == 0) return;
-  ForPiecesWide(threads, PiecesFor(threads, h, 8), h,
-                [&](uint32_t, Range rows) { FeatureRows(p, f, rows.begin, rows.end, scratch); });
+  ForPieces(threads, PiecesFor(threads, h, 8), h,
+            [&](uint32_t, Range rows) { FeatureRows(p, f, rows.begin, rows.end, scratch); });
 }
 
 }  // namespace lpir

@@ -33,12 +33,10 @@
 // (not steep), and one of them is of class ground and farther than the pixel (a landing): the
 // column climbs a curb or a bank onto ground that goes on, where a wall, a hedge or a car keeps
 // rising.
-// Pieces of rows, each in the AVX2 build where the CPU has AVX2 (reference_cpu/wide.h).
 #include <algorithm>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 namespace {
@@ -227,8 +225,8 @@ void FuseRows(const Params& p, Frame& f, Range rows) {
 void Fuse(const Params& p, Frame& f, Threads threads) {
   const uint32_t h = p.beams;
   f.pixel_fused.resize(size_t(p.width) * h);
-  ForPiecesWide(threads, PiecesFor(threads, h, 4), h,
-                [&](uint32_t, Range rows) { FuseRows(p, f, rows); });
+  ForPieces(threads, PiecesFor(threads, h, 4), h,
+            [&](uint32_t, Range rows) { FuseRows(p, f, rows); });
 }
 
 }  // namespace lpir

@@ -6,15 +6,13 @@
 // res_f), which counts the near rings past r_thr twice; we number the far rings after the near
 // ones, which is what the zone model means. Sector: from the image column (no angle needed):
 // u / (width / sectors) with the zone's sector count. Cell = near rings x near sectors, then far.
-// Reductions: integer min/max/add, order-independent. Pieces of points, each in the AVX2 build
-// where the CPU has AVX2 (reference_cpu/wide.h).
+// Reductions: integer min/max/add, order-independent.
 #include <algorithm>
 #include <limits>
 #include <vector>
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 
@@ -149,7 +147,7 @@ void GridReduce(const Params& p, const Tables& t, Frame& f, Threads threads) {
     uint32_t* c = s.pieces.data() + size_t(k - 1) * 3 * cells;
     return CellSums{c, c + cells, c + 2 * cells};
   };
-  ForPiecesWide(threads, pieces, n, [&](uint32_t k, Range points) {
+  ForPieces(threads, pieces, n, [&](uint32_t k, Range points) {
     const CellSums out = sums(k);
     if (k > 0) {  // the frame's were set above
       std::fill(out.zmin, out.zmin + cells, kNone);

@@ -33,7 +33,6 @@
 // (a pole, a post), not an object's foot; the pass test keeps reflection noise, seen under the
 // road, vetoed (docs/decisions/grow.md).
 // pixel_label: kPixGround / kPixNonGround, kPixEmpty where no pixel was measured or filled.
-// Every piece of every pass runs in the AVX2 build where the CPU has AVX2 (reference_cpu/wide.h).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -41,7 +40,6 @@
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 namespace {
@@ -321,11 +319,11 @@ void GrowAll(const Params& p, const Frame& f, Scratch& s, Threads threads) {
     return Growing(p, f, state, scratch.stack, rows.begin, rows.end, above, below);
   };
   copy_edges();
-  ForPiecesWide(threads, bands, h, [&](uint32_t b, Range rows) { band(b, rows).Scan(); });
+  ForPieces(threads, bands, h, [&](uint32_t b, Range rows) { band(b, rows).Scan(); });
   for (bool grew = true; grew;) {
     copy_edges();
-    ForPiecesWide(threads, bands, h,
-                  [&](uint32_t b, Range rows) { s.band_grew[b] = band(b, rows).ScanEdges(); });
+    ForPieces(threads, bands, h,
+              [&](uint32_t b, Range rows) { s.band_grew[b] = band(b, rows).ScanEdges(); });
     grew = false;
     for (uint8_t g : s.band_grew) grew = grew || g;
   }
@@ -403,7 +401,7 @@ void FindComponents(uint32_t w, uint32_t h, Scratch& s, Threads threads) {
     FindRuns(state, w, {0, h}, s.runs, s.row_runs.data());
   } else {
     s.band_runs.resize(bands);
-    ForPiecesWide(threads, bands, h, [&](uint32_t b, Range rows) {
+    ForPieces(threads, bands, h, [&](uint32_t b, Range rows) {
       FindRuns(state, w, rows, s.band_runs[b], s.row_runs.data());
     });
     s.runs.clear();
@@ -420,7 +418,7 @@ void FindComponents(uint32_t w, uint32_t h, Scratch& s, Threads threads) {
   uint32_t* __restrict up = s.parent.data();
   for (uint32_t k = 0; k < n; ++k) up[k] = k;
   // A band's unions touch only its own runs.
-  ForPiecesWide(threads, bands, h, [&](uint32_t, Range rows) {
+  ForPieces(threads, bands, h, [&](uint32_t, Range rows) {
     for (uint32_t v = rows.begin; v < rows.end; ++v) {
       JoinWrap(up, s, w, v);
       if (v > rows.begin) JoinAbove(up, s, w, v);
@@ -452,7 +450,7 @@ void LabelComponents(const Params& p, Frame& f, Scratch& s, Threads threads) {
   const uint32_t n = uint32_t(s.runs.size());
   const uint32_t pieces = PiecesFor(threads, n, 256);
   s.run_seeds.resize(n);
-  ForPiecesWide(threads, pieces, n, [&](uint32_t, Range runs) {
+  ForPieces(threads, pieces, n, [&](uint32_t, Range runs) {
     for (uint32_t k = runs.begin; k < runs.end; ++k) {
       uint32_t seeds = 0;
       for (uint32_t x = run[k].start; x <= run[k].start + (run[k].u1 - run[k].u0); ++x)
@@ -462,7 +460,7 @@ void LabelComponents(const Params& p, Frame& f, Scratch& s, Threads threads) {
   });
   s.comp_seeds.assign(n, 0);
   for (uint32_t k = 0; k < n; ++k) s.comp_seeds[up[k]] += s.run_seeds[k];
-  ForPiecesWide(threads, pieces, n, [&](uint32_t, Range runs) {
+  ForPieces(threads, pieces, n, [&](uint32_t, Range runs) {
     for (uint32_t k = runs.begin; k < runs.end; ++k) {
       const uint32_t root = up[k], len = run[k].u1 - run[k].u0 + 1;
       std::fill(comp + run[k].start, comp + run[k].start + len, run[root].start);
@@ -510,7 +508,7 @@ void Grow(const Params& p, Frame& f, Threads threads) {
   s.state.resize(pixels);
   uint8_t* state = s.state.data();
   const uint32_t pieces = PiecesFor(threads, pixels, 8192);
-  ForPiecesWide(threads, pieces, pixels, [&](uint32_t, Range r) {
+  ForPieces(threads, pieces, pixels, [&](uint32_t, Range r) {
     ToState(f.pixel_fused.data() + r.begin, state + r.begin, r.end - r.begin);
   });
   GrowAll(p, f, s, threads);
@@ -518,7 +516,7 @@ void Grow(const Params& p, Frame& f, Threads threads) {
   f.pixel_grown.resize(pixels);
   f.pixel_comp.resize(pixels);
   f.pixel_label.resize(pixels);
-  ForPiecesWide(threads, pieces, pixels, [&](uint32_t, Range r) {
+  ForPieces(threads, pieces, pixels, [&](uint32_t, Range r) {
     WriteOutputs(f.pixel_fused.data() + r.begin, state + r.begin, r.end - r.begin,
                  f.pixel_grown.data() + r.begin, f.pixel_label.data() + r.begin,
                  f.pixel_comp.data() + r.begin);
@@ -527,11 +525,11 @@ void Grow(const Params& p, Frame& f, Threads threads) {
   // A vetoed pixel kept is written non-ground (its neighbours read it as not ground either way).
   const uint32_t bands = PiecesFor(threads, h, 8);
   s.lifted.resize(bands), s.kept.resize(bands);
-  ForPiecesWide(threads, bands, h, [&](uint32_t b, Range rows) {
+  ForPieces(threads, bands, h, [&](uint32_t b, Range rows) {
     DecideVetoed(p, f.f_range.data(), f.f_height.data(), f.pixel_label.data(), rows, s.lifted[b],
                  s.kept[b]);
   });
-  ForPiecesWide(threads, bands, h, [&](uint32_t b, Range) {
+  ForPieces(threads, bands, h, [&](uint32_t b, Range) {
     for (uint32_t x : s.lifted[b]) f.pixel_label[x] = kPixGround;
     for (uint32_t x : s.kept[b]) f.pixel_label[x] = kPixNonGround;
   });

@@ -10,11 +10,9 @@
 // Operations, in this order: r2 = x*x + y*y; zt = z - (k_xz*x + k_yz*y) (eq. 3: two products, one
 // sum, one difference); noise = zt < h_noise (reflection noise, III-B.1: deeper under the road
 // than any ground the profile's height puts there).
-// Pieces of points, each in the AVX2 build where the CPU has AVX2 (reference_cpu/wide.h).
 
 #include "reference_cpu/exact.h"
 #include "reference_cpu/stages.h"
-#include "reference_cpu/wide.h"
 
 namespace lpir {
 namespace {
@@ -67,7 +65,7 @@ void Prepare(const Cloud& cloud, const Params& p, Frame& f, Threads threads) {
   f.flags.resize(n);
   f.zt.resize(n);
   f.r2.resize(n);
-  ForPiecesWide(threads, PiecesFor(threads, n, 4096), n, [&](uint32_t, Range r) {
+  ForPieces(threads, PiecesFor(threads, n, 4096), n, [&](uint32_t, Range r) {
     if (cloud.ring.empty())
       PrepareRange<false>(cloud, p, f, r);
     else

@@ -252,7 +252,7 @@ void Project(const Cloud& cloud, const Params& p, const Tables& t, Frame& f, Thr
   if (pieces == 1) {
     std::fill(f.pixel_key.begin(), f.pixel_key.end(), kNone);
     std::fill(f.pixel_point.begin(), f.pixel_point.end(), kNone);
-    return PointPixels(cloud, p, t, columns, f, {0, n}, true);
+    return RunWide([&] { PointPixels(cloud, p, t, columns, f, {0, n}, true); });
   }
   ForPieces(threads, pieces, n,
             [&](uint32_t, Range points) { PointPixels(cloud, p, t, columns, f, points, false); });

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "reference_cpu/wide.h"
+
 namespace lpir {
 
 // How many threads a stage may use (at least 1).
@@ -35,15 +37,17 @@ inline uint32_t PiecesFor(Threads threads, uint32_t n, uint32_t min_items) {
 
 // Calls fn(k, PieceOf(n, pieces, k)) for k = 0 .. pieces - 1 and returns when all have returned:
 // with one thread or one piece in order on the calling thread, else on up to threads.count OpenMP
-// threads. fn must not throw (an exception cannot leave an OpenMP region).
+// threads; each call in the AVX2 build of fn where the CPU has AVX2 (RunWide). fn must not throw
+// (an exception cannot leave an OpenMP region).
 template <typename Fn>
 void ForPieces(Threads threads, uint32_t pieces, uint32_t n, Fn&& fn) {
+  auto piece = [&](uint32_t k) { RunWide([&] { fn(k, PieceOf(n, pieces, k)); }); };
   if (threads.count <= 1 || pieces <= 1) {
-    for (uint32_t k = 0; k < pieces; ++k) fn(k, PieceOf(n, pieces, k));
+    for (uint32_t k = 0; k < pieces; ++k) piece(k);
     return;
   }
 #pragma omp parallel for num_threads(threads.count) schedule(static, 1)
-  for (uint32_t k = 0; k < pieces; ++k) fn(k, PieceOf(n, pieces, k));
+  for (uint32_t k = 0; k < pieces; ++k) piece(k);
 }
 
 }  // namespace lpir

@@ -1,14 +1,11 @@
-// The stages' hot loops in two builds on x86-64, chosen at run time: the baseline's (SSE2, which
-// every x86-64 CPU has) and one for CPUs with AVX2 (vectors twice as wide), so that one binary runs
-// on any x86-64 machine and uses the wider vectors where the CPU has them
-// (docs/decisions/wide.md). The two write the same bytes: the project compiles with
-// -ffp-contract=off and without fast-math, so every float operation is IEEE's, rounded alike in
-// any vector width (no FMA: AVX2's build does not enable it), and integer operations are exact.
-// Off x86-64 there is one build.
+// Every piece of every stage (ForPieces, reference_cpu/threads.h) in two builds on x86-64, chosen
+// at run time: the baseline's (SSE2, which every x86-64 CPU has) and one for CPUs with AVX2
+// (vectors twice as wide), so that one binary runs on any x86-64 machine and uses the wider vectors
+// where the CPU has them (docs/decisions/wide.md). The two write the same bytes: the project
+// compiles with -ffp-contract=off and without fast-math, so every float operation is IEEE's,
+// rounded alike in any vector width (no FMA: the AVX2 build does not enable it), and integer
+// operations are exact. Off x86-64 there is one build.
 #pragma once
-#include <cstdint>
-
-#include "reference_cpu/threads.h"
 
 namespace lpir {
 
@@ -39,12 +36,6 @@ void RunWide(Fn&& fn) {
   if (WideKernels()) return RunAvx2(fn);
 #endif
   fn();
-}
-
-// ForPieces (reference_cpu/threads.h) with each piece's fn(k, range) run by RunWide.
-template <typename Fn>
-void ForPiecesWide(Threads threads, uint32_t pieces, uint32_t n, Fn&& fn) {
-  ForPieces(threads, pieces, n, [&](uint32_t k, Range r) { RunWide([&] { fn(k, r); }); });
 }
 
 }  // namespace lpir
