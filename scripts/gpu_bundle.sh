@@ -12,7 +12,8 @@
 # MANIFEST.txt); under layers/, the Khronos validation layer (the Vulkan tests run with
 # validation on); the sensor profiles; and the real scans of ../shared/data (or $LPIR_DATA_DIR)
 # without their ground-truth .label files, which no Vulkan test reads. Compressed with xz:
-# uncompressed, the scans, the layer and OpenCV's dependencies alone pass 60 MiB.
+# uncompressed, the scans and the layer alone pass 60 MiB. The pictures' library (--images) is
+# left out, and with it OpenCV: no check draws pictures.
 #
 # Builds (Release, Ninja) into $LPIR_BUILD_DIR or <repo>/build, reusing what is built there; a
 # build folder of another build type, or configured with the sanitizers or for fuzzing, is left

@@ -136,6 +136,23 @@ TEST(CliSegment, WritesPcdAndPlyWithLabelsAndPictures) {
   EXPECT_TRUE(fs::exists(dir + "/o/images/scan_classes.png"));
 }
 
+// The pictures' library is loaded only for --images: a copy of the program without it beside it
+// labels as before, and with --images stops first (exit 4) naming the library, writing nothing.
+TEST(CliSegment, PicturesNeedTheirLibraryAndNothingElseDoes) {
+  const std::string dir = test::TempDir();
+  WriteKittiBin(dir + "/scan.bin", SmallScan());
+  fs::copy_file(Cli(), dir + "/lpir-gseg");
+  std::string log;
+  const std::string run = dir + "/lpir-gseg segment " + dir + "/scan.bin --sensor hdl64e --out ";
+  ASSERT_EQ(test::RunCommand(run + dir + "/labels --quiet", &log), 0) << log;
+  EXPECT_TRUE(fs::exists(dir + "/labels/scan.label"));
+  EXPECT_EQ(test::RunCommand(run + dir + "/pictures --images", &log), 4) << log;
+  EXPECT_NE(log.find(dir + "/liblpir_images.so: cannot load the pictures' library"),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(fs::exists(dir + "/pictures"));
+}
+
 TEST(CliSegment, AFileWithoutIntensityIsNotedOnceARun) {
   const std::string dir = test::TempDir();
   fs::create_directories(dir + "/in");

@@ -68,6 +68,7 @@ int RunDemo(int argc, char** argv) {
   if (!(runs >= 1 && runs <= 1000) || runs != double(int(runs)))
     throw std::invalid_argument("--runs must be a whole number from 1 to 1000");
   const SensorProfile sensor = LoadProfileWithSettings("hdl64e", args);
+  LoadImages();  // a missing pictures' library stops the demo before any output
   MakeOutputFolder(out);
 
   SimOptions options;

@@ -664,6 +664,7 @@ int RunSegment(int argc, char** argv) {
     return kExitOk;
   }
   const SegmentArgs a = ParseSegmentArgs(args);
+  if (a.images) LoadImages();  // a missing pictures' library stops the run before any output
   const SensorProfile sensor = LoadProfileWithSettings(a.sensor, args);
   if (a.verbose)
     for (const SkippedInput& s : a.skipped)

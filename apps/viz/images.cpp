@@ -338,8 +338,6 @@ cv::Mat BevImage(const Cloud& cloud, const Frame& frame, const std::vector<uint8
 
 }  // namespace
 
-const char kScoredColours[] = "TP sky blue, TN grey, FP vermilion, FN yellow";
-
 BevTally TallyBev(const Cloud& cloud, const Frame& frame, const std::vector<uint8_t>& predicted,
                   const std::vector<uint8_t>* truth) {
   BevTally tally;
@@ -476,3 +474,11 @@ std::vector<std::string> WriteImages(const std::string& dir, const std::string& 
 }
 
 }  // namespace lpir
+
+// The entry point that lpir-gseg looks up in this library (apps/viz/images_loader.cpp): WriteImages
+// under a name without C++ mangling.
+extern "C" std::vector<std::string> lpir_write_images(
+    const std::string& dir, const std::string& stem, const lpir::Cloud& cloud,
+    const lpir::Frame& frame, const lpir::Params& params, const std::vector<uint8_t>* truth) {
+  return lpir::WriteImages(dir, stem, cloud, frame, params, truth);
+}

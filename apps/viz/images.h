@@ -31,7 +31,7 @@ constexpr float kBevHalfWidth = 50.0f;
 bool BevPixel(float x, float y, int* row, int* col);
 
 // The scored bird's-eye view's colours in words, for messages: "TP sky blue, TN grey, ...".
-extern const char kScoredColours[];
+inline constexpr char kScoredColours[] = "TP sky blue, TN grey, FP vermilion, FN yellow";
 
 // What a bird's-eye view's legend counts: per category in the legend's order (without truth:
 // non-ground, ground, reflection noise; with truth: not scored, TN, TP, FP, FN), the points drawn
@@ -66,5 +66,12 @@ BevTally TallyBev(const Cloud& cloud, const Frame& frame, const std::vector<uint
 std::vector<std::string> WriteImages(const std::string& dir, const std::string& stem,
                                      const Cloud& cloud, const Frame& frame, const Params& params,
                                      const std::vector<uint8_t>* truth);
+
+// The pictures live in their own library, liblpir_images.so (OpenCV's drawing and its dependencies,
+// some twenty libraries that take milliseconds to load), which the command-line program loads only
+// when asked for pictures (apps/viz/images_loader.cpp): LoadImages loads it from the program's
+// folder, once; it throws std::runtime_error naming the file and the loader's reason when it
+// cannot. The program's WriteImages calls LoadImages, then the library's.
+void LoadImages();
 
 }  // namespace lpir
