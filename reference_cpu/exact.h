@@ -34,13 +34,16 @@ inline float Ftz(float f) {
   return std::fabs(f) < std::numeric_limits<float>::min() ? std::copysign(0.0f, f) : f;
 }
 
-// A float result that may be subnormal, with every value whose exponent bits are 0 (subnormals,
-// -0) as +0: a device may flush a subnormal result to a zero of either sign, so the stages apply
-// this wherever one can arise and every device gives these bits. A mask on the bits: GCC turns
-// loops over it into vector code (a float compare and select there kept prepare's loop scalar).
+// A float result that may be subnormal, with every value of magnitude at most FLT_MIN (the
+// subnormals, +-0 and +-FLT_MIN itself) as +0: a device may flush a subnormal result to a zero of
+// either sign, and one that detects tininess before rounding (NVIDIA) flushes a product whose
+// exact value lies just below FLT_MIN where IEEE rounding gives FLT_MIN, so FLT_MIN goes too; the
+// stages apply this wherever such a result can arise and every device gives these bits. A mask on
+// the bits: GCC turns loops over it into vector code (a float compare and select there kept
+// prepare's loop scalar).
 inline float Ftz0(float f) {
   const uint32_t u = Bits(f);
-  return FromBits(u & (0u - uint32_t((u & 0x7F800000u) != 0u)));
+  return FromBits(u & (0u - uint32_t((u & 0x7FFFFFFFu) > 0x00800000u)));
 }
 
 // Monotone map float -> uint32: a < b (as floats, -0 < +0) iff Key(a) < Key(b). Reductions of

@@ -46,4 +46,5 @@ void main() {
   results[base + kExactOutFtz0] = exact_Bits(exact_Ftz0(a));
   precise float product = a * b;
   results[base + kExactOutMul] = exact_Bits(product);
+  results[base + kExactOutFtz0Mul] = exact_Bits(exact_Ftz0(product));
 }

@@ -46,12 +46,13 @@ TEST(Exact, SubnormalsFlushToZero) {
   EXPECT_EQ(Sqrt(1e-40f), 0.0f);
 }
 
-// Ftz0: subnormals of either sign and -0 become +0 (bits 0); every other value, NaN and the
-// infinities included, is kept bit for bit.
+// Ftz0: subnormals, FLT_MIN and -0, of either sign, become +0 (bits 0); every other value, the
+// next float above FLT_MIN, NaN and the infinities included, is kept bit for bit.
 TEST(Exact, Ftz0FlushesToPositiveZero) {
-  for (uint32_t bits : {0x00000001u, 0x007FFFFFu, 0x80000001u, 0x807FFFFFu, 0x80000000u, 0u})
+  for (uint32_t bits : {0x00000001u, 0x007FFFFFu, 0x80000001u, 0x807FFFFFu, 0x80000000u, 0u,
+                        0x00800000u, 0x80800000u})
     EXPECT_EQ(Bits(Ftz0(FromBits(bits))), 0u) << std::hex << bits;
-  for (uint32_t bits : {0x00800000u, 0x80800000u, 0x3F800000u, 0xBF800000u, 0x7F7FFFFFu,
+  for (uint32_t bits : {0x00800001u, 0x80800001u, 0x3F800000u, 0xBF800000u, 0x7F7FFFFFu,
                         0x7F800000u, 0xFF800000u, 0x7FC00000u, 0xFFC00001u})
     EXPECT_EQ(Bits(Ftz0(FromBits(bits))), bits) << std::hex << bits;
 }

@@ -23,11 +23,13 @@ float exact_Ftz(float f) {
   return (u & 0x7F800000u) == 0u ? exact_FromBits(u & 0x80000000u) : f;
 }
 
-// Every value whose exponent bits are 0 (subnormals, -0) as +0, by its bits: wherever a stage's
-// float result may be subnormal, so that a device that flushes it (to either zero) agrees.
-float exact_Ftz0(float f) { return (exact_Bits(f) & 0x7F800000u) == 0u ? 0.0 : f; }
+// Every value of magnitude at most FLT_MIN (subnormals, +-0, +-FLT_MIN) as +0, by its bits:
+// wherever a stage's float result may be subnormal, so that a device that flushes it (to either
+// zero, tininess detected before or after rounding) agrees with one that keeps it.
+float exact_Ftz0(float f) { return (exact_Bits(f) & 0x7FFFFFFFu) <= 0x00800000u ? 0.0 : f; }
 vec4 exact_Ftz0(vec4 f) {
-  return mix(f, vec4(0.0), equal(floatBitsToUint(f) & uvec4(0x7F800000u), uvec4(0u)));
+  return mix(f, vec4(0.0),
+             lessThanEqual(floatBitsToUint(f) & uvec4(0x7FFFFFFFu), uvec4(0x00800000u)));
 }
 
 // Monotone map float -> uint: a < b (as floats, -0 < +0) iff Key(a) < Key(b).

@@ -36,7 +36,8 @@ struct ExactCase {
 #define kExactOutDivToZero 14   // DivToZero(v, (u >> 2) + 1): lo, hi
 #define kExactOutFtz0 16        // Bits(Ftz0(a))
 #define kExactOutMul 17         // Bits(a * b), the device's own product: shows its denormal mode
-#define kExactOutputs 18
+#define kExactOutFtz0Mul 18     // Bits(Ftz0(a * b)): what a stage stores, the same on every device
+#define kExactOutputs 19
 
 #ifdef __cplusplus
 static_assert(sizeof(ExactCase) == 32, "ExactCase is 8 uints (std430)");
