@@ -476,9 +476,11 @@ std::vector<std::string> WriteImages(const std::string& dir, const std::string& 
 }  // namespace lpir
 
 // The entry point that lpir-gseg looks up in this library (apps/viz/images_loader.cpp): WriteImages
-// under a name without C++ mangling.
-extern "C" std::vector<std::string> lpir_write_images(
-    const std::string& dir, const std::string& stem, const lpir::Cloud& cloud,
-    const lpir::Frame& frame, const lpir::Params& params, const std::vector<uint8_t>* truth) {
-  return lpir::WriteImages(dir, stem, cloud, frame, params, truth);
+// under a name without C++ mangling, its result through *written (a C-linkage function returns
+// no C++ type).
+extern "C" void lpir_write_images(const std::string& dir, const std::string& stem,
+                                  const lpir::Cloud& cloud, const lpir::Frame& frame,
+                                  const lpir::Params& params, const std::vector<uint8_t>* truth,
+                                  std::vector<std::string>* written) {
+  *written = lpir::WriteImages(dir, stem, cloud, frame, params, truth);
 }

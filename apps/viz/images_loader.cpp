@@ -14,9 +14,9 @@
 namespace lpir {
 namespace {
 
-using WriteImagesFn = std::vector<std::string> (*)(const std::string&, const std::string&,
-                                                   const Cloud&, const Frame&, const Params&,
-                                                   const std::vector<uint8_t>*);
+using WriteImagesFn = void (*)(const std::string&, const std::string&, const Cloud&, const Frame&,
+                               const Params&, const std::vector<uint8_t>*,
+                               std::vector<std::string>*);
 
 // The library's WriteImages: loaded once (never unloaded); a failure throws and the next call
 // tries again.
@@ -44,7 +44,9 @@ void LoadImages() { Loaded(); }
 std::vector<std::string> WriteImages(const std::string& dir, const std::string& stem,
                                      const Cloud& cloud, const Frame& frame, const Params& params,
                                      const std::vector<uint8_t>* truth) {
-  return Loaded()(dir, stem, cloud, frame, params, truth);
+  std::vector<std::string> written;
+  Loaded()(dir, stem, cloud, frame, params, truth, &written);
+  return written;
 }
 
 }  // namespace lpir
